@@ -1,0 +1,80 @@
+//! Command-line arguments (clap derive).
+
+use clap::{Args, Parser, Subcommand};
+use std::path::PathBuf;
+
+/// raytree: a Whitted ray tracer that explains every pixel.
+#[derive(Debug, Parser)]
+#[command(name = "raytree", version, about)]
+pub struct Cli {
+    /// What to do.
+    #[command(subcommand)]
+    pub command: Command,
+}
+
+/// Subcommands.
+#[derive(Debug, Subcommand)]
+pub enum Command {
+    /// Render an image (PNG, sRGB 8-bit; or EXR, linear float).
+    Render(RenderArgs),
+    /// Print the full ray tree of one pixel.
+    Trace(TraceArgs),
+}
+
+/// Settings every tracing command can override (defaults come from the scene file).
+#[derive(Debug, Clone, Default, Args)]
+pub struct Overrides {
+    /// Image size WIDTHxHEIGHT.
+    #[arg(long, value_name = "WxH")]
+    pub size: Option<String>,
+    /// Samples per pixel (stratified, box filter).
+    #[arg(long)]
+    pub spp: Option<u32>,
+    /// Deepest recursion (0 = camera and shadow rays only).
+    #[arg(long)]
+    pub max_depth: Option<u32>,
+    /// Offset epsilon in world units.
+    #[arg(long)]
+    pub epsilon: Option<f64>,
+    /// Offset strategy: normal (P +/- eps N) or ray (t_min = eps).
+    #[arg(long, value_name = "normal|ray")]
+    pub offset: Option<String>,
+    /// Fresnel model.
+    #[arg(long, value_name = "exact|schlick|none")]
+    pub fresnel: Option<String>,
+    /// Shadow rays through transmissive objects.
+    #[arg(long, value_name = "opaque|translucent")]
+    pub shadows: Option<String>,
+    /// Stop rays whose throughput falls below this (0 = off).
+    #[arg(long)]
+    pub min_weight: Option<f64>,
+}
+
+/// `raytree render`.
+#[derive(Debug, Args)]
+pub struct RenderArgs {
+    /// Scene JSON (default: the built-in classic scene).
+    pub scene: Option<PathBuf>,
+    /// Output image: .png or .exr.
+    #[arg(short, long, default_value = "render.png")]
+    pub output: PathBuf,
+    /// Settings overrides.
+    #[command(flatten)]
+    pub overrides: Overrides,
+}
+
+/// `raytree trace`.
+#[derive(Debug, Args)]
+pub struct TraceArgs {
+    /// Scene JSON (default: the built-in classic scene).
+    pub scene: Option<PathBuf>,
+    /// Pixel X,Y (0,0 is top-left).
+    #[arg(long, value_name = "X,Y")]
+    pub pixel: String,
+    /// Print JSON (schema raytree.tree/1) instead of text.
+    #[arg(long)]
+    pub json: bool,
+    /// Settings overrides.
+    #[command(flatten)]
+    pub overrides: Overrides,
+}

@@ -1,0 +1,28 @@
+//! Subcommands. Every user error (bad scene, bad flag, unwritable output) exits with code 2.
+
+mod args;
+mod load;
+mod output;
+mod render_cmd;
+mod trace_cmd;
+
+use clap::Parser;
+use std::process::ExitCode;
+
+pub use args::{Cli, Command};
+
+/// Parse arguments, run, and map errors to exit code 2.
+pub fn run() -> ExitCode {
+    let cli = Cli::parse();
+    let result = match cli.command {
+        Command::Render(a) => render_cmd::run(&a),
+        Command::Trace(a) => trace_cmd::run(&a),
+    };
+    match result {
+        Ok(()) => ExitCode::SUCCESS,
+        Err(e) => {
+            eprintln!("error: {e:#}");
+            ExitCode::from(2)
+        }
+    }
+}

@@ -1,0 +1,51 @@
+//! `raytree render`.
+
+use super::args::RenderArgs;
+use super::load::load;
+use super::output::{Pending, encode, image_format};
+use anyhow::Result;
+use indicatif::{ProgressBar, ProgressStyle};
+use std::time::Instant;
+
+/// Render the scene to a PNG or EXR file and report time and rays.
+pub fn run(a: &RenderArgs) -> Result<()> {
+    let format = image_format(&a.output)?;
+    let loaded = load(a.scene.as_deref(), &a.overrides)?;
+    let scene = &loaded.scene;
+    let pending = Pending::create(&a.output)?;
+    let (w, h) = (scene.camera.width, scene.camera.height);
+    let bar = ProgressBar::new(u64::from(h)).with_style(
+        ProgressStyle::with_template("{msg} [{bar:40}] {pos}/{len} rows {elapsed_precise}")
+            .expect("valid template")
+            .progress_chars("=> "),
+    );
+    bar.set_message(format!("rendering {} {w}x{h}", loaded.label));
+    let start = Instant::now();
+    let (image, stats) = raytree::render(scene, &|rows| bar.set_position(u64::from(rows)));
+    let secs = start.elapsed().as_secs_f64();
+    bar.finish_and_clear();
+    pending.commit(&encode(&image, format)?)?;
+    let r = stats.rays;
+    println!(
+        "wrote {} ({w}x{h}, {} spp, max depth {})",
+        a.output.display(),
+        scene.settings.spp,
+        scene.settings.max_depth
+    );
+    println!(
+        "time {secs:.3} s, {} rays ({:.2} Mrays/s): camera {}, reflected {}, refracted {}, shadow {}",
+        r.total(),
+        r.total() as f64 / secs / 1e6,
+        r.camera,
+        r.reflected,
+        r.refracted,
+        r.shadow
+    );
+    if let Some((x, y)) = stats.first_nonfinite {
+        eprintln!(
+            "warning: {} pixels were not finite and were written black; first at {x},{y} (see `raytree trace --pixel {x},{y}`)",
+            stats.nonfinite_pixels
+        );
+    }
+    Ok(())
+}

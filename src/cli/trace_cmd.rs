@@ -1,0 +1,25 @@
+//! `raytree trace`.
+
+use super::args::TraceArgs;
+use super::load::{load, pair};
+use anyhow::{Result, bail};
+
+/// Print the ray tree of one pixel as text or JSON.
+pub fn run(a: &TraceArgs) -> Result<()> {
+    let (x, y) = pair("pixel", &a.pixel, ',')?;
+    let loaded = load(a.scene.as_deref(), &a.overrides)?;
+    let cam = &loaded.scene.camera;
+    let Some(tree) = raytree::trace_pixel(&loaded.scene, x, y) else {
+        bail!(
+            "--pixel {x},{y} is outside the {}x{} image",
+            cam.width,
+            cam.height
+        );
+    };
+    if a.json {
+        println!("{}", serde_json::to_string_pretty(&tree)?);
+    } else {
+        print!("{}", raytree::text::tree_text(&tree));
+    }
+    Ok(())
+}

@@ -1,0 +1,318 @@
+//! Shapes and ray intersection. Closed set: `enum Shape`, matched exhaustively.
+
+use crate::math::Ray;
+use glam::DVec3;
+
+/// A primitive. Every shape has an outward normal; planes bound the half-space behind the normal.
+#[derive(Clone, Debug, PartialEq)]
+pub enum Shape {
+    /// A sphere.
+    Sphere {
+        /// Centre.
+        center: DVec3,
+        /// Radius (> 0).
+        radius: f64,
+    },
+    /// An infinite plane through `point`; its inside is the half-space `(x - point).normal < 0`.
+    Plane {
+        /// A point on the plane.
+        point: DVec3,
+        /// Unit outward normal.
+        normal: DVec3,
+    },
+    /// A one-sided-normal triangle; the normal is `(b - a) x (c - a)`, normalized.
+    Triangle {
+        /// Vertices.
+        vertices: [DVec3; 3],
+        /// Unit normal.
+        normal: DVec3,
+    },
+    /// An axis-aligned box.
+    Box {
+        /// Lower corner.
+        min: DVec3,
+        /// Upper corner.
+        max: DVec3,
+    },
+}
+
+/// The cheap result of a ray-shape test: distance and outward geometric normal.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct ShapeHit {
+    /// Ray parameter of the hit.
+    pub t: f64,
+    /// Unit outward geometric normal at the hit.
+    pub normal: DVec3,
+}
+
+impl Shape {
+    /// The closest hit with `t` in `(ray.t_min, t_max)`.
+    #[must_use]
+    pub fn intersect(&self, ray: &Ray, t_max: f64) -> Option<ShapeHit> {
+        match *self {
+            Shape::Sphere { center, radius } => sphere_hit(center, radius, ray, t_max),
+            Shape::Plane { point, normal } => {
+                let denom = normal.dot(ray.direction);
+                if denom == 0.0 {
+                    return None;
+                }
+                let t = (point - ray.origin).dot(normal) / denom;
+                accept(t, ray.t_min, t_max).then_some(ShapeHit { t, normal })
+            }
+            Shape::Triangle { vertices, normal } => {
+                let t = triangle_t(&vertices, ray)?;
+                accept(t, ray.t_min, t_max).then_some(ShapeHit { t, normal })
+            }
+            Shape::Box { min, max } => {
+                let (t0, t1) = slab_interval(min, max, ray)?;
+                let t = if accept(t0, ray.t_min, t_max) {
+                    t0
+                } else if accept(t1, ray.t_min, t_max) {
+                    t1
+                } else {
+                    return None;
+                };
+                Some(ShapeHit {
+                    t,
+                    normal: box_normal(min, max, ray.at(t)),
+                })
+            }
+        }
+    }
+
+    /// The parameter interval `[t_in, t_out]` where the (infinite) line is inside the solid,
+    /// used for Beer's law chords of shadow rays. A triangle has no inside: its interval is the
+    /// single crossing `[t, t]`. May extend to +/- infinity (planes).
+    #[must_use]
+    pub fn inside_interval(&self, ray: &Ray) -> Option<(f64, f64)> {
+        let whole = Ray::new(ray.origin, ray.direction, f64::NEG_INFINITY);
+        match *self {
+            Shape::Sphere { center, radius } => sphere_roots(center, radius, &whole),
+            Shape::Plane { point, normal } => {
+                let denom = normal.dot(ray.direction);
+                let side = (ray.origin - point).dot(normal);
+                if denom == 0.0 {
+                    return (side < 0.0).then_some((f64::NEG_INFINITY, f64::INFINITY));
+                }
+                let t = -side / denom;
+                Some(if denom > 0.0 {
+                    (f64::NEG_INFINITY, t)
+                } else {
+                    (t, f64::INFINITY)
+                })
+            }
+            Shape::Triangle { vertices, .. } => triangle_t(&vertices, &whole).map(|t| (t, t)),
+            Shape::Box { min, max } => slab_interval(min, max, &whole),
+        }
+    }
+
+    /// Axis-aligned bounds, `None` for unbounded shapes (planes).
+    #[must_use]
+    pub fn bounds(&self) -> Option<(DVec3, DVec3)> {
+        match *self {
+            Shape::Sphere { center, radius } => Some((center - radius, center + radius)),
+            Shape::Plane { .. } => None,
+            Shape::Triangle {
+                vertices: [a, b, c],
+                ..
+            } => Some((a.min(b).min(c), a.max(b).max(c))),
+            Shape::Box { min, max } => Some((min, max)),
+        }
+    }
+}
+
+fn accept(t: f64, t_min: f64, t_max: f64) -> bool {
+    t > t_min && t < t_max
+}
+
+/// Both roots of the ray-sphere quadratic, in the numerically stable form of Haines et al.,
+/// "Precision Improvements for Ray/Sphere Intersection" (Ray Tracing Gems, ch. 7, eq. 10-14):
+/// the discriminant is computed from the perpendicular distance, and the second root from
+/// `c / q` to avoid cancellation.
+fn sphere_roots(center: DVec3, radius: f64, ray: &Ray) -> Option<(f64, f64)> {
+    let f = ray.origin - center;
+    let d = ray.direction;
+    let a = d.dot(d);
+    let b = -f.dot(d);
+    let perp = f + (b / a) * d;
+    let disc = radius * radius - perp.dot(perp);
+    if disc < 0.0 {
+        return None;
+    }
+    let c = f.dot(f) - radius * radius;
+    let q = b + b.signum_or_one() * (a * disc).sqrt();
+    let (r0, r1) = if q == 0.0 { (0.0, 0.0) } else { (c / q, q / a) };
+    Some((r0.min(r1), r0.max(r1)))
+}
+
+trait SignumOrOne {
+    fn signum_or_one(self) -> f64;
+}
+
+impl SignumOrOne for f64 {
+    fn signum_or_one(self) -> f64 {
+        if self < 0.0 { -1.0 } else { 1.0 }
+    }
+}
+
+fn sphere_hit(center: DVec3, radius: f64, ray: &Ray, t_max: f64) -> Option<ShapeHit> {
+    let (t0, t1) = sphere_roots(center, radius, ray)?;
+    let t = if accept(t0, ray.t_min, t_max) {
+        t0
+    } else if accept(t1, ray.t_min, t_max) {
+        t1
+    } else {
+        return None;
+    };
+    let normal = ((ray.at(t) - center) / radius).normalize();
+    Some(ShapeHit { t, normal })
+}
+
+/// Möller-Trumbore ray-triangle distance (J. Graphics Tools 2(1), 1997), two-sided.
+fn triangle_t(v: &[DVec3; 3], ray: &Ray) -> Option<f64> {
+    let e1 = v[1] - v[0];
+    let e2 = v[2] - v[0];
+    let p = ray.direction.cross(e2);
+    let det = e1.dot(p);
+    if det == 0.0 || !det.is_finite() {
+        return None;
+    }
+    let inv = 1.0 / det;
+    let s = ray.origin - v[0];
+    let u = s.dot(p) * inv;
+    if !(0.0..=1.0).contains(&u) {
+        return None;
+    }
+    let q = s.cross(e1);
+    let w = ray.direction.dot(q) * inv;
+    if w < 0.0 || u + w > 1.0 {
+        return None;
+    }
+    Some(e2.dot(q) * inv)
+}
+
+/// Slab test (Kay & Kajiya 1986): the line's parameter interval inside the box.
+fn slab_interval(min: DVec3, max: DVec3, ray: &Ray) -> Option<(f64, f64)> {
+    let inv = ray.direction.recip();
+    let a = (min - ray.origin) * inv;
+    let b = (max - ray.origin) * inv;
+    // NaN (0 * inf on a face plane) is dropped by f64::min/max, keeping the other axes.
+    let t0 = a.x.min(b.x).max(a.y.min(b.y)).max(a.z.min(b.z));
+    let t1 = a.x.max(b.x).min(a.y.max(b.y)).min(a.z.max(b.z));
+    (t0 <= t1).then_some((t0, t1))
+}
+
+/// The outward normal of the box face nearest to `p`.
+fn box_normal(min: DVec3, max: DVec3, p: DVec3) -> DVec3 {
+    let size = (max - min).max(DVec3::splat(f64::MIN_POSITIVE));
+    let lo = (p - min) / size;
+    let hi = (max - p) / size;
+    let mut best = (lo.x, -DVec3::X);
+    for (d, n) in [
+        (hi.x, DVec3::X),
+        (lo.y, -DVec3::Y),
+        (hi.y, DVec3::Y),
+        (lo.z, -DVec3::Z),
+        (hi.z, DVec3::Z),
+    ] {
+        if d.abs() < best.0.abs() {
+            best = (d, n);
+        }
+    }
+    best.1
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn ray(o: [f64; 3], d: [f64; 3]) -> Ray {
+        Ray::new(DVec3::from(o), DVec3::from(d).normalize(), 0.0)
+    }
+
+    #[test]
+    fn sphere_front_and_back() {
+        let s = Shape::Sphere {
+            center: DVec3::ZERO,
+            radius: 1.0,
+        };
+        let h = s
+            .intersect(&ray([0.0, 0.0, -5.0], [0.0, 0.0, 1.0]), f64::INFINITY)
+            .unwrap();
+        assert_eq!(h.t, 4.0);
+        assert_eq!(h.normal, -DVec3::Z);
+        let h = s
+            .intersect(&ray([0.0, 0.0, 0.0], [0.0, 0.0, 1.0]), f64::INFINITY)
+            .unwrap();
+        assert_eq!(h.t, 1.0);
+        assert_eq!(h.normal, DVec3::Z);
+        assert!(
+            s.intersect(&ray([0.0, 2.0, -5.0], [0.0, 0.0, 1.0]), f64::INFINITY)
+                .is_none()
+        );
+    }
+
+    #[test]
+    fn tiny_sphere_far_away_is_precise() {
+        let center = DVec3::new(1e5, 0.0, 0.0);
+        let s = Shape::Sphere {
+            center,
+            radius: 1e-3,
+        };
+        let h = s
+            .intersect(&ray([0.0, 0.0, 0.0], [1.0, 0.0, 0.0]), f64::INFINITY)
+            .unwrap();
+        assert!((h.t - (1e5 - 1e-3)).abs() < 1e-9, "{}", h.t);
+    }
+
+    #[test]
+    fn plane_and_half_space() {
+        let p = Shape::Plane {
+            point: DVec3::ZERO,
+            normal: DVec3::Y,
+        };
+        let r = ray([0.0, 2.0, 0.0], [0.0, -1.0, 0.0]);
+        assert_eq!(p.intersect(&r, f64::INFINITY).unwrap().t, 2.0);
+        assert_eq!(p.inside_interval(&r), Some((2.0, f64::INFINITY)));
+    }
+
+    #[test]
+    fn triangle_hit_and_miss() {
+        let v = [DVec3::ZERO, DVec3::X, DVec3::Y];
+        let t = Shape::Triangle {
+            vertices: v,
+            normal: DVec3::Z,
+        };
+        assert_eq!(
+            t.intersect(&ray([0.2, 0.2, 1.0], [0.0, 0.0, -1.0]), f64::INFINITY)
+                .unwrap()
+                .t,
+            1.0
+        );
+        assert!(
+            t.intersect(&ray([0.8, 0.8, 1.0], [0.0, 0.0, -1.0]), f64::INFINITY)
+                .is_none()
+        );
+    }
+
+    #[test]
+    fn box_faces() {
+        let b = Shape::Box {
+            min: DVec3::splat(-1.0),
+            max: DVec3::splat(1.0),
+        };
+        let h = b
+            .intersect(&ray([0.0, 5.0, 0.0], [0.0, -1.0, 0.0]), f64::INFINITY)
+            .unwrap();
+        assert_eq!((h.t, h.normal), (4.0, DVec3::Y));
+        let h = b
+            .intersect(&ray([0.0, 0.0, 0.0], [1.0, 0.0, 0.0]), f64::INFINITY)
+            .unwrap();
+        assert_eq!((h.t, h.normal), (1.0, DVec3::X));
+        // Axis-parallel ray on no face plane.
+        assert!(
+            b.intersect(&ray([0.0, 2.0, 0.0], [1.0, 0.0, 0.0]), f64::INFINITY)
+                .is_none()
+        );
+    }
+}

@@ -1,0 +1,21 @@
+//! raytree: a recursive (Whitted) ray tracer that records and explains the ray tree of any pixel.
+//!
+//! Data flows one way: scene JSON -> [`Scene`] (validated) -> [`Tracer`] with a [`Recorder`]
+//! -> radiance, and optionally a [`RayTree`] that every view (text, JSON, diagram, GUI) reads.
+//! The library does no I/O.
+#![forbid(unsafe_code)]
+#![warn(missing_docs)]
+
+pub mod check;
+pub mod geometry;
+pub mod math;
+pub mod render;
+pub mod scene;
+pub mod text;
+pub mod trace;
+pub mod tree;
+
+pub use render::{Image, RenderStats, render, render_pixel, trace_pixel};
+pub use scene::{Scene, SceneError, Settings};
+pub use trace::{NoopRecorder, RayCounts, Recorder, Tracer, TreeRecorder};
+pub use tree::{NodeId, RayKind, RayNode, RayTree};

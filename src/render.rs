@@ -1,0 +1,187 @@
+//! Pixels: stratified samples, the parallel render, and re-tracing one pixel into a tree.
+//!
+//! One code path: [`render_pixel`] is generic over the recorder; the image uses
+//! [`NoopRecorder`], the tree [`TreeRecorder`], so a recorded pixel equals the rendered one bit
+//! for bit.
+
+use crate::math::Rgb;
+use crate::scene::Scene;
+use crate::trace::{NoopRecorder, RayCounts, Recorder, Tracer, TreeRecorder};
+use crate::tree::{RayTree, SampleRecord, TREE_SCHEMA};
+use rayon::prelude::*;
+
+/// A linear-radiance image, row-major, top row first.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Image {
+    /// Width in pixels.
+    pub width: u32,
+    /// Height in pixels.
+    pub height: u32,
+    /// `width * height` pixels.
+    pub pixels: Vec<Rgb>,
+}
+
+impl Image {
+    /// The pixel at (x, y).
+    #[must_use]
+    pub fn get(&self, x: u32, y: u32) -> Rgb {
+        self.pixels[(y * self.width + x) as usize]
+    }
+
+    /// 8-bit sRGB bytes, RGB order, clamped.
+    #[must_use]
+    pub fn to_srgb8(&self) -> Vec<u8> {
+        self.pixels
+            .iter()
+            .flat_map(|p| p.to_array().map(crate::math::linear_to_srgb8))
+            .collect()
+    }
+}
+
+/// What a render did.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct RenderStats {
+    /// Rays traced by kind.
+    pub rays: RayCounts,
+    /// Pixels whose value was not finite (replaced by black).
+    pub nonfinite_pixels: u64,
+    /// The first such pixel, in scan order.
+    pub first_nonfinite: Option<(u32, u32)>,
+}
+
+/// SplitMix64 (Steele, Lea, Flood 2014): a tiny, well-mixed hash for per-pixel seeds.
+fn splitmix64(mut z: u64) -> u64 {
+    z = z.wrapping_add(0x9E37_79B9_7F4A_7C15);
+    z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
+    z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
+    z ^ (z >> 31)
+}
+
+fn unit(h: u64) -> f64 {
+    (h >> 11) as f64 * (1.0 / (1u64 << 53) as f64)
+}
+
+/// Film position of sample `s` of pixel (x, y): the centre for one sample, otherwise jittered
+/// stratified on a `cols x rows` grid, seeded by the pixel and sample so it is reproducible.
+#[must_use]
+pub fn sample_position(x: u32, y: u32, s: u32, spp: u32) -> (f64, f64) {
+    if spp <= 1 {
+        return (f64::from(x) + 0.5, f64::from(y) + 0.5);
+    }
+    let cols = f64::from(spp).sqrt().ceil() as u32;
+    let rows = spp.div_ceil(cols);
+    let seed =
+        splitmix64((u64::from(y) << 32 | u64::from(x)) ^ (u64::from(s) << 48).rotate_left(7));
+    let jx = unit(seed);
+    let jy = unit(splitmix64(seed));
+    let sx = (f64::from(s % cols) + jx) / f64::from(cols);
+    let sy = (f64::from(s / cols) + jy) / f64::from(rows);
+    (f64::from(x) + sx, f64::from(y) + sy)
+}
+
+/// Trace every sample of pixel (x, y) into `rec`; returns the pixel radiance (box filter).
+pub fn render_pixel<R: Recorder>(
+    scene: &Scene,
+    x: u32,
+    y: u32,
+    rec: &mut R,
+    counts: &mut RayCounts,
+    mut on_sample: impl FnMut(SampleRecord),
+) -> Rgb {
+    let tracer = Tracer::new(scene);
+    let spp = scene.settings.spp.max(1);
+    let mut sum = Rgb::ZERO;
+    for s in 0..spp {
+        let (fx, fy) = sample_position(x, y, s, spp);
+        let (l, root) = tracer.trace_camera(scene.camera.ray(fx, fy), rec, counts);
+        sum += l;
+        if let Some(root) = root {
+            on_sample(SampleRecord {
+                index: s,
+                film: [fx, fy],
+                root,
+                radiance: l,
+            });
+        }
+    }
+    sum / f64::from(spp)
+}
+
+/// Re-trace pixel (x, y) and record its full tree. `None` if the pixel is outside the image.
+#[must_use]
+pub fn trace_pixel(scene: &Scene, x: u32, y: u32) -> Option<RayTree> {
+    if x >= scene.camera.width || y >= scene.camera.height {
+        return None;
+    }
+    let mut rec = TreeRecorder::default();
+    let mut samples = Vec::new();
+    let mut counts = RayCounts::default();
+    let radiance = render_pixel(scene, x, y, &mut rec, &mut counts, |s| samples.push(s));
+    Some(RayTree {
+        schema: TREE_SCHEMA.to_string(),
+        pixel: [x, y],
+        settings: scene.settings,
+        radiance,
+        samples,
+        nodes: rec.nodes,
+    })
+}
+
+/// Render the whole image in parallel (rows over rayon's pool). `progress` is called with the
+/// number of rows finished so far, from worker threads.
+pub fn render(scene: &Scene, progress: &(dyn Fn(u32) + Sync)) -> (Image, RenderStats) {
+    let (w, h) = (scene.camera.width, scene.camera.height);
+    let done = std::sync::atomic::AtomicU32::new(0);
+    let rows: Vec<(Vec<Rgb>, RayCounts)> = (0..h)
+        .into_par_iter()
+        .map(|y| {
+            let mut counts = RayCounts::default();
+            let row = (0..w)
+                .map(|x| render_pixel(scene, x, y, &mut NoopRecorder, &mut counts, |_| {}))
+                .collect();
+            progress(done.fetch_add(1, std::sync::atomic::Ordering::Relaxed) + 1);
+            (row, counts)
+        })
+        .collect();
+    let mut stats = RenderStats::default();
+    let mut pixels = Vec::with_capacity((w * h) as usize);
+    for (y, (row, counts)) in rows.into_iter().enumerate() {
+        stats.rays += counts;
+        for (x, p) in row.into_iter().enumerate() {
+            if p.is_finite() {
+                pixels.push(p);
+            } else {
+                stats.nonfinite_pixels += 1;
+                stats.first_nonfinite.get_or_insert((x as u32, y as u32));
+                pixels.push(Rgb::ZERO);
+            }
+        }
+    }
+    let image = Image {
+        width: w,
+        height: h,
+        pixels,
+    };
+    (image, stats)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn samples_are_stratified_and_inside_the_pixel() {
+        for spp in [2, 4, 5, 16] {
+            let cols = f64::from(spp).sqrt().ceil() as u32;
+            for s in 0..spp {
+                let (fx, fy) = sample_position(3, 7, s, spp);
+                assert!((3.0..4.0).contains(&fx) && (7.0..8.0).contains(&fy));
+                let cx = ((fx - 3.0) * f64::from(cols)).floor() as u32;
+                assert_eq!(cx, s % cols);
+            }
+        }
+        assert_eq!(sample_position(3, 7, 0, 1), (3.5, 7.5));
+        assert_eq!(sample_position(3, 7, 2, 4), sample_position(3, 7, 2, 4));
+        assert_ne!(sample_position(3, 7, 2, 4), sample_position(4, 7, 2, 4));
+    }
+}

@@ -1,0 +1,293 @@
+//! The serde mirror of the scene JSON (documented in `docs/scene-format.md`).
+//!
+//! Plain data with defaults and `deny_unknown_fields`; it becomes a [`crate::Scene`] only
+//! through validation (`scene::validate`).
+
+use serde::{Deserialize, Serialize};
+use std::collections::BTreeMap;
+
+use crate::math::FresnelModel;
+
+/// An `[x, y, z]` or `[r, g, b]` triple as written in JSON.
+pub type Triple = [f64; 3];
+
+/// The whole scene file.
+#[derive(Clone, Debug, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct SceneDesc {
+    /// The pinhole camera and image size.
+    pub camera: CameraDesc,
+    /// Radiance of rays that miss everything.
+    #[serde(default)]
+    pub background: Triple,
+    /// The lecture's ambient term (times the diffuse albedo).
+    #[serde(default)]
+    pub ambient: Triple,
+    /// Named materials.
+    #[serde(default)]
+    pub materials: BTreeMap<String, MaterialDesc>,
+    /// The geometry.
+    #[serde(default)]
+    pub objects: Vec<ObjectDesc>,
+    /// Point and directional lights.
+    #[serde(default)]
+    pub lights: Vec<LightDesc>,
+    /// Tracer settings (each overridable on the command line).
+    #[serde(default)]
+    pub settings: Settings,
+}
+
+/// A pinhole camera.
+#[derive(Clone, Debug, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct CameraDesc {
+    /// Eye position.
+    pub position: Triple,
+    /// A point the camera looks at.
+    pub look_at: Triple,
+    /// Up hint (need not be orthogonal to the view direction).
+    #[serde(default = "default_up")]
+    pub up: Triple,
+    /// Vertical field of view in degrees, in (0, 180).
+    pub fov_y: f64,
+    /// Image width in pixels.
+    pub width: u32,
+    /// Image height in pixels.
+    pub height: u32,
+}
+
+fn default_up() -> Triple {
+    [0.0, 1.0, 0.0]
+}
+
+/// A diffuse albedo: a constant or a world-space checkerboard.
+#[derive(Clone, Debug, Serialize, Deserialize)]
+#[serde(untagged)]
+pub enum TextureDesc {
+    /// Constant rgb.
+    Solid(Triple),
+    /// `{"checker": {...}}`.
+    Checker {
+        /// The checker parameters.
+        checker: CheckerDesc,
+    },
+}
+
+/// A 3D checkerboard: cell `(floor(x/s) + floor(y/s) + floor(z/s))` even or odd.
+#[derive(Clone, Debug, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct CheckerDesc {
+    /// Colour of even cells.
+    pub even: Triple,
+    /// Colour of odd cells.
+    pub odd: Triple,
+    /// Cell size in world units (> 0).
+    pub size: f64,
+}
+
+/// The lecture's general material; every part defaults to zero / absent.
+#[derive(Clone, Debug, Default, Serialize, Deserialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct MaterialDesc {
+    /// Diffuse albedo (Lambertian BRDF albedo / pi).
+    pub diffuse: Option<TextureDesc>,
+    /// Blinn-Phong specular colour.
+    pub specular: Triple,
+    /// Blinn-Phong exponent.
+    pub shininess: f64,
+    /// Mirror reflectivity.
+    pub reflectivity: Triple,
+    /// Transmissivity (refraction where `ior` is set).
+    pub transmissivity: Triple,
+    /// Index of refraction (> 0).
+    pub ior: Option<f64>,
+    /// Beer's law coefficients per unit length inside the object.
+    pub absorption: Triple,
+    /// Emitted radiance from the outer side.
+    pub emission: Triple,
+}
+
+/// One object: a shape, its material and an optional name.
+#[derive(Clone, Debug, Serialize, Deserialize)]
+#[serde(tag = "type", rename_all = "lowercase", deny_unknown_fields)]
+pub enum ObjectDesc {
+    /// A sphere.
+    Sphere {
+        /// Centre.
+        center: Triple,
+        /// Radius.
+        radius: f64,
+        /// Material name.
+        material: String,
+        /// Display name.
+        #[serde(default)]
+        name: Option<String>,
+    },
+    /// An infinite plane; its inside is behind the normal.
+    Plane {
+        /// A point on the plane.
+        point: Triple,
+        /// Outward normal.
+        normal: Triple,
+        /// Material name.
+        material: String,
+        /// Display name.
+        #[serde(default)]
+        name: Option<String>,
+    },
+    /// A triangle; its front is where `(b-a) x (c-a)` points.
+    Triangle {
+        /// `[a, b, c]`.
+        vertices: [Triple; 3],
+        /// Material name.
+        material: String,
+        /// Display name.
+        #[serde(default)]
+        name: Option<String>,
+    },
+    /// An axis-aligned box.
+    Box {
+        /// Lower corner.
+        min: Triple,
+        /// Upper corner.
+        max: Triple,
+        /// Material name.
+        material: String,
+        /// Display name.
+        #[serde(default)]
+        name: Option<String>,
+    },
+}
+
+impl ObjectDesc {
+    /// The material name.
+    #[must_use]
+    pub fn material(&self) -> &str {
+        match self {
+            ObjectDesc::Sphere { material, .. }
+            | ObjectDesc::Plane { material, .. }
+            | ObjectDesc::Triangle { material, .. }
+            | ObjectDesc::Box { material, .. } => material,
+        }
+    }
+
+    /// The optional display name.
+    #[must_use]
+    pub fn name(&self) -> Option<&str> {
+        match self {
+            ObjectDesc::Sphere { name, .. }
+            | ObjectDesc::Plane { name, .. }
+            | ObjectDesc::Triangle { name, .. }
+            | ObjectDesc::Box { name, .. } => name.as_deref(),
+        }
+    }
+
+    /// The `type` tag.
+    #[must_use]
+    pub fn kind(&self) -> &'static str {
+        match self {
+            ObjectDesc::Sphere { .. } => "sphere",
+            ObjectDesc::Plane { .. } => "plane",
+            ObjectDesc::Triangle { .. } => "triangle",
+            ObjectDesc::Box { .. } => "box",
+        }
+    }
+}
+
+/// A light source.
+#[derive(Clone, Debug, Serialize, Deserialize)]
+#[serde(tag = "type", rename_all = "lowercase", deny_unknown_fields)]
+pub enum LightDesc {
+    /// Point light: irradiance `intensity / r^2` at distance r.
+    Point {
+        /// Position.
+        position: Triple,
+        /// Radiant intensity per channel.
+        intensity: Triple,
+        /// Display name.
+        #[serde(default)]
+        name: Option<String>,
+    },
+    /// Directional light: constant irradiance arriving along `direction`.
+    Directional {
+        /// Direction the light travels (from the light into the scene).
+        direction: Triple,
+        /// Irradiance on a surface facing the light.
+        irradiance: Triple,
+        /// Display name.
+        #[serde(default)]
+        name: Option<String>,
+    },
+}
+
+/// Where secondary rays start: the lecture's normal offset or a `t_min` along the ray.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "lowercase")]
+pub enum OffsetStrategy {
+    /// `P +/- eps N` (lecture slides "Reflected Rays", "Transmitted Ray").
+    #[default]
+    Normal,
+    /// Start at `P` and accept hits only beyond `t = eps`.
+    Ray,
+}
+
+/// Offset strategy and its epsilon.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct OffsetDesc {
+    /// Strategy.
+    pub strategy: OffsetStrategy,
+    /// Epsilon in world units (>= 0).
+    pub epsilon: f64,
+}
+
+impl Default for OffsetDesc {
+    fn default() -> Self {
+        Self {
+            strategy: OffsetStrategy::Normal,
+            epsilon: 1e-4,
+        }
+    }
+}
+
+/// How shadow rays treat transmissive blockers.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "lowercase")]
+pub enum ShadowMode {
+    /// Any blocker stops the shadow ray.
+    #[default]
+    Opaque,
+    /// Each blocker passes transmissivity x Beer's attenuation over its chord (no caustics).
+    Translucent,
+}
+
+/// Tracer settings.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct Settings {
+    /// Deepest recursion; 0 = camera rays and shadow rays only.
+    pub max_depth: u32,
+    /// Samples per pixel (stratified, box filter).
+    pub spp: u32,
+    /// Secondary-ray offset.
+    pub offset: OffsetDesc,
+    /// Fresnel model.
+    pub fresnel: FresnelModel,
+    /// Shadow-ray mode.
+    pub shadows: ShadowMode,
+    /// Throughput below which recursion stops (0 = off).
+    pub min_weight: f64,
+}
+
+impl Default for Settings {
+    fn default() -> Self {
+        Self {
+            max_depth: 16,
+            spp: 1,
+            offset: OffsetDesc::default(),
+            fresnel: FresnelModel::Exact,
+            shadows: ShadowMode::Opaque,
+            min_weight: 0.0,
+        }
+    }
+}

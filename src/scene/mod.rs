@@ -1,0 +1,271 @@
+//! The validated scene: camera, materials, objects, lights and settings.
+
+pub mod desc;
+mod locate;
+mod validate;
+
+use crate::geometry::Shape;
+use crate::math::{Ray, Rgb};
+use glam::DVec3;
+
+pub use desc::{OffsetDesc, OffsetStrategy, SceneDesc, Settings, ShadowMode};
+pub use locate::locate;
+pub use validate::{SceneError, check_settings};
+
+/// The built-in default scene: the lecture's classic (mirror ball, glass ball, checkered floor,
+/// one light). Same file as `fixtures/classic.json`.
+pub const DEFAULT_SCENE_JSON: &str = include_str!("../../fixtures/classic.json");
+
+/// A pinhole camera with an orthonormal frame.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Camera {
+    /// Eye position.
+    pub position: DVec3,
+    /// Unit view direction.
+    pub forward: DVec3,
+    /// Unit image-right direction (`forward x up`).
+    pub right: DVec3,
+    /// Unit image-up direction.
+    pub up: DVec3,
+    /// Vertical field of view in degrees.
+    pub fov_y: f64,
+    /// Image width.
+    pub width: u32,
+    /// Image height.
+    pub height: u32,
+}
+
+impl Camera {
+    /// The camera ray through film position `(fx, fy)` in pixels; pixel (0,0) is top-left and
+    /// `(x + 0.5, y + 0.5)` is the centre of pixel (x, y).
+    #[must_use]
+    pub fn ray(&self, fx: f64, fy: f64) -> Ray {
+        let (u, v) = self.film_to_plane(fx, fy);
+        let d = (self.forward + u * self.right + v * self.up).normalize();
+        Ray::new(self.position, d, 0.0)
+    }
+
+    /// Film position to coordinates on the image plane at distance 1 along `forward`.
+    #[must_use]
+    pub fn film_to_plane(&self, fx: f64, fy: f64) -> (f64, f64) {
+        let half_h = (self.fov_y.to_radians() * 0.5).tan();
+        let half_w = half_h * f64::from(self.width) / f64::from(self.height);
+        let u = (2.0 * fx / f64::from(self.width) - 1.0) * half_w;
+        let v = (1.0 - 2.0 * fy / f64::from(self.height)) * half_h;
+        (u, v)
+    }
+
+    /// The same camera rendering `width x height`.
+    #[must_use]
+    pub fn with_size(&self, width: u32, height: u32) -> Self {
+        Self {
+            width,
+            height,
+            ..self.clone()
+        }
+    }
+}
+
+/// A diffuse albedo.
+#[derive(Clone, Debug, PartialEq)]
+pub enum Texture {
+    /// Constant.
+    Solid(Rgb),
+    /// World-space 3D checkerboard.
+    Checker {
+        /// Even cells.
+        even: Rgb,
+        /// Odd cells.
+        odd: Rgb,
+        /// Cell size.
+        size: f64,
+    },
+}
+
+impl Texture {
+    /// The albedo at world point `p`.
+    #[must_use]
+    pub fn at(&self, p: DVec3) -> Rgb {
+        match *self {
+            Texture::Solid(c) => c,
+            Texture::Checker { even, odd, size } => {
+                // A tiny bias keeps points exactly on a cell boundary (a floor at y = 0) stable.
+                let c = ((p / size) + 1e-9).floor();
+                if (c.x + c.y + c.z).rem_euclid(2.0) == 0.0 {
+                    even
+                } else {
+                    odd
+                }
+            }
+        }
+    }
+
+    /// Whether the albedo is zero everywhere.
+    #[must_use]
+    pub fn is_black(&self) -> bool {
+        match *self {
+            Texture::Solid(c) => c == Rgb::ZERO,
+            Texture::Checker { even, odd, .. } => even == Rgb::ZERO && odd == Rgb::ZERO,
+        }
+    }
+}
+
+/// The lecture's general material.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Material {
+    /// Name in the scene file.
+    pub name: String,
+    /// Diffuse albedo.
+    pub diffuse: Texture,
+    /// Blinn-Phong specular colour.
+    pub specular: Rgb,
+    /// Blinn-Phong exponent.
+    pub shininess: f64,
+    /// Mirror reflectivity.
+    pub reflectivity: Rgb,
+    /// Transmissivity.
+    pub transmissivity: Rgb,
+    /// Index of refraction; `None` means index-matched to the surrounding medium.
+    pub ior: Option<f64>,
+    /// Beer's law coefficients inside the object.
+    pub absorption: Rgb,
+    /// Emitted radiance (outer side).
+    pub emission: Rgb,
+}
+
+impl Material {
+    /// Whether the material transmits light.
+    #[must_use]
+    pub fn is_transmissive(&self) -> bool {
+        self.transmissivity != Rgb::ZERO
+    }
+}
+
+/// A shape with its material and name.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Object {
+    /// Display name (`<type>#<index>` when the file gives none).
+    pub name: String,
+    /// Geometry.
+    pub shape: Shape,
+    /// Index into [`Scene::materials`].
+    pub material: usize,
+}
+
+/// A light source.
+#[derive(Clone, Debug, PartialEq)]
+pub enum LightKind {
+    /// Point light with radiant intensity.
+    Point {
+        /// Position.
+        position: DVec3,
+        /// Intensity (irradiance = intensity / r^2).
+        intensity: Rgb,
+    },
+    /// Directional light.
+    Directional {
+        /// Unit direction of travel.
+        direction: DVec3,
+        /// Irradiance.
+        irradiance: Rgb,
+    },
+}
+
+/// A named light.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Light {
+    /// Display name (`light#<index>` when the file gives none).
+    pub name: String,
+    /// The emitter.
+    pub kind: LightKind,
+}
+
+impl Light {
+    /// Unit direction from `p` to the light, the distance to it, and the unshadowed irradiance
+    /// on a surface facing it.
+    #[must_use]
+    pub fn sample(&self, p: DVec3) -> (DVec3, f64, Rgb) {
+        match self.kind {
+            LightKind::Point {
+                position,
+                intensity,
+            } => {
+                let to = position - p;
+                let r2 = to.length_squared();
+                let r = r2.sqrt();
+                (to / r, r, intensity / r2)
+            }
+            LightKind::Directional {
+                direction,
+                irradiance,
+            } => (-direction, f64::INFINITY, irradiance),
+        }
+    }
+}
+
+/// A validated scene, ready to trace.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Scene {
+    /// Camera.
+    pub camera: Camera,
+    /// Miss radiance.
+    pub background: Rgb,
+    /// Ambient term.
+    pub ambient: Rgb,
+    /// Materials, indexed by [`Object::material`].
+    pub materials: Vec<Material>,
+    /// Objects.
+    pub objects: Vec<Object>,
+    /// Lights.
+    pub lights: Vec<Light>,
+    /// Tracer settings.
+    pub settings: Settings,
+}
+
+/// A hit on the closest object.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Hit {
+    /// Ray parameter.
+    pub t: f64,
+    /// Outward unit geometric normal.
+    pub normal: DVec3,
+    /// Index into [`Scene::objects`].
+    pub object: usize,
+}
+
+impl Scene {
+    /// Parse and validate scene JSON. Errors carry the JSON path and line:column.
+    pub fn from_json(src: &str) -> Result<Self, SceneError> {
+        validate::from_json(src)
+    }
+
+    /// The built-in default scene.
+    #[must_use]
+    pub fn default_scene() -> Self {
+        Self::from_json(DEFAULT_SCENE_JSON).expect("the built-in scene is valid")
+    }
+
+    /// The closest hit with `t` in `(ray.t_min, t_max)` (linear scan).
+    #[must_use]
+    pub fn intersect(&self, ray: &Ray, t_max: f64) -> Option<Hit> {
+        let mut best: Option<Hit> = None;
+        let mut t_max = t_max;
+        for (object, o) in self.objects.iter().enumerate() {
+            if let Some(h) = o.shape.intersect(ray, t_max) {
+                t_max = h.t;
+                best = Some(Hit {
+                    t: h.t,
+                    normal: h.normal,
+                    object,
+                });
+            }
+        }
+        best
+    }
+
+    /// The material of object `i`.
+    #[must_use]
+    pub fn material_of(&self, object: usize) -> &Material {
+        &self.materials[self.objects[object].material]
+    }
+}

@@ -1,0 +1,410 @@
+//! `SceneDesc` (serde) to `Scene` (validated): every rejection names its JSON path.
+
+use super::desc::{
+    CameraDesc, LightDesc, MaterialDesc, ObjectDesc, SceneDesc, Settings, TextureDesc, Triple,
+};
+use super::{Camera, Light, LightKind, Material, Object, Scene, Texture};
+use crate::geometry::Shape;
+use glam::DVec3;
+use std::fmt;
+
+/// A scene that failed to parse or validate.
+#[derive(Clone, Debug, PartialEq, Eq, thiserror::Error)]
+pub struct SceneError {
+    /// JSON path of the offending value (`objects[3].radius`), empty for the document itself.
+    pub path: String,
+    /// 1-based line, where known.
+    pub line: Option<usize>,
+    /// 1-based column, where known.
+    pub column: Option<usize>,
+    /// What is wrong.
+    pub message: String,
+}
+
+impl fmt::Display for SceneError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        if let (Some(l), Some(c)) = (self.line, self.column) {
+            write!(f, "{l}:{c}: ")?;
+        }
+        if !self.path.is_empty() {
+            write!(f, "{}: ", self.path)?;
+        }
+        f.write_str(&self.message)
+    }
+}
+
+/// Collects the first validation error with its path.
+struct Check<'a> {
+    src: &'a str,
+}
+
+impl Check<'_> {
+    fn fail<T>(
+        &self,
+        path: impl Into<String>,
+        message: impl Into<String>,
+    ) -> Result<T, SceneError> {
+        let path = path.into();
+        let pos = super::locate(self.src, &path);
+        Err(SceneError {
+            line: pos.map(|p| p.0),
+            column: pos.map(|p| p.1),
+            path,
+            message: message.into(),
+        })
+    }
+
+    fn finite(&self, path: &str, v: f64) -> Result<f64, SceneError> {
+        if v.is_finite() {
+            Ok(v)
+        } else {
+            self.fail(path, format!("must be a finite number, got {v}"))
+        }
+    }
+
+    fn vec(&self, path: &str, v: Triple) -> Result<DVec3, SceneError> {
+        for (i, c) in v.iter().enumerate() {
+            self.finite(&format!("{path}[{i}]"), *c)?;
+        }
+        Ok(DVec3::from(v))
+    }
+
+    fn direction(&self, path: &str, v: Triple) -> Result<DVec3, SceneError> {
+        let d = self.vec(path, v)?;
+        match d.try_normalize() {
+            Some(n) => Ok(n),
+            None => self.fail(path, "must be a non-zero direction"),
+        }
+    }
+
+    fn color(&self, path: &str, v: Triple) -> Result<DVec3, SceneError> {
+        let c = self.vec(path, v)?;
+        if c.min_element() < 0.0 {
+            return self.fail(path, format!("must not be negative, got {v:?}"));
+        }
+        Ok(c)
+    }
+
+    fn positive(&self, path: &str, v: f64) -> Result<f64, SceneError> {
+        if self.finite(path, v)? > 0.0 {
+            Ok(v)
+        } else {
+            self.fail(path, format!("must be positive, got {v}"))
+        }
+    }
+}
+
+/// Strip serde_json's " at line L column C" suffix (the position is reported separately).
+fn bare_message(e: &serde_json::Error) -> String {
+    let s = e.to_string();
+    match s.rfind(" at line ") {
+        Some(i) => s[..i].to_string(),
+        None => s,
+    }
+}
+
+pub(super) fn from_json(src: &str) -> Result<Scene, SceneError> {
+    let mut de = serde_json::Deserializer::from_str(src);
+    let desc: SceneDesc = serde_path_to_error::deserialize(&mut de).map_err(|e| {
+        let path = e.path().to_string();
+        let inner = e.inner();
+        SceneError {
+            path: if path == "." { String::new() } else { path },
+            line: Some(inner.line()),
+            column: Some(inner.column()),
+            message: bare_message(inner),
+        }
+    })?;
+    de.end().map_err(|e| SceneError {
+        path: String::new(),
+        line: Some(e.line()),
+        column: Some(e.column()),
+        message: bare_message(&e),
+    })?;
+    validate(&desc, src)
+}
+
+/// Validate a parsed description; `src` is used only to locate errors (may be empty).
+pub fn validate(desc: &SceneDesc, src: &str) -> Result<Scene, SceneError> {
+    let ck = Check { src };
+    let camera = camera(&ck, &desc.camera)?;
+    let background = ck.color("background", desc.background)?;
+    let ambient = ck.color("ambient", desc.ambient)?;
+    let mut materials = Vec::with_capacity(desc.materials.len());
+    for (name, m) in &desc.materials {
+        materials.push(material(&ck, name, m)?);
+    }
+    let mut objects = Vec::with_capacity(desc.objects.len());
+    for (i, o) in desc.objects.iter().enumerate() {
+        objects.push(object(&ck, &desc.materials, i, o)?);
+    }
+    let mut lights = Vec::with_capacity(desc.lights.len());
+    for (i, l) in desc.lights.iter().enumerate() {
+        lights.push(light(&ck, i, l)?);
+    }
+    let settings = settings(&ck, &desc.settings)?;
+    Ok(Scene {
+        camera,
+        background,
+        ambient,
+        materials,
+        objects,
+        lights,
+        settings,
+    })
+}
+
+fn camera(ck: &Check, c: &CameraDesc) -> Result<Camera, SceneError> {
+    let position = ck.vec("camera.position", c.position)?;
+    let look_at = ck.vec("camera.look_at", c.look_at)?;
+    let Some(forward) = (look_at - position).try_normalize() else {
+        return ck.fail("camera.look_at", "must differ from camera.position");
+    };
+    let up_hint = ck.direction("camera.up", c.up)?;
+    let Some(right) = forward.cross(up_hint).try_normalize() else {
+        return ck.fail("camera.up", "must not be parallel to the view direction");
+    };
+    let fov_y = ck.finite("camera.fov_y", c.fov_y)?;
+    if !(fov_y > 0.0 && fov_y < 180.0) {
+        return ck.fail(
+            "camera.fov_y",
+            format!("must be in (0, 180) degrees, got {fov_y}"),
+        );
+    }
+    for (name, v) in [("width", c.width), ("height", c.height)] {
+        if v == 0 || v > 65_536 {
+            return ck.fail(
+                format!("camera.{name}"),
+                format!("must be in 1..=65536, got {v}"),
+            );
+        }
+    }
+    Ok(Camera {
+        position,
+        forward,
+        right,
+        up: right.cross(forward),
+        fov_y,
+        width: c.width,
+        height: c.height,
+    })
+}
+
+fn material(ck: &Check, name: &str, m: &MaterialDesc) -> Result<Material, SceneError> {
+    let p = format!("materials.{name}");
+    let diffuse = match &m.diffuse {
+        None => Texture::Solid(DVec3::ZERO),
+        Some(TextureDesc::Solid(c)) => Texture::Solid(ck.color(&format!("{p}.diffuse"), *c)?),
+        Some(TextureDesc::Checker { checker }) => {
+            let q = format!("{p}.diffuse.checker");
+            Texture::Checker {
+                even: ck.color(&format!("{q}.even"), checker.even)?,
+                odd: ck.color(&format!("{q}.odd"), checker.odd)?,
+                size: ck.positive(&format!("{q}.size"), checker.size)?,
+            }
+        }
+    };
+    let shininess = ck.finite(&format!("{p}.shininess"), m.shininess)?;
+    if shininess < 0.0 {
+        return ck.fail(format!("{p}.shininess"), "must not be negative");
+    }
+    let ior = match m.ior {
+        Some(n) => Some(ck.positive(&format!("{p}.ior"), n)?),
+        None => None,
+    };
+    Ok(Material {
+        name: name.to_string(),
+        diffuse,
+        specular: ck.color(&format!("{p}.specular"), m.specular)?,
+        shininess,
+        reflectivity: ck.color(&format!("{p}.reflectivity"), m.reflectivity)?,
+        transmissivity: ck.color(&format!("{p}.transmissivity"), m.transmissivity)?,
+        ior,
+        absorption: ck.color(&format!("{p}.absorption"), m.absorption)?,
+        emission: ck.color(&format!("{p}.emission"), m.emission)?,
+    })
+}
+
+fn object(
+    ck: &Check,
+    materials: &std::collections::BTreeMap<String, MaterialDesc>,
+    i: usize,
+    o: &ObjectDesc,
+) -> Result<Object, SceneError> {
+    let p = format!("objects[{i}]");
+    let Some(material) = materials.keys().position(|k| k == o.material()) else {
+        let known: Vec<&str> = materials.keys().map(String::as_str).collect();
+        return ck.fail(
+            format!("{p}.material"),
+            format!(
+                "unknown material {:?} (defined: {})",
+                o.material(),
+                known.join(", ")
+            ),
+        );
+    };
+    let shape = match o {
+        ObjectDesc::Sphere { center, radius, .. } => Shape::Sphere {
+            center: ck.vec(&format!("{p}.center"), *center)?,
+            radius: ck.positive(&format!("{p}.radius"), *radius)?,
+        },
+        ObjectDesc::Plane { point, normal, .. } => Shape::Plane {
+            point: ck.vec(&format!("{p}.point"), *point)?,
+            normal: ck.direction(&format!("{p}.normal"), *normal)?,
+        },
+        ObjectDesc::Triangle { vertices, .. } => {
+            let mut v = [DVec3::ZERO; 3];
+            for (k, x) in vertices.iter().enumerate() {
+                v[k] = ck.vec(&format!("{p}.vertices[{k}]"), *x)?;
+            }
+            let Some(normal) = (v[1] - v[0]).cross(v[2] - v[0]).try_normalize() else {
+                return ck.fail(format!("{p}.vertices"), "degenerate triangle (zero area)");
+            };
+            Shape::Triangle {
+                vertices: v,
+                normal,
+            }
+        }
+        ObjectDesc::Box { min, max, .. } => {
+            let lo = ck.vec(&format!("{p}.min"), *min)?;
+            let hi = ck.vec(&format!("{p}.max"), *max)?;
+            if !lo.cmplt(hi).all() {
+                return ck.fail(format!("{p}.max"), "must exceed min on every axis");
+            }
+            Shape::Box { min: lo, max: hi }
+        }
+    };
+    let name = o
+        .name()
+        .map_or_else(|| format!("{}#{i}", o.kind()), str::to_string);
+    Ok(Object {
+        name,
+        shape,
+        material,
+    })
+}
+
+fn light(ck: &Check, i: usize, l: &LightDesc) -> Result<Light, SceneError> {
+    let p = format!("lights[{i}]");
+    let (kind, name) = match l {
+        LightDesc::Point {
+            position,
+            intensity,
+            name,
+        } => (
+            LightKind::Point {
+                position: ck.vec(&format!("{p}.position"), *position)?,
+                intensity: ck.color(&format!("{p}.intensity"), *intensity)?,
+            },
+            name,
+        ),
+        LightDesc::Directional {
+            direction,
+            irradiance,
+            name,
+        } => (
+            LightKind::Directional {
+                direction: ck.direction(&format!("{p}.direction"), *direction)?,
+                irradiance: ck.color(&format!("{p}.irradiance"), *irradiance)?,
+            },
+            name,
+        ),
+    };
+    Ok(Light {
+        name: name.clone().unwrap_or_else(|| format!("light#{i}")),
+        kind,
+    })
+}
+
+fn settings(ck: &Check, s: &Settings) -> Result<Settings, SceneError> {
+    check_settings(s).or_else(|(path, msg)| ck.fail(path, msg))
+}
+
+/// Validate settings (also used for command-line overrides): `(json path, message)` on error.
+pub fn check_settings(s: &Settings) -> Result<Settings, (String, String)> {
+    if s.spp == 0 || s.spp > 65_536 {
+        return Err((
+            "settings.spp".into(),
+            format!("must be in 1..=65536, got {}", s.spp),
+        ));
+    }
+    if s.max_depth > 1024 {
+        return Err((
+            "settings.max_depth".into(),
+            format!("must be at most 1024, got {}", s.max_depth),
+        ));
+    }
+    let eps = s.offset.epsilon;
+    if !(eps.is_finite() && eps >= 0.0) {
+        return Err((
+            "settings.offset.epsilon".into(),
+            format!("must be a finite number >= 0, got {eps}"),
+        ));
+    }
+    if !(s.min_weight.is_finite() && s.min_weight >= 0.0) {
+        return Err((
+            "settings.min_weight".into(),
+            format!("must be a finite number >= 0, got {}", s.min_weight),
+        ));
+    }
+    Ok(*s)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    const BASE: &str = r#"{
+  "camera": {"position": [0,0,5], "look_at": [0,0,0], "fov_y": 40, "width": 4, "height": 3},
+  "materials": {"m": {"diffuse": [0.5, 0.5, 0.5]}},
+  "objects": [
+    {"type": "sphere", "center": [0,0,0], "radius": 1, "material": "m"}
+  ]
+}"#;
+
+    fn err(src: &str) -> SceneError {
+        Scene::from_json(src).unwrap_err()
+    }
+
+    #[test]
+    fn base_scene_loads() {
+        let s = Scene::from_json(BASE).unwrap();
+        assert_eq!(s.objects[0].name, "sphere#0");
+        assert_eq!(s.settings.max_depth, 16);
+        assert!((s.camera.right - DVec3::X).length() < 1e-12);
+    }
+
+    #[test]
+    fn bad_radius_names_path_and_position() {
+        let e = err(&BASE.replace("\"radius\": 1", "\"radius\": -1"));
+        assert_eq!(e.path, "objects[0].radius");
+        assert_eq!((e.line, e.column), (Some(5), Some(54)));
+        assert!(e.message.contains("positive"), "{e}");
+    }
+
+    #[test]
+    fn unknown_material_and_field() {
+        let e = err(&BASE.replace("\"material\": \"m\"", "\"material\": \"glass\""));
+        assert_eq!(e.path, "objects[0].material");
+        assert!(e.message.contains("glass"));
+        let e = err(&BASE.replace("\"fov_y\": 40", "\"fov_y\": 40, \"zoom\": 2"));
+        assert_eq!(e.path, "camera.zoom");
+        assert!(e.message.contains("unknown field"), "{e}");
+        assert!(e.line.is_some());
+    }
+
+    #[test]
+    fn fov_and_syntax() {
+        assert_eq!(err(&BASE.replace("40", "180")).path, "camera.fov_y");
+        let e = err(&BASE.replace("\"width\": 4,", "\"width\": 4"));
+        assert_eq!(e.line, Some(2));
+        let e = err(&format!("{BASE} x"));
+        assert_eq!(e.line, Some(7));
+    }
+
+    #[test]
+    fn huge_numbers_are_rejected() {
+        let e = err(&BASE.replace("\"radius\": 1", "\"radius\": 1e999"));
+        assert!(e.line.is_some(), "{e}");
+    }
+}

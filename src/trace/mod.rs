@@ -1,0 +1,445 @@
+//! The Whitted tracer, exactly as the lecture's `trace(ray, objects, lights)` recursion, with a
+//! [`Recorder`] hook that sees every ray.
+
+mod media;
+mod recorder;
+mod shadow;
+
+pub use media::{MediaStack, Medium};
+pub use recorder::{NoopRecorder, Recorder, TreeRecorder};
+
+use crate::math::{self, Fresnel, Ray, Rgb, beer, reflect, refract};
+use crate::scene::{Hit, Material, OffsetStrategy, Scene};
+use crate::tree::{
+    Attenuation, EndReason, HitInfo, Interface, NodeId, RayKind, RayNode, ShadowInfo,
+};
+use glam::DVec3;
+
+/// Rays traced, by kind.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct RayCounts {
+    /// Camera rays.
+    pub camera: u64,
+    /// Reflected rays.
+    pub reflected: u64,
+    /// Refracted rays.
+    pub refracted: u64,
+    /// Shadow rays actually cast.
+    pub shadow: u64,
+}
+
+impl RayCounts {
+    /// All rays.
+    #[must_use]
+    pub fn total(&self) -> u64 {
+        self.camera + self.reflected + self.refracted + self.shadow
+    }
+
+    fn add_kind(&mut self, kind: RayKind) {
+        match kind {
+            RayKind::Camera => self.camera += 1,
+            RayKind::Reflected => self.reflected += 1,
+            RayKind::Refracted => self.refracted += 1,
+            RayKind::Shadow => self.shadow += 1,
+        }
+    }
+}
+
+impl std::ops::AddAssign for RayCounts {
+    fn add_assign(&mut self, o: Self) {
+        self.camera += o.camera;
+        self.reflected += o.reflected;
+        self.refracted += o.refracted;
+        self.shadow += o.shadow;
+    }
+}
+
+/// Where a ray starts: the surface point and which side of it.
+#[derive(Clone, Copy, Debug)]
+struct Spawn {
+    kind: RayKind,
+    parent: Option<NodeId>,
+    point: DVec3,
+    weight: Rgb,
+}
+
+/// State carried down one path of the tree.
+#[derive(Clone, Copy, Debug)]
+struct PathState {
+    depth: u32,
+    throughput: Rgb,
+    media: MediaStack,
+}
+
+/// Traces rays through one scene. Cheap to create; holds only a reference.
+#[derive(Clone, Copy, Debug)]
+pub struct Tracer<'a> {
+    scene: &'a Scene,
+}
+
+impl<'a> Tracer<'a> {
+    /// A tracer over `scene` with its settings.
+    #[must_use]
+    pub fn new(scene: &'a Scene) -> Self {
+        Self { scene }
+    }
+
+    /// Radiance along a camera ray, recording into `rec` and counting into `counts`.
+    pub fn trace_camera<R: Recorder>(
+        &self,
+        ray: Ray,
+        rec: &mut R,
+        counts: &mut RayCounts,
+    ) -> (Rgb, Option<NodeId>) {
+        let spawn = Spawn {
+            kind: RayKind::Camera,
+            parent: None,
+            point: ray.origin,
+            weight: Rgb::ONE,
+        };
+        let state = PathState {
+            depth: 0,
+            throughput: Rgb::ONE,
+            media: MediaStack::default(),
+        };
+        self.trace_ray(ray, spawn, state, rec, counts)
+    }
+
+    /// Offset a spawn point by the configured strategy: the lecture's `P +/- eps N` or `t_min = eps`.
+    fn spawn_ray(&self, point: DVec3, side: DVec3, direction: DVec3) -> Ray {
+        let eps = self.scene.settings.offset.epsilon;
+        match self.scene.settings.offset.strategy {
+            OffsetStrategy::Normal => Ray::new(point + eps * side, direction, 0.0),
+            OffsetStrategy::Ray => Ray::new(point, direction, eps),
+        }
+    }
+
+    fn trace_ray<R: Recorder>(
+        &self,
+        ray: Ray,
+        spawn: Spawn,
+        state: PathState,
+        rec: &mut R,
+        counts: &mut RayCounts,
+    ) -> (Rgb, Option<NodeId>) {
+        counts.add_kind(spawn.kind);
+        let id = rec.push(spawn.parent, || {
+            let mut n = RayNode::new(
+                spawn.kind,
+                state.depth,
+                spawn.point,
+                ray.origin,
+                ray.direction,
+            );
+            n.t_min = ray.t_min;
+            n.weight = spawn.weight;
+            n.throughput = state.throughput;
+            n
+        });
+        let hit = self.scene.intersect(&ray, f64::INFINITY);
+        let distance = hit.map_or(f64::INFINITY, |h| h.t);
+        // Beer's law on this segment, inside the innermost absorbing medium.
+        let medium = state.media.top().map(|m| m.object as usize);
+        let absorption = medium.map_or(Rgb::ZERO, |o| self.scene.material_of(o).absorption);
+        let atten = beer(absorption, distance);
+        if absorption != Rgb::ZERO {
+            rec.update(id, |n| {
+                n.attenuation = Some(Attenuation {
+                    medium: medium.unwrap_or(0),
+                    distance,
+                    absorption,
+                    factor: atten,
+                });
+            });
+        }
+        let Some(hit) = hit else {
+            let radiance = atten * self.scene.background;
+            rec.update(id, |n| {
+                n.radiance = radiance;
+                n.end = EndReason::Miss;
+            });
+            return (radiance, id);
+        };
+        let inner = self.shade(&ray, &hit, id, state.throughput * atten, state, rec, counts);
+        let radiance = atten * inner;
+        rec.update(id, |n| n.radiance = radiance);
+        (radiance, id)
+    }
+
+    /// Everything at a hit: local shading plus the weighted secondary rays (before the segment's
+    /// attenuation).
+    #[allow(clippy::too_many_arguments)]
+    fn shade<R: Recorder>(
+        &self,
+        ray: &Ray,
+        hit: &Hit,
+        id: Option<NodeId>,
+        throughput: Rgb,
+        state: PathState,
+        rec: &mut R,
+        counts: &mut RayCounts,
+    ) -> Rgb {
+        let scene = self.scene;
+        let m = scene.material_of(hit.object);
+        let d = ray.direction;
+        let p = ray.at(hit.t);
+        let entering = d.dot(hit.normal) < 0.0;
+        let n = if entering { hit.normal } else { -hit.normal };
+        let cos_i = (-d.dot(n)).clamp(0.0, 1.0);
+        rec.update(id, |node| {
+            node.hit = Some(HitInfo {
+                t: hit.t,
+                point: p,
+                normal: hit.normal,
+                object: hit.object,
+                object_name: scene.objects[hit.object].name.clone(),
+                material: m.name.clone(),
+                entering,
+                cos_i,
+            });
+        });
+        let albedo = m.diffuse.at(p);
+        let emitted = if entering { m.emission } else { Rgb::ZERO };
+        let ambient = scene.ambient * albedo;
+        let mut local = emitted + ambient;
+        if !m.diffuse.is_black() || m.specular != Rgb::ZERO {
+            for light in 0..scene.lights.len() {
+                local += self.direct(light, p, n, -d, albedo, m, id, state.depth, rec, counts);
+            }
+        }
+        rec.update(id, |node| {
+            node.emitted = emitted;
+            node.ambient = ambient;
+            node.local = local;
+        });
+        let mut total = local;
+        let mut end = EndReason::Surface;
+        let mut truncated = Rgb::ZERO;
+
+        // Dielectric split (only where the material transmits).
+        let mut reflect_w = m.reflectivity;
+        let mut refraction = None;
+        if m.is_transmissive() {
+            let (event, dir) = self.interface(d, n, cos_i, hit.object, m, entering, state.media);
+            let f = event.fresnel;
+            reflect_w += m.transmissivity * f.r;
+            if let Some(dir) = dir {
+                refraction = Some((dir, m.transmissivity * f.t));
+            }
+            rec.update(id, |node| node.interface = Some(event));
+        }
+        let children = [
+            (RayKind::Reflected, reflect(d, n), n, reflect_w, state.media),
+            match refraction {
+                Some((dir, w)) => {
+                    let media = if entering {
+                        state
+                            .media
+                            .entered(hit.object, m.ior.unwrap_or(state.media.ior()))
+                    } else {
+                        state.media.left(hit.object)
+                    };
+                    (RayKind::Refracted, dir, -n, w, media)
+                }
+                None => (RayKind::Refracted, d, -n, Rgb::ZERO, state.media),
+            },
+        ];
+        for (kind, dir, side, weight, media) in children {
+            if weight.max_element() <= 0.0 {
+                continue;
+            }
+            let child_throughput = throughput * weight;
+            let cut = if state.depth >= scene.settings.max_depth {
+                Some(EndReason::MaxDepth)
+            } else if child_throughput.max_element() < scene.settings.min_weight {
+                Some(EndReason::MinWeight)
+            } else {
+                None
+            };
+            if let Some(reason) = cut {
+                truncated += weight;
+                if end != EndReason::MaxDepth {
+                    end = reason;
+                }
+                continue;
+            }
+            if end == EndReason::Surface {
+                end = EndReason::Continued;
+            }
+            let child_ray = self.spawn_ray(p, side, dir);
+            let spawn = Spawn {
+                kind,
+                parent: id,
+                point: p,
+                weight,
+            };
+            let child_state = PathState {
+                depth: state.depth + 1,
+                throughput: child_throughput,
+                media,
+            };
+            let (l, _) = self.trace_ray(child_ray, spawn, child_state, rec, counts);
+            total += weight * l;
+        }
+        rec.update(id, |node| {
+            node.end = end;
+            node.truncated = truncated;
+        });
+        total
+    }
+
+    /// n1, n2, Snell and Fresnel at a transmissive hit; the refracted direction unless TIR.
+    #[allow(clippy::too_many_arguments)]
+    fn interface(
+        &self,
+        d: DVec3,
+        n: DVec3,
+        cos_i: f64,
+        object: usize,
+        m: &Material,
+        entering: bool,
+        media: MediaStack,
+    ) -> (Interface, Option<DVec3>) {
+        let (n1, n2) = if entering {
+            let n1 = media.ior();
+            (n1, m.ior.unwrap_or(n1))
+        } else {
+            let n2 = media.left(object).ior();
+            (m.ior.unwrap_or(n2), n2)
+        };
+        let model = self.scene.settings.fresnel;
+        match refract(d, n, n1 / n2) {
+            Some(t) => {
+                let fresnel: Fresnel = math::fresnel(model, n1, n2, cos_i, t.cos_t);
+                let event = Interface {
+                    n1,
+                    n2,
+                    cos_i,
+                    cos_t: Some(t.cos_t),
+                    fresnel,
+                    tir: false,
+                };
+                (event, Some(t.direction))
+            }
+            None => {
+                let event = Interface {
+                    n1,
+                    n2,
+                    cos_i,
+                    cos_t: None,
+                    fresnel: math::fresnel_tir(model),
+                    tir: true,
+                };
+                (event, None)
+            }
+        }
+    }
+
+    /// One light's contribution at `p`: (diffuse/pi + Blinn-Phong) x irradiance x cos x shadow.
+    #[allow(clippy::too_many_arguments)]
+    fn direct<R: Recorder>(
+        &self,
+        light: usize,
+        p: DVec3,
+        n: DVec3,
+        wo: DVec3,
+        albedo: Rgb,
+        m: &Material,
+        parent: Option<NodeId>,
+        depth: u32,
+        rec: &mut R,
+        counts: &mut RayCounts,
+    ) -> Rgb {
+        let l = &self.scene.lights[light];
+        let (wi, dist, irradiance) = l.sample(p);
+        let cos = n.dot(wi);
+        let ray = self.spawn_ray(p, n, wi);
+        let id = rec.push(parent, || {
+            let mut node = RayNode::new(RayKind::Shadow, depth, p, ray.origin, ray.direction);
+            node.t_min = ray.t_min;
+            node
+        });
+        let brdf = if cos > 0.0 {
+            albedo * std::f64::consts::FRAC_1_PI + blinn_phong(m, n, wi, wo)
+        } else {
+            Rgb::ZERO
+        };
+        let weight = brdf * cos.max(0.0);
+        if cos <= 0.0 {
+            rec.update(id, |node| {
+                node.weight = weight;
+                node.end = EndReason::LightBehind;
+                node.shadow = Some(self.shadow_info(
+                    light,
+                    dist,
+                    cos,
+                    brdf,
+                    irradiance,
+                    Vec::new(),
+                    Rgb::ZERO,
+                ));
+            });
+            return Rgb::ZERO;
+        }
+        counts.add_kind(RayKind::Shadow);
+        // The light is at `dist` from `p`; measured from the offset origin for the normal strategy.
+        let seg = (dist - (ray.origin - p).length()).max(0.0);
+        let tr = shadow::transmission(self.scene, &ray, seg, R::RECORDS);
+        let arriving = irradiance * tr.transmittance;
+        rec.update(id, |node| {
+            node.weight = weight;
+            node.radiance = arriving;
+            node.end = if tr.transmittance == Rgb::ONE {
+                EndReason::Unblocked
+            } else if tr.transmittance == Rgb::ZERO {
+                EndReason::Blocked
+            } else {
+                EndReason::Attenuated
+            };
+            node.shadow = Some(self.shadow_info(
+                light,
+                dist,
+                cos,
+                brdf,
+                irradiance,
+                tr.blockers,
+                tr.transmittance,
+            ));
+        });
+        weight * arriving
+    }
+
+    #[allow(clippy::too_many_arguments)]
+    fn shadow_info(
+        &self,
+        light: usize,
+        distance: f64,
+        cos_theta: f64,
+        brdf: Rgb,
+        irradiance: Rgb,
+        blockers: Vec<crate::tree::Blocker>,
+        transmittance: Rgb,
+    ) -> ShadowInfo {
+        ShadowInfo {
+            light,
+            light_name: self.scene.lights[light].name.clone(),
+            distance,
+            cos_theta,
+            brdf,
+            irradiance,
+            blockers,
+            transmittance,
+        }
+    }
+}
+
+/// Blinn-Phong highlight `specular * (N.H)^shininess` (zero without a specular colour).
+fn blinn_phong(m: &Material, n: DVec3, wi: DVec3, wo: DVec3) -> Rgb {
+    if m.specular == Rgb::ZERO {
+        return Rgb::ZERO;
+    }
+    let Some(h) = (wi + wo).try_normalize() else {
+        return Rgb::ZERO;
+    };
+    m.specular * n.dot(h).max(0.0).powf(m.shininess)
+}

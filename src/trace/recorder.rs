@@ -1,0 +1,59 @@
+//! The recorder hook: a generic parameter of the tracer, so the no-op one compiles away.
+
+use crate::tree::{NodeId, RayNode};
+
+/// Receives the rays of a trace. All methods take closures so that a recorder that ignores them
+/// never builds the node data.
+pub trait Recorder {
+    /// Whether this recorder keeps anything (lets the tracer skip optional bookkeeping).
+    const RECORDS: bool;
+    /// A ray was spawned by `parent`; returns its id (or `None` when not recording).
+    fn push(&mut self, parent: Option<NodeId>, make: impl FnOnce() -> RayNode) -> Option<NodeId>;
+    /// Fill in node `id` once its results are known.
+    fn update(&mut self, id: Option<NodeId>, edit: impl FnOnce(&mut RayNode));
+}
+
+/// Records nothing; the render path uses it.
+#[derive(Clone, Copy, Debug, Default)]
+pub struct NoopRecorder;
+
+impl Recorder for NoopRecorder {
+    const RECORDS: bool = false;
+
+    #[inline(always)]
+    fn push(&mut self, _: Option<NodeId>, _: impl FnOnce() -> RayNode) -> Option<NodeId> {
+        None
+    }
+
+    #[inline(always)]
+    fn update(&mut self, _: Option<NodeId>, _: impl FnOnce(&mut RayNode)) {}
+}
+
+/// Records every node into an arena.
+#[derive(Clone, Debug, Default)]
+pub struct TreeRecorder {
+    /// The nodes so far.
+    pub nodes: Vec<RayNode>,
+}
+
+impl Recorder for TreeRecorder {
+    const RECORDS: bool = true;
+
+    fn push(&mut self, parent: Option<NodeId>, make: impl FnOnce() -> RayNode) -> Option<NodeId> {
+        let id = NodeId(u32::try_from(self.nodes.len()).expect("fewer than 2^32 nodes"));
+        let mut node = make();
+        node.id = id;
+        node.parent = parent;
+        if let Some(p) = parent {
+            self.nodes[p.index()].children.push(id);
+        }
+        self.nodes.push(node);
+        Some(id)
+    }
+
+    fn update(&mut self, id: Option<NodeId>, edit: impl FnOnce(&mut RayNode)) {
+        if let Some(id) = id {
+            edit(&mut self.nodes[id.index()]);
+        }
+    }
+}

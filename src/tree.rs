@@ -1,0 +1,325 @@
+//! The recorded ray tree of one pixel: plain data, serializable (`raytree.tree/1`).
+//!
+//! Nodes live in one arena (`RayTree::nodes`) and refer to each other by [`NodeId`]. Every view
+//! (text, JSON, diagram, inspector) reads this structure; keep it stable.
+
+use crate::math::{Fresnel, Rgb};
+use crate::scene::Settings;
+use glam::DVec3;
+use serde::{Deserialize, Serialize};
+
+/// The JSON schema tag of a serialized tree.
+pub const TREE_SCHEMA: &str = "raytree.tree/1";
+
+/// Index of a node in [`RayTree::nodes`].
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord, Serialize, Deserialize)]
+#[serde(transparent)]
+pub struct NodeId(pub u32);
+
+impl NodeId {
+    /// The arena index.
+    #[must_use]
+    pub fn index(self) -> usize {
+        self.0 as usize
+    }
+}
+
+/// What a ray is for.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, Serialize, Deserialize)]
+#[serde(rename_all = "lowercase")]
+pub enum RayKind {
+    /// From the eye through the pixel.
+    Camera,
+    /// Mirror or Fresnel reflection (including total internal reflection).
+    Reflected,
+    /// Snell refraction.
+    Refracted,
+    /// Towards a light.
+    Shadow,
+}
+
+impl RayKind {
+    /// All kinds, in display order.
+    pub const ALL: [RayKind; 4] = [
+        RayKind::Camera,
+        RayKind::Reflected,
+        RayKind::Refracted,
+        RayKind::Shadow,
+    ];
+
+    /// Lower-case name.
+    #[must_use]
+    pub fn name(self) -> &'static str {
+        match self {
+            RayKind::Camera => "camera",
+            RayKind::Reflected => "reflected",
+            RayKind::Refracted => "refracted",
+            RayKind::Shadow => "shadow",
+        }
+    }
+}
+
+/// Why a ray's recursion ended.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum EndReason {
+    /// Not finished (only seen while tracing).
+    Pending,
+    /// Missed everything: background radiance.
+    Miss,
+    /// Hit a surface with no reflectivity or transmissivity: only local shading.
+    Surface,
+    /// Spawned all its secondary rays.
+    Continued,
+    /// Secondary rays were cut by `max_depth`.
+    MaxDepth,
+    /// Secondary rays were cut by `min_weight`.
+    MinWeight,
+    /// Shadow ray reached its light unblocked.
+    Unblocked,
+    /// Shadow ray passed translucent blockers with some light left.
+    Attenuated,
+    /// Shadow ray stopped by an opaque blocker (or all light absorbed).
+    Blocked,
+    /// The light is behind the surface (`N.L <= 0`): no shadow ray was cast.
+    LightBehind,
+}
+
+/// The surface a ray hit.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct HitInfo {
+    /// Ray parameter.
+    pub t: f64,
+    /// World-space hit point.
+    pub point: DVec3,
+    /// Outward unit geometric normal.
+    pub normal: DVec3,
+    /// Object index.
+    pub object: usize,
+    /// Object name.
+    pub object_name: String,
+    /// Material name.
+    pub material: String,
+    /// Whether the ray arrived from the outer side.
+    pub entering: bool,
+    /// Cosine between the reversed ray and the normal on the incident side.
+    pub cos_i: f64,
+}
+
+/// A dielectric interface event (only where the material transmits).
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct Interface {
+    /// Index on the incident side.
+    pub n1: f64,
+    /// Index on the far side.
+    pub n2: f64,
+    /// Incident cosine.
+    pub cos_i: f64,
+    /// Transmitted cosine (`None` under total internal reflection).
+    pub cos_t: Option<f64>,
+    /// Reflected and transmitted fractions.
+    pub fresnel: Fresnel,
+    /// Total internal reflection happened.
+    pub tir: bool,
+}
+
+/// Beer's law on the segment of this ray.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct Attenuation {
+    /// The absorbing object the segment lies in.
+    pub medium: usize,
+    /// Distance travelled inside it (may be infinite for a miss).
+    pub distance: f64,
+    /// Absorption coefficients.
+    pub absorption: Rgb,
+    /// `exp(-absorption * distance)`.
+    pub factor: Rgb,
+}
+
+/// An object a shadow ray passed through.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct Blocker {
+    /// Object index.
+    pub object: usize,
+    /// Object name.
+    pub object_name: String,
+    /// Ray parameter of the first crossing.
+    pub t: f64,
+    /// Length of the ray inside it.
+    pub chord: f64,
+    /// Light passed: transmissivity x Beer (zero when opaque).
+    pub factor: Rgb,
+}
+
+/// Shadow-ray details.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct ShadowInfo {
+    /// Light index.
+    pub light: usize,
+    /// Light name.
+    pub light_name: String,
+    /// Distance to the light (infinite for directional).
+    pub distance: f64,
+    /// `N.L` at the shaded point.
+    pub cos_theta: f64,
+    /// BRDF value (diffuse/pi + Blinn-Phong).
+    pub brdf: Rgb,
+    /// Unshadowed irradiance on a surface facing the light.
+    pub irradiance: Rgb,
+    /// Everything between the point and the light.
+    pub blockers: Vec<Blocker>,
+    /// Product of the blockers' factors.
+    pub transmittance: Rgb,
+}
+
+/// One ray of the tree.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct RayNode {
+    /// This node's id.
+    pub id: NodeId,
+    /// What the ray is for.
+    pub kind: RayKind,
+    /// Recursion depth (camera = 0; a shadow ray has its surface's depth).
+    pub depth: u32,
+    /// The spawning ray.
+    pub parent: Option<NodeId>,
+    /// Spawned rays, in order.
+    pub children: Vec<NodeId>,
+    /// Surface point the ray was spawned from (the eye for camera rays).
+    pub spawn_point: DVec3,
+    /// Offset applied: `origin - spawn_point`.
+    pub offset: DVec3,
+    /// Ray origin.
+    pub origin: DVec3,
+    /// Unit direction.
+    pub direction: DVec3,
+    /// Smallest accepted hit distance.
+    pub t_min: f64,
+    /// Closest hit (none for misses and shadow rays).
+    pub hit: Option<HitInfo>,
+    /// Dielectric event at the hit.
+    pub interface: Option<Interface>,
+    /// Beer's law on this ray's segment.
+    pub attenuation: Option<Attenuation>,
+    /// Weight relative to the parent (reflectivity + T*R, T*(1-R), or BRDF*cos for shadows).
+    pub weight: Rgb,
+    /// Product of weights and attenuations from the camera to this ray's origin.
+    pub throughput: Rgb,
+    /// Emission seen at the hit.
+    pub emitted: Rgb,
+    /// Ambient term at the hit.
+    pub ambient: Rgb,
+    /// Local shading: emission + ambient + sum of shadow children's weighted radiance.
+    pub local: Rgb,
+    /// Radiance carried back along this ray (after attenuation).
+    pub radiance: Rgb,
+    /// Secondary weight that was not traced (max depth or min weight).
+    pub truncated: Rgb,
+    /// Why recursion ended here.
+    pub end: EndReason,
+    /// Shadow details (shadow rays only).
+    pub shadow: Option<ShadowInfo>,
+}
+
+impl RayNode {
+    /// A fresh node; fields are filled as tracing proceeds.
+    #[must_use]
+    pub fn new(
+        kind: RayKind,
+        depth: u32,
+        spawn_point: DVec3,
+        origin: DVec3,
+        direction: DVec3,
+    ) -> Self {
+        Self {
+            id: NodeId(0),
+            kind,
+            depth,
+            parent: None,
+            children: Vec::new(),
+            spawn_point,
+            offset: origin - spawn_point,
+            origin,
+            direction,
+            t_min: 0.0,
+            hit: None,
+            interface: None,
+            attenuation: None,
+            weight: Rgb::ONE,
+            throughput: Rgb::ONE,
+            emitted: Rgb::ZERO,
+            ambient: Rgb::ZERO,
+            local: Rgb::ZERO,
+            radiance: Rgb::ZERO,
+            truncated: Rgb::ZERO,
+            end: EndReason::Pending,
+            shadow: None,
+        }
+    }
+
+    /// This ray's contribution to the pixel: `throughput * radiance`.
+    #[must_use]
+    pub fn contribution(&self) -> Rgb {
+        self.throughput * self.radiance
+    }
+}
+
+/// One sample of the pixel.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct SampleRecord {
+    /// Sample index.
+    pub index: u32,
+    /// Film position in pixels.
+    pub film: [f64; 2],
+    /// Root (camera) node.
+    pub root: NodeId,
+    /// Radiance of the sample.
+    pub radiance: Rgb,
+}
+
+/// The full ray tree of one pixel.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct RayTree {
+    /// Always [`TREE_SCHEMA`].
+    pub schema: String,
+    /// Pixel coordinates.
+    pub pixel: [u32; 2],
+    /// Settings used.
+    pub settings: Settings,
+    /// Pixel radiance: the mean of the samples (equals the rendered pixel bit for bit).
+    pub radiance: Rgb,
+    /// Samples.
+    pub samples: Vec<SampleRecord>,
+    /// All nodes.
+    pub nodes: Vec<RayNode>,
+}
+
+impl RayTree {
+    /// The node with id `id`.
+    #[must_use]
+    pub fn node(&self, id: NodeId) -> &RayNode {
+        &self.nodes[id.index()]
+    }
+
+    /// Node ids in depth-first order starting at `root`.
+    #[must_use]
+    pub fn depth_first(&self, root: NodeId) -> Vec<NodeId> {
+        let mut out = Vec::new();
+        let mut stack = vec![root];
+        while let Some(id) = stack.pop() {
+            out.push(id);
+            stack.extend(self.node(id).children.iter().rev());
+        }
+        out
+    }
+
+    /// Number of nodes of each kind, in [`RayKind::ALL`] order.
+    #[must_use]
+    pub fn count_by_kind(&self) -> [usize; 4] {
+        let mut c = [0; 4];
+        for n in &self.nodes {
+            c[RayKind::ALL.iter().position(|k| *k == n.kind).unwrap_or(0)] += 1;
+        }
+        c
+    }
+}
