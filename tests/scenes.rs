@@ -146,13 +146,8 @@ fn beer_law_through_an_index_matched_slab() {
         "",
     );
     let t = trace_pixel(&s, 1, 1).unwrap();
-    let d = 1.5;
-    let expect = Rgb::new(0.2, 0.5, 1.0)
-        * Rgb::new(
-            (-0.5 * d as f64).exp(),
-            (-d as f64).exp(),
-            (-2.0 * d as f64).exp(),
-        );
+    let d: f64 = 1.5;
+    let expect = Rgb::new(0.2, 0.5, 1.0) * Rgb::new((-0.5 * d).exp(), (-d).exp(), (-2.0 * d).exp());
     assert!(
         (t.radiance - expect).abs().max_element() < 1e-12,
         "{} vs {expect}",
