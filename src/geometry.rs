@@ -1,7 +1,9 @@
 //! Shapes and ray intersection. Closed set: `enum Shape`, matched exhaustively.
 
 use crate::math::Ray;
+use crate::mesh::Mesh;
 use glam::DVec3;
+use std::sync::Arc;
 
 /// A primitive. Every shape has an outward normal; planes bound the half-space behind the normal.
 #[derive(Clone, Debug, PartialEq)]
@@ -34,6 +36,8 @@ pub enum Shape {
         /// Upper corner.
         max: DVec3,
     },
+    /// A world-space triangle mesh with its own BVH (shared, so cloning a scene is cheap).
+    Mesh(Arc<Mesh>),
 }
 
 /// The cheap result of a ray-shape test: distance and outward geometric normal.
@@ -77,6 +81,13 @@ impl Shape {
                     normal: box_normal(min, max, ray.at(t)),
                 })
             }
+            Shape::Mesh(ref m) => {
+                let (t, i) = m.intersect(ray, t_max, &mut Default::default())?;
+                Some(ShapeHit {
+                    t,
+                    normal: m.geometric_normal(i),
+                })
+            }
         }
     }
 
@@ -103,6 +114,11 @@ impl Shape {
             }
             Shape::Triangle { vertices, .. } => triangle_t(&vertices, &whole).map(|t| (t, t)),
             Shape::Box { min, max } => slab_interval(min, max, &whole),
+            // The span from the first to the last crossing (exact chords: `Mesh::segment_inside`).
+            Shape::Mesh(ref m) => {
+                let ts = m.crossings(ray, &mut Default::default());
+                Some((*ts.first()?, *ts.last()?))
+            }
         }
     }
 
@@ -117,6 +133,7 @@ impl Shape {
                 ..
             } => Some((a.min(b).min(c), a.max(b).max(c))),
             Shape::Box { min, max } => Some((min, max)),
+            Shape::Mesh(ref m) => Some((m.bounds().min, m.bounds().max)),
         }
     }
 }
@@ -169,7 +186,7 @@ fn sphere_hit(center: DVec3, radius: f64, ray: &Ray, t_max: f64) -> Option<Shape
 }
 
 /// Möller-Trumbore ray-triangle distance (J. Graphics Tools 2(1), 1997), two-sided.
-fn triangle_t(v: &[DVec3; 3], ray: &Ray) -> Option<f64> {
+pub(crate) fn triangle_t(v: &[DVec3; 3], ray: &Ray) -> Option<f64> {
     let e1 = v[1] - v[0];
     let e2 = v[2] - v[0];
     let p = ray.direction.cross(e2);

@@ -6,9 +6,11 @@
 #![forbid(unsafe_code)]
 #![warn(missing_docs)]
 
+pub mod bvh;
 pub mod check;
 pub mod geometry;
 pub mod math;
+pub mod mesh;
 pub mod render;
 pub mod scene;
 pub mod text;

@@ -3,6 +3,7 @@
 //! Nodes live in one arena (`RayTree::nodes`) and refer to each other by [`NodeId`]. Every view
 //! (text, JSON, diagram, inspector) reads this structure; keep it stable.
 
+use crate::bvh::TraversalCost;
 use crate::math::{Fresnel, Rgb};
 use crate::scene::Settings;
 use glam::DVec3;
@@ -104,6 +105,13 @@ pub struct HitInfo {
     pub entering: bool,
     /// Cosine between the reversed ray and the normal on the incident side.
     pub cos_i: f64,
+    /// For meshes: the triangle hit (face index in the OBJ file, polygons fan-triangulated).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub triangle: Option<u32>,
+    /// For smooth meshes: the outward shading normal used (the geometric `normal` where the
+    /// shading normal failed the consistency rule of `mesh::shading`).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub shading_normal: Option<DVec3>,
 }
 
 /// A dielectric interface event (only where the material transmits).
@@ -219,6 +227,9 @@ pub struct RayNode {
     pub end: EndReason,
     /// Shadow details (shadow rays only).
     pub shadow: Option<ShadowInfo>,
+    /// Acceleration-structure work for this ray's intersection query.
+    #[serde(default)]
+    pub traversal: TraversalCost,
 }
 
 impl RayNode {
@@ -254,6 +265,7 @@ impl RayNode {
             truncated: Rgb::ZERO,
             end: EndReason::Pending,
             shadow: None,
+            traversal: TraversalCost::default(),
         }
     }
 

@@ -22,12 +22,26 @@ pub fn load(path: Option<&Path>, o: &Overrides) -> Result<Loaded> {
             let label = p.display().to_string();
             let src =
                 std::fs::read_to_string(p).with_context(|| format!("cannot read scene {label}"))?;
-            let scene = Scene::from_json(&src).map_err(|e| anyhow!("{label}:{e}"))?;
+            let dir = p.parent().unwrap_or(Path::new(""));
+            let scene = Scene::from_json_with(&src, &mut |file| read_obj(dir, file))
+                .map_err(|e| anyhow!("{label}:{e}"))?;
             (scene, label)
         }
     };
     apply(&mut scene, o)?;
     Ok(Loaded { scene, label })
+}
+
+/// Read and parse the OBJ `file` (relative paths against the scene's directory `dir`); errors
+/// name the file and, for bad contents, the line.
+pub fn read_obj(dir: &Path, file: &str) -> Result<raytree::mesh::MeshData, String> {
+    let path = dir.join(file);
+    let shown = path.display();
+    let text = std::fs::read_to_string(&path).map_err(|e| format!("cannot read {shown}: {e}"))?;
+    raytree::mesh::parse_obj(&text).map_err(|e| match e.line {
+        0 => format!("{shown}: {}", e.message),
+        line => format!("{shown}:{line}: {}", e.message),
+    })
 }
 
 fn enum_value<T: DeserializeOwned>(flag: &str, v: &str) -> Result<T> {

@@ -7,6 +7,7 @@ use serde::{Deserialize, Serialize};
 use std::collections::BTreeMap;
 
 use crate::math::FresnelModel;
+pub use crate::mesh::MeshNormals;
 
 /// An `[x, y, z]` or `[r, g, b]` triple as written in JSON.
 pub type Triple = [f64; 3];
@@ -157,6 +158,44 @@ pub enum ObjectDesc {
         #[serde(default)]
         name: Option<String>,
     },
+    /// A triangle mesh read from a Wavefront OBJ file, placed by scale, rotation, translation.
+    Mesh {
+        /// OBJ file; a relative path is resolved against the scene file's directory.
+        file: String,
+        /// Translation.
+        #[serde(default)]
+        translate: Triple,
+        /// Rotation in degrees about X, then Y, then Z (extrinsic XYZ Euler angles).
+        #[serde(default)]
+        rotate: Triple,
+        /// Uniform scale or per-axis `[sx, sy, sz]` (non-zero).
+        #[serde(default)]
+        scale: ScaleDesc,
+        /// Shading normals: `file` (default), `flat` or `smooth`.
+        #[serde(default)]
+        normals: MeshNormals,
+        /// Material name.
+        material: String,
+        /// Display name.
+        #[serde(default)]
+        name: Option<String>,
+    },
+}
+
+/// A mesh's scale: one number or one per axis.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(untagged)]
+pub enum ScaleDesc {
+    /// The same factor on every axis.
+    Uniform(f64),
+    /// `[sx, sy, sz]`.
+    Axes(Triple),
+}
+
+impl Default for ScaleDesc {
+    fn default() -> Self {
+        ScaleDesc::Uniform(1.0)
+    }
 }
 
 impl ObjectDesc {
@@ -167,7 +206,8 @@ impl ObjectDesc {
             ObjectDesc::Sphere { material, .. }
             | ObjectDesc::Plane { material, .. }
             | ObjectDesc::Triangle { material, .. }
-            | ObjectDesc::Box { material, .. } => material,
+            | ObjectDesc::Box { material, .. }
+            | ObjectDesc::Mesh { material, .. } => material,
         }
     }
 
@@ -178,7 +218,8 @@ impl ObjectDesc {
             ObjectDesc::Sphere { name, .. }
             | ObjectDesc::Plane { name, .. }
             | ObjectDesc::Triangle { name, .. }
-            | ObjectDesc::Box { name, .. } => name.as_deref(),
+            | ObjectDesc::Box { name, .. }
+            | ObjectDesc::Mesh { name, .. } => name.as_deref(),
         }
     }
 
@@ -190,6 +231,7 @@ impl ObjectDesc {
             ObjectDesc::Plane { .. } => "plane",
             ObjectDesc::Triangle { .. } => "triangle",
             ObjectDesc::Box { .. } => "box",
+            ObjectDesc::Mesh { .. } => "mesh",
         }
     }
 }

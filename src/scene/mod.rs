@@ -1,13 +1,18 @@
 //! The validated scene: camera, materials, objects, lights and settings.
 
+mod accel;
 pub mod desc;
 mod locate;
+mod mesh_object;
 mod validate;
 
+use crate::bvh::TraversalCost;
 use crate::geometry::Shape;
 use crate::math::{Ray, Rgb};
+use crate::mesh::MeshData;
 use glam::DVec3;
 
+pub use accel::{Accel, traversal_cost_image};
 pub use desc::{OffsetDesc, OffsetStrategy, SceneDesc, Settings, ShadowMode};
 pub use locate::locate;
 pub use validate::{SceneError, check_settings};
@@ -220,6 +225,9 @@ pub struct Scene {
     pub lights: Vec<Light>,
     /// Tracer settings.
     pub settings: Settings,
+    /// BVH over `objects`, built by validation; call [`Scene::rebuild_accel`] after editing
+    /// `objects` (until then, intersection falls back to a linear scan if the count changed).
+    pub accel: Accel,
 }
 
 /// A hit on the closest object.
@@ -231,12 +239,16 @@ pub struct Hit {
     pub normal: DVec3,
     /// Index into [`Scene::objects`].
     pub object: usize,
+    /// For meshes: the stored triangle (see [`crate::mesh::Mesh::source_triangle`]).
+    pub triangle: Option<u32>,
 }
 
 impl Scene {
     /// Parse and validate scene JSON. Errors carry the JSON path and line:column.
     pub fn from_json(src: &str) -> Result<Self, SceneError> {
-        validate::from_json(src)
+        validate::from_json(src, &mut |_| {
+            Err("mesh objects need a file loader (Scene::from_json_with)".into())
+        })
     }
 
     /// The built-in default scene.
@@ -245,22 +257,40 @@ impl Scene {
         Self::from_json(DEFAULT_SCENE_JSON).expect("the built-in scene is valid")
     }
 
-    /// The closest hit with `t` in `(ray.t_min, t_max)` (linear scan).
+    /// Parse and validate scene JSON whose `mesh` objects are read by `load_mesh(file)` (the
+    /// `file` string as written; the caller resolves paths and reads files). A loader error
+    /// is reported at the object's `file` path.
+    pub fn from_json_with(
+        src: &str,
+        load_mesh: &mut dyn FnMut(&str) -> Result<MeshData, String>,
+    ) -> Result<Self, SceneError> {
+        validate::from_json(src, load_mesh)
+    }
+
+    /// The closest hit with `t` in `(ray.t_min, t_max)`; among equal distances the lowest
+    /// object index, exactly as a linear scan in object order (BVH over objects).
     #[must_use]
     pub fn intersect(&self, ray: &Ray, t_max: f64) -> Option<Hit> {
-        let mut best: Option<Hit> = None;
-        let mut t_max = t_max;
-        for (object, o) in self.objects.iter().enumerate() {
-            if let Some(h) = o.shape.intersect(ray, t_max) {
-                t_max = h.t;
-                best = Some(Hit {
-                    t: h.t,
-                    normal: h.normal,
-                    object,
-                });
-            }
+        self.intersect_counted(ray, t_max, &mut TraversalCost::default())
+    }
+
+    /// The outward shading normal at `p` on `hit`: interpolated vertex normals on smooth
+    /// meshes, `None` where it is the geometric normal.
+    #[must_use]
+    pub fn shading_normal(&self, hit: &Hit, p: DVec3) -> Option<DVec3> {
+        match (&self.objects[hit.object].shape, hit.triangle) {
+            (Shape::Mesh(m), Some(t)) => m.shading_normal(t as usize, p),
+            _ => None,
         }
-        best
+    }
+
+    /// For mesh hits, the face index in the mesh's input (OBJ order).
+    #[must_use]
+    pub fn source_triangle(&self, hit: &Hit) -> Option<u32> {
+        match (&self.objects[hit.object].shape, hit.triangle) {
+            (Shape::Mesh(m), Some(t)) => Some(m.source_triangle(t as usize)),
+            _ => None,
+        }
     }
 
     /// The material of object `i`.

@@ -3,8 +3,9 @@
 use super::desc::{
     CameraDesc, LightDesc, MaterialDesc, ObjectDesc, SceneDesc, Settings, TextureDesc, Triple,
 };
-use super::{Camera, Light, LightKind, Material, Object, Scene, Texture};
+use super::{Accel, Camera, Light, LightKind, Material, Object, Scene, Texture};
 use crate::geometry::Shape;
+use crate::mesh::MeshData;
 use glam::DVec3;
 use std::fmt;
 
@@ -33,13 +34,16 @@ impl fmt::Display for SceneError {
     }
 }
 
+/// The caller's mesh-file reader (see [`Scene::from_json_with`]).
+pub(super) type MeshLoader<'a> = &'a mut dyn FnMut(&str) -> Result<MeshData, String>;
+
 /// Collects the first validation error with its path.
-struct Check<'a> {
+pub(super) struct Check<'a> {
     src: &'a str,
 }
 
 impl Check<'_> {
-    fn fail<T>(
+    pub(super) fn fail<T>(
         &self,
         path: impl Into<String>,
         message: impl Into<String>,
@@ -54,7 +58,7 @@ impl Check<'_> {
         })
     }
 
-    fn finite(&self, path: &str, v: f64) -> Result<f64, SceneError> {
+    pub(super) fn finite(&self, path: &str, v: f64) -> Result<f64, SceneError> {
         if v.is_finite() {
             Ok(v)
         } else {
@@ -62,7 +66,7 @@ impl Check<'_> {
         }
     }
 
-    fn vec(&self, path: &str, v: Triple) -> Result<DVec3, SceneError> {
+    pub(super) fn vec(&self, path: &str, v: Triple) -> Result<DVec3, SceneError> {
         for (i, c) in v.iter().enumerate() {
             self.finite(&format!("{path}[{i}]"), *c)?;
         }
@@ -103,7 +107,7 @@ fn bare_message(e: &serde_json::Error) -> String {
     }
 }
 
-pub(super) fn from_json(src: &str) -> Result<Scene, SceneError> {
+pub(super) fn from_json(src: &str, load_mesh: MeshLoader) -> Result<Scene, SceneError> {
     let mut de = serde_json::Deserializer::from_str(src);
     let desc: SceneDesc = serde_path_to_error::deserialize(&mut de).map_err(|e| {
         let path = e.path().to_string();
@@ -121,11 +125,12 @@ pub(super) fn from_json(src: &str) -> Result<Scene, SceneError> {
         column: Some(e.column()),
         message: bare_message(&e),
     })?;
-    validate(&desc, src)
+    validate(&desc, src, load_mesh)
 }
 
-/// Validate a parsed description; `src` is used only to locate errors (may be empty).
-pub fn validate(desc: &SceneDesc, src: &str) -> Result<Scene, SceneError> {
+/// Validate a parsed description, reading mesh files through `load_mesh`; `src` is used only
+/// to locate errors (may be empty).
+pub fn validate(desc: &SceneDesc, src: &str, load_mesh: MeshLoader) -> Result<Scene, SceneError> {
     let ck = Check { src };
     let camera = camera(&ck, &desc.camera)?;
     let background = ck.color("background", desc.background)?;
@@ -136,13 +141,14 @@ pub fn validate(desc: &SceneDesc, src: &str) -> Result<Scene, SceneError> {
     }
     let mut objects = Vec::with_capacity(desc.objects.len());
     for (i, o) in desc.objects.iter().enumerate() {
-        objects.push(object(&ck, &desc.materials, i, o)?);
+        objects.push(object(&ck, &desc.materials, i, o, load_mesh)?);
     }
     let mut lights = Vec::with_capacity(desc.lights.len());
     for (i, l) in desc.lights.iter().enumerate() {
         lights.push(light(&ck, i, l)?);
     }
     let settings = settings(&ck, &desc.settings)?;
+    let accel = Accel::build(&objects);
     Ok(Scene {
         camera,
         background,
@@ -151,6 +157,7 @@ pub fn validate(desc: &SceneDesc, src: &str) -> Result<Scene, SceneError> {
         objects,
         lights,
         settings,
+        accel,
     })
 }
 
@@ -230,6 +237,7 @@ fn object(
     materials: &std::collections::BTreeMap<String, MaterialDesc>,
     i: usize,
     o: &ObjectDesc,
+    load_mesh: MeshLoader,
 ) -> Result<Object, SceneError> {
     let p = format!("objects[{i}]");
     let Some(material) = materials.keys().position(|k| k == o.material()) else {
@@ -273,6 +281,7 @@ fn object(
             }
             Shape::Box { min: lo, max: hi }
         }
+        ObjectDesc::Mesh { .. } => super::mesh_object::shape(ck, &p, o, load_mesh)?,
     };
     let name = o
         .name()

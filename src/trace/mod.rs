@@ -8,7 +8,9 @@ mod shadow;
 pub use media::{MediaStack, Medium};
 pub use recorder::{NoopRecorder, Recorder, TreeRecorder};
 
+use crate::bvh::TraversalCost;
 use crate::math::{self, Fresnel, Ray, Rgb, beer, reflect, refract};
+use crate::mesh::shading;
 use crate::scene::{Hit, Material, OffsetStrategy, Scene};
 use crate::tree::{
     Attenuation, EndReason, HitInfo, Interface, NodeId, RayKind, RayNode, ShadowInfo,
@@ -136,7 +138,9 @@ impl<'a> Tracer<'a> {
             n.throughput = state.throughput;
             n
         });
-        let hit = self.scene.intersect(&ray, f64::INFINITY);
+        let mut cost = TraversalCost::default();
+        let hit = self.scene.intersect_counted(&ray, f64::INFINITY, &mut cost);
+        rec.update(id, |n| n.traversal = cost);
         // Path length from the true spawn point, so the offset does not bias Beer's law.
         let distance = hit.map_or(f64::INFINITY, |h| (ray.at(h.t) - spawn.point).length());
         // Beer's law on this segment, inside the innermost absorbing medium.
@@ -185,8 +189,19 @@ impl<'a> Tracer<'a> {
         let d = ray.direction;
         let p = ray.at(hit.t);
         let entering = d.dot(hit.normal) < 0.0;
+        // Geometric normal on the incident side: decides sides and offsets.
         let n = if entering { hit.normal } else { -hit.normal };
-        let cos_i = (-d.dot(n)).clamp(0.0, 1.0);
+        // Shading normal on the incident side: lighting, mirror and Snell (mesh::shading rule).
+        let smooth = scene.shading_normal(hit, p);
+        let mut ns = smooth.map_or(n, |s| shading::shading_normal(d, n, s, entering));
+        if ns != n && m.is_transmissive() {
+            let cos = (-d.dot(ns)).clamp(0.0, 1.0);
+            let (_, t) = self.interface(d, ns, cos, hit.object, m, entering, state.media);
+            if t.is_some_and(|t| !shading::refraction_consistent(n, t)) {
+                ns = n;
+            }
+        }
+        let cos_i = (-d.dot(ns)).clamp(0.0, 1.0);
         rec.update(id, |node| {
             node.hit = Some(HitInfo {
                 t: hit.t,
@@ -197,6 +212,8 @@ impl<'a> Tracer<'a> {
                 material: m.name.clone(),
                 entering,
                 cos_i,
+                triangle: scene.source_triangle(hit),
+                shading_normal: smooth.map(|_| if entering { ns } else { -ns }),
             });
         });
         let albedo = m.diffuse.at(p);
@@ -205,7 +222,7 @@ impl<'a> Tracer<'a> {
         let mut local = emitted + ambient;
         if !m.diffuse.is_black() || m.specular != Rgb::ZERO {
             for light in 0..scene.lights.len() {
-                local += self.direct(light, p, n, -d, albedo, m, id, state.depth, rec, counts);
+                local += self.direct(light, p, n, ns, -d, albedo, m, id, state.depth, rec, counts);
             }
         }
         rec.update(id, |node| {
@@ -221,7 +238,7 @@ impl<'a> Tracer<'a> {
         let mut reflect_w = m.reflectivity;
         let mut refraction = None;
         if m.is_transmissive() {
-            let (event, dir) = self.interface(d, n, cos_i, hit.object, m, entering, state.media);
+            let (event, dir) = self.interface(d, ns, cos_i, hit.object, m, entering, state.media);
             let f = event.fresnel;
             reflect_w += m.transmissivity * f.r;
             if let Some(dir) = dir {
@@ -230,7 +247,13 @@ impl<'a> Tracer<'a> {
             rec.update(id, |node| node.interface = Some(event));
         }
         let children = [
-            (RayKind::Reflected, reflect(d, n), n, reflect_w, state.media),
+            (
+                RayKind::Reflected,
+                reflect(d, ns),
+                n,
+                reflect_w,
+                state.media,
+            ),
             match refraction {
                 Some((dir, w)) => {
                     let media = if entering {
@@ -343,6 +366,7 @@ impl<'a> Tracer<'a> {
         light: usize,
         p: DVec3,
         n: DVec3,
+        ns: DVec3,
         wo: DVec3,
         albedo: Rgb,
         m: &Material,
@@ -353,7 +377,13 @@ impl<'a> Tracer<'a> {
     ) -> Rgb {
         let l = &self.scene.lights[light];
         let (wi, dist, irradiance) = l.sample(p);
-        let cos = n.dot(wi);
+        // Shade with ns; the light is behind if either normal says so (the shadow ray leaves
+        // on the geometric side, so a light below the geometric surface cannot be reached).
+        let cos = if n.dot(wi) > 0.0 {
+            ns.dot(wi)
+        } else {
+            n.dot(wi)
+        };
         let ray = self.spawn_ray(p, n, wi);
         let id = rec.push(parent, || {
             let mut node = RayNode::new(RayKind::Shadow, depth, p, ray.origin, ray.direction);
@@ -361,7 +391,7 @@ impl<'a> Tracer<'a> {
             node
         });
         let brdf = if cos > 0.0 {
-            albedo * std::f64::consts::FRAC_1_PI + blinn_phong(m, n, wi, wo)
+            albedo * std::f64::consts::FRAC_1_PI + blinn_phong(m, ns, wi, wo)
         } else {
             Rgb::ZERO
         };
@@ -388,6 +418,7 @@ impl<'a> Tracer<'a> {
         let tr = shadow::transmission(self.scene, &ray, seg, R::RECORDS);
         let arriving = irradiance * tr.transmittance;
         rec.update(id, |node| {
+            node.traversal = tr.cost;
             node.weight = weight;
             node.radiance = arriving;
             node.end = if tr.transmittance == Rgb::ONE {

@@ -1,5 +1,7 @@
 //! Shadow rays: opaque, or translucent by the lecture's attenuation approximation (no caustics).
 
+use crate::bvh::TraversalCost;
+use crate::geometry::Shape;
 use crate::math::{Ray, Rgb, beer};
 use crate::scene::{Scene, ShadowMode};
 use crate::tree::Blocker;
@@ -10,6 +12,8 @@ pub(crate) struct Transmission {
     pub transmittance: Rgb,
     /// The blockers, in object order (filled only when `record`).
     pub blockers: Vec<Blocker>,
+    /// Acceleration-structure work done.
+    pub cost: TraversalCost,
 }
 
 /// Opaque mode: the first blocker stops the ray. Translucent mode: each object crossing the
@@ -19,21 +23,36 @@ pub(crate) fn transmission(scene: &Scene, ray: &Ray, dist: f64, record: bool) ->
     let mut out = Transmission {
         transmittance: Rgb::ONE,
         blockers: Vec::new(),
+        cost: TraversalCost::default(),
     };
     match scene.settings.shadows {
-        ShadowMode::Opaque => {
-            if let Some(hit) = scene.intersect(ray, dist) {
+        // A recorded tree names the nearest blocker; the render only needs to know there is one.
+        ShadowMode::Opaque if record => {
+            if let Some(hit) = scene.intersect_counted(ray, dist, &mut out.cost) {
                 out.transmittance = Rgb::ZERO;
-                if record {
-                    out.blockers
-                        .push(blocker(scene, hit.object, hit.t, 0.0, Rgb::ZERO));
-                }
+                out.blockers
+                    .push(blocker(scene, hit.object, hit.t, 0.0, Rgb::ZERO));
+            }
+        }
+        ShadowMode::Opaque => {
+            if scene.occluded(ray, dist, &mut out.cost) {
+                out.transmittance = Rgb::ZERO;
             }
         }
         ShadowMode::Translucent => {
-            for (i, o) in scene.objects.iter().enumerate() {
-                let Some((t0, t1)) = o.shape.inside_interval(ray) else {
-                    continue;
+            for i in scene.objects_near(ray, dist, &mut out.cost) {
+                let o = &scene.objects[i];
+                let (t0, t1) = match &o.shape {
+                    // Exact chords through non-convex meshes: (first t, chord) as an interval.
+                    Shape::Mesh(m) => match m.segment_inside(ray, dist, &mut out.cost) {
+                        Some((t, chord)) if chord > 0.0 => (t, t + chord),
+                        Some((t, _)) => (t, t),
+                        None => continue,
+                    },
+                    s => match s.inside_interval(ray) {
+                        Some(i) => i,
+                        None => continue,
+                    },
                 };
                 let (a, b) = (t0.max(ray.t_min), t1.min(dist));
                 // A crossing counts when some of it lies strictly inside the segment.
