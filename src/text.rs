@@ -100,6 +100,9 @@ pub fn node_line(n: &RayNode) -> String {
                 deg(h.cos_i),
                 if h.entering { "outside" } else { "inside" }
             );
+            if let Some(t) = h.triangle {
+                let _ = write!(s, " triangle {t}");
+            }
         }
     }
     if n.kind != RayKind::Camera {

@@ -1,0 +1,113 @@
+//! Mesh and BVH performance: primary-ray throughput on a 1.3M-triangle icosphere (1 and 2
+//! threads), time per ray from 1K to 1.3M triangles, and the classic scene with the Stanford
+//! bunny in glass (skipped when `../shared/data/meshes/` is absent).
+//!
+//! Run: `cargo bench --bench mesh`. Figures and the comparison with Embree: docs/mesh.md.
+
+use criterion::{Criterion, Throughput, criterion_group, criterion_main};
+use rayon::prelude::*;
+use raytree::Scene;
+use raytree::mesh::generate::icosphere;
+use raytree::mesh::{MeshData, parse_obj};
+use std::hint::black_box;
+use std::path::Path;
+use std::time::{Duration, Instant};
+
+/// A unit icosphere of `level` subdivisions in front of the camera, filling most of the view.
+fn sphere_scene(level: u32, size: u32) -> Scene {
+    let json = format!(
+        r#"{{"camera": {{"position": [0, 0, 3], "look_at": [0, 0, 0], "fov_y": 40,
+             "width": {size}, "height": {size}}},
+            "materials": {{"m": {{"diffuse": [0.8, 0.8, 0.8]}}}},
+            "objects": [{{"type": "mesh", "file": "ico", "material": "m"}}],
+            "lights": [{{"type": "point", "position": [2, 2, 4], "intensity": [20, 20, 20]}}]}}"#
+    );
+    let data = icosphere(level);
+    Scene::from_json_with(&json, &mut |_| Ok::<MeshData, String>(data.clone())).unwrap()
+}
+
+/// Closest hits of every pixel-centre camera ray; returns the number of hits.
+fn cast_rows(scene: &Scene, rows: std::ops::Range<u32>) -> u64 {
+    let cam = &scene.camera;
+    let mut hits = 0;
+    for y in rows {
+        for x in 0..cam.width {
+            let ray = cam.ray(f64::from(x) + 0.5, f64::from(y) + 0.5);
+            hits += u64::from(scene.intersect(&ray, f64::INFINITY).is_some());
+        }
+    }
+    hits
+}
+
+fn cast_parallel(scene: &Scene) -> u64 {
+    (0..scene.camera.height)
+        .into_par_iter()
+        .map(|y| cast_rows(scene, y..y + 1))
+        .sum()
+}
+
+fn primary_1m(c: &mut Criterion) {
+    let start = Instant::now();
+    let scene = sphere_scene(8, 512);
+    eprintln!(
+        "icosphere level 8: {} triangles, scene built (incl. BVH) in {:.2} s",
+        20 * 4u64.pow(8),
+        start.elapsed().as_secs_f64()
+    );
+    let rays = u64::from(scene.camera.width * scene.camera.height);
+    eprintln!(
+        "hit fraction {:.3}",
+        cast_rows(&scene, 0..512) as f64 / rays as f64
+    );
+    let mut g = c.benchmark_group("primary_icosphere_1.3M_512x512");
+    g.sample_size(10).measurement_time(Duration::from_secs(4));
+    g.throughput(Throughput::Elements(rays));
+    for threads in [1, 2] {
+        let pool = rayon::ThreadPoolBuilder::new()
+            .num_threads(threads)
+            .build()
+            .unwrap();
+        g.bench_function(format!("threads{threads}"), |b| {
+            b.iter(|| pool.install(|| cast_parallel(black_box(&scene))))
+        });
+    }
+    g.finish();
+}
+
+fn scaling(c: &mut Criterion) {
+    let mut g = c.benchmark_group("primary_scaling_256x256_1thread");
+    g.sample_size(10).measurement_time(Duration::from_secs(2));
+    g.throughput(Throughput::Elements(256 * 256));
+    for level in 3..=8 {
+        let scene = sphere_scene(level, 256);
+        let tris = 20 * 4u64.pow(level);
+        g.bench_function(format!("{tris}_triangles"), |b| {
+            b.iter(|| cast_rows(black_box(&scene), 0..256))
+        });
+    }
+    g.finish();
+}
+
+/// The lecture's classic scene with its glass ball replaced by the Stanford bunny.
+fn bunny(c: &mut Criterion) {
+    let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("../shared/data/meshes");
+    let path = dir.join("stanford-bunny.obj");
+    let Ok(text) = std::fs::read_to_string(&path) else {
+        eprintln!("skipping bunny benchmark: {} not found", path.display());
+        return;
+    };
+    let data = parse_obj(&text).unwrap();
+    let json = include_str!("../fixtures/mesh/bunny.json");
+    let scene = Scene::from_json_with(json, &mut |_| Ok::<MeshData, String>(data.clone())).unwrap();
+    let mut g = c.benchmark_group("bunny_glass_640x360_depth16");
+    g.sample_size(10).measurement_time(Duration::from_secs(6));
+    let rays = raytree::render(&scene, &|_| {}).1.rays.total();
+    g.throughput(Throughput::Elements(rays));
+    g.bench_function("render", |b| {
+        b.iter(|| raytree::render(black_box(&scene), &|_| {}))
+    });
+    g.finish();
+}
+
+criterion_group!(benches, primary_1m, scaling, bunny);
+criterion_main!(benches);
