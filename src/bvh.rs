@@ -117,22 +117,37 @@ impl BoxRay {
     /// in the way of T. Barnes, "Fast, Branchless Ray/Bounding Box Intersections, Part 3": a
     /// ray in a slab's boundary plane counts as inside that slab.
     #[must_use]
-    fn enter(&self, min: DVec3, max: DVec3, t_max: f64) -> Option<f64> {
-        let t1 = (min - self.origin) * self.inv;
-        let t2 = (max - self.origin) * self.inv;
+    fn enter(&self, min: [f32; 3], max: [f32; 3], t_max: f64) -> Option<f64> {
+        let wide = |v: [f32; 3]| DVec3::new(v[0].into(), v[1].into(), v[2].into());
+        let t1 = (wide(min) - self.origin) * self.inv;
+        let t2 = (wide(max) - self.origin) * self.inv;
         let (mut lo, mut hi) = (self.t_min, t_max);
         for a in 0..3 {
-            lo = t1[a].max(lo).min(t2[a].max(lo));
-            hi = t1[a].min(hi).max(t2[a].min(hi));
+            lo = fmin(fmax(t1[a], lo), fmax(t2[a], lo));
+            hi = fmax(fmin(t1[a], hi), fmin(t2[a], hi));
         }
         (lo <= hi).then_some(lo)
     }
 }
 
+/// `x < y ? x : y`: one `minsd`; a NaN in `x` yields `y` (what the slab test relies on).
+#[inline(always)]
+fn fmin(x: f64, y: f64) -> f64 {
+    if x < y { x } else { y }
+}
+
+/// `x > y ? x : y`: one `maxsd`; a NaN in `x` yields `y`.
+#[inline(always)]
+fn fmax(x: f64, y: f64) -> f64 {
+    if x > y { x } else { y }
+}
+
+/// 32 bytes, two to a cache line: bounds are stored as `f32`, rounded outwards, so the box
+/// still contains its primitives exactly.
 #[derive(Clone, Copy, Debug, PartialEq)]
 struct Node {
-    min: DVec3,
-    max: DVec3,
+    min: [f32; 3],
+    max: [f32; 3],
     /// Leaf: first slot in [`Bvh::order`]; inner: index of the right child (left is next).
     index: u32,
     /// Leaf: number of primitives; 0 for inner nodes.
@@ -183,9 +198,10 @@ impl Bvh {
     /// The root box (`None` when empty).
     #[must_use]
     pub fn bounds(&self) -> Option<Aabb> {
+        let wide = |v: [f32; 3]| DVec3::new(v[0].into(), v[1].into(), v[2].into());
         self.nodes.first().map(|n| Aabb {
-            min: n.min,
-            max: n.max,
+            min: wide(n.min),
+            max: wide(n.max),
         })
     }
 
@@ -291,8 +307,8 @@ impl Builder {
         let (bounds, centers) = self.range_bounds(lo, hi);
         let at = self.nodes.len();
         self.nodes.push(Node {
-            min: bounds.min,
-            max: bounds.max,
+            min: bounds.min.to_array().map(down),
+            max: bounds.max.to_array().map(up),
             index: lo as u32,
             count: (hi - lo) as u32,
         });
@@ -393,6 +409,18 @@ impl Builder {
     }
 }
 
+/// The largest `f32` not above `x`.
+fn down(x: f64) -> f32 {
+    let f = x as f32;
+    if f64::from(f) > x { f.next_down() } else { f }
+}
+
+/// The smallest `f32` not below `x`.
+fn up(x: f64) -> f32 {
+    let f = x as f32;
+    if f64::from(f) < x { f.next_up() } else { f }
+}
+
 fn bin(x: f64, min: f64, scale: f64) -> usize {
     (((x - min) * scale) as usize).min(BINS - 1)
 }
@@ -476,6 +504,8 @@ mod tests {
     #[test]
     fn ray_in_a_face_plane_counts_as_inside() {
         let r = BoxRay::new(&Ray::new(DVec3::new(-1.0, 0.0, 0.5), DVec3::X, 0.0));
-        assert_eq!(r.enter(DVec3::ZERO, DVec3::ONE, f64::INFINITY), Some(1.0));
+        assert_eq!(r.enter([0.0; 3], [1.0; 3], f64::INFINITY), Some(1.0));
+        assert!(f64::from(down(0.1)) <= 0.1 && f64::from(up(0.1)) >= 0.1);
+        assert_eq!((down(1e300), up(-1e300)), (f32::MAX, f32::MIN));
     }
 }
