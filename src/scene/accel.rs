@@ -7,6 +7,10 @@ use crate::geometry::Shape;
 use crate::math::Ray;
 use rayon::prelude::*;
 
+/// Scenes with at most this many objects are scanned linearly: a few sphere tests cost less
+/// than walking boxes (the lecture's classic scene has three objects).
+const LINEAR_MAX: usize = 8;
+
 /// Top-level BVH over objects, and the planes.
 #[derive(Clone, Debug, Default, PartialEq)]
 pub struct Accel {
@@ -42,11 +46,12 @@ impl Accel {
         }
     }
 
-    /// Whether this was built for `n` objects (a scene edited without
-    /// [`Scene::rebuild_accel`] falls back to a linear scan rather than miss objects).
+    /// Whether the top-level BVH serves `n` objects: false for small scenes (scanned
+    /// linearly) and for a scene edited without [`Scene::rebuild_accel`] (scanned rather than
+    /// missing objects).
     #[must_use]
     pub fn is_for(&self, n: usize) -> bool {
-        self.objects == n
+        self.objects == n && n > LINEAR_MAX
     }
 }
 
@@ -93,8 +98,12 @@ impl Scene {
     ) -> Option<Hit> {
         let mut best: Option<Hit> = None;
         if !self.accel.is_for(self.objects.len()) {
-            for i in 0..self.objects.len() {
-                self.consider(i, ray, t_max, &mut best, cost);
+            let mut t_max = t_max;
+            for (i, o) in self.objects.iter().enumerate() {
+                if let Some(h) = object_hit(o, i, ray, t_max, cost) {
+                    t_max = h.t;
+                    best = Some(h);
+                }
             }
             return best;
         }
