@@ -7,6 +7,8 @@
 #![warn(missing_docs)]
 
 pub mod check;
+pub mod cost;
+pub mod effects;
 pub mod geometry;
 pub mod math;
 pub mod render;
@@ -15,7 +17,9 @@ pub mod text;
 pub mod trace;
 pub mod tree;
 
-pub use render::{Image, RenderStats, render, render_pixel, trace_pixel};
+pub use render::{
+    Image, RenderStats, render, render_pixel, render_pixel_with, render_with, trace_pixel,
+};
 pub use scene::{Scene, SceneError, Settings};
 pub use trace::{NoopRecorder, RayCounts, Recorder, Tracer, TreeRecorder};
 pub use tree::{NodeId, RayKind, RayNode, RayTree};

@@ -86,9 +86,21 @@ pub fn render_pixel<R: Recorder>(
     y: u32,
     rec: &mut R,
     counts: &mut RayCounts,
+    on_sample: impl FnMut(SampleRecord),
+) -> Rgb {
+    render_pixel_with(&Tracer::new(scene), x, y, rec, counts, on_sample)
+}
+
+/// [`render_pixel`] with a prepared tracer (and so a chosen effect plan).
+pub fn render_pixel_with<R: Recorder>(
+    tracer: &Tracer,
+    x: u32,
+    y: u32,
+    rec: &mut R,
+    counts: &mut RayCounts,
     mut on_sample: impl FnMut(SampleRecord),
 ) -> Rgb {
-    let tracer = Tracer::new(scene);
+    let scene = tracer.scene();
     let spp = scene.settings.spp.max(1);
     let mut sum = Rgb::ZERO;
     for s in 0..spp {
@@ -130,6 +142,12 @@ pub fn trace_pixel(scene: &Scene, x: u32, y: u32) -> Option<RayTree> {
 /// Render the whole image in parallel (rows over rayon's pool). `progress` is called with the
 /// number of rows finished so far, from worker threads.
 pub fn render(scene: &Scene, progress: &(dyn Fn(u32) + Sync)) -> (Image, RenderStats) {
+    render_with(&Tracer::new(scene), progress)
+}
+
+/// [`render`] with a prepared tracer (and so a chosen effect plan).
+pub fn render_with(tracer: &Tracer, progress: &(dyn Fn(u32) + Sync)) -> (Image, RenderStats) {
+    let scene = tracer.scene();
     let (w, h) = (scene.camera.width, scene.camera.height);
     let done = std::sync::atomic::AtomicU32::new(0);
     let rows: Vec<(Vec<Rgb>, RayCounts)> = (0..h)
@@ -137,7 +155,7 @@ pub fn render(scene: &Scene, progress: &(dyn Fn(u32) + Sync)) -> (Image, RenderS
         .map(|y| {
             let mut counts = RayCounts::default();
             let row = (0..w)
-                .map(|x| render_pixel(scene, x, y, &mut NoopRecorder, &mut counts, |_| {}))
+                .map(|x| render_pixel_with(tracer, x, y, &mut NoopRecorder, &mut counts, |_| {}))
                 .collect();
             progress(done.fetch_add(1, std::sync::atomic::Ordering::Relaxed) + 1);
             (row, counts)

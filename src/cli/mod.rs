@@ -1,8 +1,12 @@
 //! Subcommands. Every user error (bad scene, bad flag, unwritable output) exits with code 2.
 
 mod args;
+mod compare_cmd;
+mod cost_cmd;
+mod effects_cmd;
 mod load;
 mod output;
+mod plot;
 mod render_cmd;
 mod trace_cmd;
 
@@ -17,6 +21,9 @@ pub fn run() -> ExitCode {
     let result = match cli.command {
         Command::Render(a) => render_cmd::run(&a),
         Command::Trace(a) => trace_cmd::run(&a),
+        Command::Effects(a) => effects_cmd::run(&a),
+        Command::Cost(a) => cost_cmd::run(&a),
+        Command::Compare(a) => compare_cmd::run(&a),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,
