@@ -8,6 +8,7 @@
 
 pub mod check;
 pub mod geometry;
+pub mod gui;
 pub mod math;
 pub mod render;
 pub mod scene;

@@ -19,6 +19,8 @@ pub enum Command {
     Render(RenderArgs),
     /// Print the full ray tree of one pixel.
     Trace(TraceArgs),
+    /// Open the inspector window: click a pixel, see its ray tree.
+    View(ViewArgs),
 }
 
 /// Settings every tracing command can override (defaults come from the scene file).
@@ -74,6 +76,16 @@ pub struct TraceArgs {
     /// Print JSON (schema raytree.tree/1) instead of text.
     #[arg(long)]
     pub json: bool,
+    /// Settings overrides.
+    #[command(flatten)]
+    pub overrides: Overrides,
+}
+
+/// `raytree view`.
+#[derive(Debug, Args)]
+pub struct ViewArgs {
+    /// Scene JSON (default: the built-in classic scene); reloaded when it changes on disk.
+    pub scene: Option<PathBuf>,
     /// Settings overrides.
     #[command(flatten)]
     pub overrides: Overrides,

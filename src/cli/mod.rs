@@ -5,6 +5,7 @@ mod load;
 mod output;
 mod render_cmd;
 mod trace_cmd;
+mod view_cmd;
 
 use clap::Parser;
 use std::process::ExitCode;
@@ -17,6 +18,7 @@ pub fn run() -> ExitCode {
     let result = match cli.command {
         Command::Render(a) => render_cmd::run(&a),
         Command::Trace(a) => trace_cmd::run(&a),
+        Command::View(a) => view_cmd::run(&a),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,
