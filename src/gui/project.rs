@@ -36,10 +36,11 @@ pub fn film_segment(camera: &Camera, a: DVec3, b: DVec3) -> Option<[[f64; 2]; 2]
         return None;
     }
     let clip = |p: DVec3, zp: f64, q: DVec3, zq: f64| {
+        // Clip a little in front of the near plane so rounding cannot push it behind.
         if zp >= NEAR {
             p
         } else {
-            p + (q - p) * ((NEAR - zp) / (zq - zp))
+            p + (q - p) * ((2.0 * NEAR - zp) / (zq - zp))
         }
     };
     let a2 = clip(a, za, b, zb);
