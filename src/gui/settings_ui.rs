@@ -3,7 +3,7 @@
 use super::document::{Command, Document};
 use super::export::ExportKind;
 use super::stats::DebugView;
-use super::style::{SELECTED, kind_colour};
+use super::style::{SELECTED, dot, kind_colour};
 use crate::math::FresnelModel;
 use crate::scene::{OffsetStrategy, ShadowMode};
 use crate::tree::RayKind;
@@ -106,9 +106,11 @@ pub fn view_ui(ui: &mut egui::Ui, doc: &Document, cmds: &mut Vec<Command>) {
     });
     ui.horizontal_wrapped(|ui| {
         for k in RayKind::ALL {
-            ui.colored_label(kind_colour(k), format!("● {}", k.name()));
+            dot(ui, kind_colour(k));
+            ui.label(k.name());
         }
-        ui.colored_label(SELECTED, "● selected");
+        dot(ui, SELECTED);
+        ui.label("selected");
     });
     if v != doc.view {
         cmds.push(Command::SetView(v));

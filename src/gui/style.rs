@@ -49,3 +49,15 @@ pub fn num(v: f64) -> String {
 pub fn vec3(v: glam::DVec3) -> String {
     format!("({}, {}, {})", num(v.x), num(v.y), num(v.z))
 }
+
+/// A small filled circle in `colour` (the default fonts have no bullet glyph).
+pub fn dot(ui: &mut egui::Ui, colour: Color32) {
+    let (rect, _) = ui.allocate_exact_size(egui::vec2(10.0, 10.0), egui::Sense::hover());
+    ui.painter().circle_filled(rect.center(), 4.5, colour);
+}
+
+/// A small colour square.
+pub fn square(ui: &mut egui::Ui, colour: Color32) {
+    let (rect, _) = ui.allocate_exact_size(egui::vec2(14.0, 14.0), egui::Sense::hover());
+    ui.painter().rect_filled(rect, 2.0, colour);
+}

@@ -3,7 +3,7 @@
 
 use super::breakdown::breakdown;
 use super::document::{Command, Document};
-use super::style::{SELECTED, kind_colour, num, rgb, swatch, vec3};
+use super::style::{SELECTED, dot, kind_colour, num, rgb, square, swatch, vec3};
 use crate::tree::{NodeId, RayKind, RayNode, RayTree};
 use egui::RichText;
 use egui::collapsing_header::CollapsingState;
@@ -47,7 +47,7 @@ pub fn tree_ui(ui: &mut egui::Ui, doc: &Document, cmds: &mut Vec<Command>) {
     };
     ui.horizontal(|ui| {
         ui.label(RichText::new(format!("pixel {}, {}", tree.pixel[0], tree.pixel[1])).strong());
-        ui.colored_label(swatch(tree.radiance), "■");
+        square(ui, swatch(tree.radiance));
         ui.monospace(rgb(tree.radiance));
     });
     let [c, r, t, s] = tree.count_by_kind();
@@ -81,7 +81,7 @@ fn node_ui(
 ) {
     let n = tree.node(id);
     let header = |ui: &mut egui::Ui, cmds: &mut Vec<Command>| {
-        ui.colored_label(kind_colour(n.kind), "●");
+        dot(ui, kind_colour(n.kind));
         let is_sel = selected == Some(id);
         let text = RichText::new(node_label(n)).monospace();
         let text = if is_sel { text.color(SELECTED) } else { text };
