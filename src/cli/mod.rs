@@ -1,6 +1,7 @@
 //! Subcommands. Every user error (bad scene, bad flag, unwritable output) exits with code 2.
 
 mod args;
+mod diagram_cmd;
 mod load;
 mod output;
 mod render_cmd;
@@ -17,6 +18,7 @@ pub fn run() -> ExitCode {
     let result = match cli.command {
         Command::Render(a) => render_cmd::run(&a),
         Command::Trace(a) => trace_cmd::run(&a),
+        Command::Diagram(a) => diagram_cmd::run(&a),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,
