@@ -159,9 +159,9 @@ mod tests {
 
     #[test]
     fn finds_nested_values() {
-        assert_eq!(locate(SRC, "objects[1].radius"), Some((4, 36)));
-        assert_eq!(locate(SRC, "objects[0].radius"), Some((3, 36)));
-        assert_eq!(locate(SRC, "camera.fov_y"), Some((6, 25)));
+        assert_eq!(locate(SRC, "objects[1].radius"), Some((4, 32)));
+        assert_eq!(locate(SRC, "objects[0].radius"), Some((3, 34)));
+        assert_eq!(locate(SRC, "camera.fov_y"), Some((6, 23)));
         assert_eq!(locate(SRC, "objects[1]"), Some((4, 5)));
     }
 

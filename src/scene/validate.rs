@@ -378,7 +378,7 @@ mod tests {
     fn bad_radius_names_path_and_position() {
         let e = err(&BASE.replace("\"radius\": 1", "\"radius\": -1"));
         assert_eq!(e.path, "objects[0].radius");
-        assert_eq!((e.line, e.column), (Some(5), Some(54)));
+        assert_eq!((e.line, e.column), (Some(5), Some(53)));
         assert!(e.message.contains("positive"), "{e}");
     }
 

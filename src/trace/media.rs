@@ -14,7 +14,7 @@ pub struct Medium {
 }
 
 /// Media the ray is inside, innermost last. `Copy`, so recursion needs no allocation.
-#[derive(Clone, Copy, Debug, PartialEq)]
+#[derive(Clone, Copy, Debug)]
 pub struct MediaStack {
     items: [Medium; CAPACITY],
     len: usize,
@@ -29,6 +29,12 @@ impl Default for MediaStack {
             }; CAPACITY],
             len: 0,
         }
+    }
+}
+
+impl PartialEq for MediaStack {
+    fn eq(&self, other: &Self) -> bool {
+        self.items[..self.len] == other.items[..other.len]
     }
 }
 

@@ -137,7 +137,8 @@ impl<'a> Tracer<'a> {
             n
         });
         let hit = self.scene.intersect(&ray, f64::INFINITY);
-        let distance = hit.map_or(f64::INFINITY, |h| h.t);
+        // Path length from the true spawn point, so the offset does not bias Beer's law.
+        let distance = hit.map_or(f64::INFINITY, |h| (ray.at(h.t) - spawn.point).length());
         // Beer's law on this segment, inside the innermost absorbing medium.
         let medium = state.media.top().map(|m| m.object as usize);
         let absorption = medium.map_or(Rgb::ZERO, |o| self.scene.material_of(o).absorption);

@@ -1,0 +1,242 @@
+//! The `raytree` binary: the main jobs and every kind of bad input.
+
+use std::path::{Path, PathBuf};
+use std::process::{Command, Output};
+
+fn raytree(args: &[&str], dir: &Path) -> Output {
+    Command::new(env!("CARGO_BIN_EXE_raytree"))
+        .args(args)
+        .current_dir(dir)
+        .output()
+        .expect("runs")
+}
+
+fn fixture(name: &str) -> String {
+    PathBuf::from(env!("CARGO_MANIFEST_DIR"))
+        .join("fixtures")
+        .join(name)
+        .display()
+        .to_string()
+}
+
+fn stderr(o: &Output) -> String {
+    String::from_utf8_lossy(&o.stderr).into_owned()
+}
+
+/// Assert exit code 2 and return stderr.
+fn fails(o: &Output) -> String {
+    assert_eq!(
+        o.status.code(),
+        Some(2),
+        "stdout: {}\nstderr: {}",
+        String::from_utf8_lossy(&o.stdout),
+        stderr(o)
+    );
+    stderr(o)
+}
+
+const GOOD: &str = r#"{
+  "camera": {"position": [0,1,5], "look_at": [0,0,0], "fov_y": 40, "width": 8, "height": 6},
+  "materials": {"m": {"diffuse": [0.5, 0.5, 0.5]}},
+  "objects": [
+    {"type": "plane", "point": [0,0,0], "normal": [0,1,0], "material": "m"},
+    {"type": "sphere", "center": [0,0.5,0], "radius": 0.5, "material": "m"}
+  ],
+  "lights": [{"type": "point", "position": [2,4,3], "intensity": [10,10,10]}]
+}"#;
+
+#[test]
+fn render_default_scene_to_png_and_exr() {
+    let dir = tempfile::tempdir().unwrap();
+    let o = raytree(&["render", "-o", "a.png", "--size", "64x36"], dir.path());
+    assert!(o.status.success(), "{}", stderr(&o));
+    let out = String::from_utf8_lossy(&o.stdout);
+    assert!(
+        out.contains("camera 2304") && out.contains("Mrays/s"),
+        "{out}"
+    );
+    let img = image::open(dir.path().join("a.png")).unwrap();
+    assert_eq!((img.width(), img.height()), (64, 36));
+    let o = raytree(
+        &["render", "-o", "a.exr", "--size", "16x9", "--spp", "4"],
+        dir.path(),
+    );
+    assert!(o.status.success(), "{}", stderr(&o));
+    let exr = image::open(dir.path().join("a.exr")).unwrap().into_rgb32f();
+    assert_eq!(exr.dimensions(), (16, 9));
+    assert!(
+        exr.pixels()
+            .all(|p| p.0.iter().all(|c| c.is_finite() && *c >= 0.0))
+    );
+    // Only the two images, no temporary files left behind.
+    assert_eq!(std::fs::read_dir(dir.path()).unwrap().count(), 2);
+}
+
+#[test]
+fn trace_prints_text_and_json() {
+    let dir = tempfile::tempdir().unwrap();
+    let o = raytree(&["trace", "--pixel", "400,200"], dir.path());
+    assert!(o.status.success(), "{}", stderr(&o));
+    let text = String::from_utf8_lossy(&o.stdout);
+    assert!(text.contains("camera #0 -> glass ball"), "{text}");
+    assert!(
+        text.contains("n1 1.000 -> n2 1.500") && text.contains("R=0.04"),
+        "{text}"
+    );
+    let o = raytree(
+        &["trace", "--pixel", "400,200", "--json", "--max-depth", "2"],
+        dir.path(),
+    );
+    let v: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
+    assert_eq!(v["schema"], "raytree.tree/1");
+    assert_eq!(v["settings"]["max_depth"], 2);
+    assert_eq!(v["nodes"][0]["kind"], "camera");
+    assert!(
+        v["nodes"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .all(|n| n["depth"].as_u64().unwrap() <= 2)
+    );
+}
+
+#[test]
+fn fixtures_render_from_the_command_line() {
+    let dir = tempfile::tempdir().unwrap();
+    let o = raytree(
+        &[
+            "render",
+            &fixture("tir-block.json"),
+            "-o",
+            "t.png",
+            "--size",
+            "32x18",
+            "--fresnel",
+            "schlick",
+            "--offset",
+            "ray",
+            "--shadows",
+            "opaque",
+        ],
+        dir.path(),
+    );
+    assert!(o.status.success(), "{}", stderr(&o));
+}
+
+#[test]
+fn bad_scenes_name_file_path_and_position() {
+    let dir = tempfile::tempdir().unwrap();
+    let cases: &[(&str, String, &str)] = &[
+        (
+            "radius",
+            GOOD.replace("\"radius\": 0.5", "\"radius\": -1"),
+            "bad.json:6:55: objects[1].radius: must be positive",
+        ),
+        (
+            "syntax",
+            GOOD.replace("\"height\": 6}", "\"height\": 6"),
+            "bad.json:3:",
+        ),
+        (
+            "unknown field",
+            GOOD.replace("\"fov_y\": 40", "\"fov_y\": 40, \"fov\": 3"),
+            "camera.fov: unknown field",
+        ),
+        (
+            "unknown material",
+            GOOD.replace("\"material\": \"m\"}\n  ]", "\"material\": \"gold\"}\n  ]"),
+            "objects[1].material: unknown material \"gold\"",
+        ),
+        (
+            "fov",
+            GOOD.replace("\"fov_y\": 40", "\"fov_y\": 0"),
+            "camera.fov_y: must be in (0, 180)",
+        ),
+        (
+            "zero normal",
+            GOOD.replace("\"normal\": [0,1,0]", "\"normal\": [0,0,0]"),
+            "objects[0].normal: must be a non-zero direction",
+        ),
+        (
+            "huge",
+            GOOD.replace("[10,10,10]", "[1e400,10,10]"),
+            "bad.json:8:",
+        ),
+        (
+            "missing field",
+            GOOD.replace("\"fov_y\": 40, ", ""),
+            "missing field `fov_y`",
+        ),
+        (
+            "ior",
+            GOOD.replace("\"diffuse\": [0.5, 0.5, 0.5]", "\"ior\": 0"),
+            "materials.m.ior: must be positive",
+        ),
+    ];
+    for (what, src, expect) in cases {
+        std::fs::write(dir.path().join("bad.json"), src).unwrap();
+        std::fs::write(dir.path().join("keep.png"), b"keep").unwrap();
+        let err = fails(&raytree(
+            &["render", "bad.json", "-o", "keep.png"],
+            dir.path(),
+        ));
+        assert!(err.contains(expect), "{what}: {err}");
+        assert_eq!(
+            std::fs::read(dir.path().join("keep.png")).unwrap(),
+            b"keep",
+            "{what}: output truncated"
+        );
+        let err = fails(&raytree(
+            &["trace", "bad.json", "--pixel", "0,0"],
+            dir.path(),
+        ));
+        assert!(err.contains(expect), "{what}: {err}");
+    }
+    assert_eq!(
+        std::fs::read_dir(dir.path()).unwrap().count(),
+        2,
+        "no stray files"
+    );
+}
+
+#[test]
+fn bad_arguments_and_outputs_exit_2_without_files() {
+    let dir = tempfile::tempdir().unwrap();
+    std::fs::write(dir.path().join("good.json"), GOOD).unwrap();
+    let d = dir.path();
+    let err = fails(&raytree(&["trace", "good.json", "--pixel", "8,0"], d));
+    assert!(err.contains("outside the 8x6 image"), "{err}");
+    let err = fails(&raytree(&["trace", "good.json", "--pixel", "a,b"], d));
+    assert!(err.contains("--pixel"), "{err}");
+    let err = fails(&raytree(
+        &["render", "good.json", "-o", "no/such/dir/x.png"],
+        d,
+    ));
+    assert!(err.contains("cannot write no/such/dir/x.png"), "{err}");
+    let err = fails(&raytree(&["render", "good.json", "-o", "x.jpg"], d));
+    assert!(err.contains(".png or .exr"), "{err}");
+    let err = fails(&raytree(
+        &["render", "good.json", "-o", "x.png", "--fresnel", "fast"],
+        d,
+    ));
+    assert!(err.contains("--fresnel"), "{err}");
+    let err = fails(&raytree(
+        &["render", "good.json", "-o", "x.png", "--epsilon=-1"],
+        d,
+    ));
+    assert!(err.contains("--epsilon"), "{err}");
+    let err = fails(&raytree(
+        &["render", "good.json", "-o", "x.png", "--spp", "0"],
+        d,
+    ));
+    assert!(err.contains("--spp"), "{err}");
+    let err = fails(&raytree(
+        &["render", "good.json", "-o", "x.png", "--size", "0x5"],
+        d,
+    ));
+    assert!(err.contains("--size"), "{err}");
+    let err = fails(&raytree(&["render", "missing.json", "-o", "x.png"], d));
+    assert!(err.contains("cannot read scene missing.json"), "{err}");
+    fails(&raytree(&["render", "--bogus"], d));
+    assert_eq!(std::fs::read_dir(d).unwrap().count(), 1, "no output files");
+}
