@@ -7,6 +7,7 @@
 #![warn(missing_docs)]
 
 pub mod check;
+pub mod diagram;
 pub mod geometry;
 pub mod gui;
 pub mod math;

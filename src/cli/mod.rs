@@ -1,6 +1,7 @@
 //! Subcommands. Every user error (bad scene, bad flag, unwritable output) exits with code 2.
 
 mod args;
+mod diagram_cmd;
 mod load;
 mod output;
 mod render_cmd;
@@ -19,6 +20,7 @@ pub fn run() -> ExitCode {
         Command::Render(a) => render_cmd::run(&a),
         Command::Trace(a) => trace_cmd::run(&a),
         Command::View(a) => view_cmd::run(&a),
+        Command::Diagram(a) => diagram_cmd::run(&a),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,

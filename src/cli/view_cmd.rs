@@ -2,7 +2,7 @@
 //! atomically) and the command-line overrides.
 
 use super::args::ViewArgs;
-use super::load::apply;
+use super::load::{apply, pair};
 use super::output::Pending;
 use anyhow::{Result, anyhow};
 use raytree::gui::{Files, InspectorApp, Session};
@@ -34,6 +34,11 @@ pub fn run(a: &ViewArgs) -> Result<()> {
     let overrides = a.overrides.clone();
     // Fail early on bad flags, before a window opens.
     apply(&mut raytree::Scene::default_scene(), &overrides)?;
+    let pixel = a
+        .pixel
+        .as_deref()
+        .map(|p| pair("pixel", p, ','))
+        .transpose()?;
     let path = a.scene.clone();
     let title = format!(
         "raytree view - {}",
@@ -54,12 +59,15 @@ pub fn run(a: &ViewArgs) -> Result<()> {
             let adjust = Box::new(move |s: &mut raytree::Scene| {
                 apply(s, &overrides).map_err(|e| format!("{e:#}"))
             });
-            let session = Session::new(
+            let mut session = Session::new(
                 path,
                 Box::new(DiskFiles),
                 adjust,
                 Arc::new(move || ctx.request_repaint()),
             );
+            if let Some((x, y)) = pixel {
+                session.apply(raytree::gui::Command::SelectPixel([x, y]));
+            }
             Ok(Box::new(InspectorApp::new(session)))
         }),
     )

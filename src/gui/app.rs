@@ -1,5 +1,6 @@
 //! The thin `eframe::App`: lays out the panels, owns the image texture, applies commands.
 
+use super::diagram_ui::{DiagramCache, diagram_ui};
 use super::document::{Command, Document};
 use super::image_ui::{ImagePlacement, image_ui};
 use super::session::Session;
@@ -18,6 +19,7 @@ pub struct InspectorApp {
     texture_version: Option<u64>,
     last_poll: f64,
     placement: Option<ImagePlacement>,
+    diagram: DiagramCache,
 }
 
 impl InspectorApp {
@@ -30,6 +32,7 @@ impl InspectorApp {
             texture_version: None,
             last_poll: 0.0,
             placement: None,
+            diagram: DiagramCache::default(),
         }
     }
 
@@ -90,10 +93,11 @@ impl InspectorApp {
                             });
                     });
             });
+        let cache = &mut self.diagram;
         egui::Panel::bottom("diagram")
             .resizable(true)
-            .default_size(160.0)
-            .show(ui, |ui| diagram_placeholder_ui(ui, doc));
+            .default_size(330.0)
+            .show(ui, |ui| diagram_ui(ui, doc, cache, &mut cmds));
         let tex = self.texture.as_ref().map(TextureHandle::id);
         let mut placement = None;
         egui::CentralPanel::default().show(ui, |ui| {
@@ -190,14 +194,6 @@ fn title_ui(ui: &mut egui::Ui, doc: &Document) {
 
 fn first_line(s: &str) -> &str {
     s.lines().next().unwrap_or(s)
-}
-
-fn diagram_placeholder_ui(ui: &mut egui::Ui, doc: &Document) {
-    ui.heading("Diagram");
-    ui.label(match &doc.tree {
-        Some(_) => "The 2D cross-section diagram appears here once the diagram module is merged.",
-        None => "Select a pixel to see its diagram.",
-    });
 }
 
 /// Arrow keys move the selected pixel (unless a text field has focus).

@@ -40,6 +40,10 @@ pub struct ViewOptions {
     pub debug: DebugView,
     /// Draw the selected pixel's ray path on the image.
     pub overlay: bool,
+    /// The diagram's slicing plane.
+    pub plane: crate::diagram::PlaneSpec,
+    /// Diagram insets magnifying the spawn points (offset epsilon).
+    pub zoom_offsets: bool,
 }
 
 impl Default for ViewOptions {
@@ -49,6 +53,8 @@ impl Default for ViewOptions {
             pan: [0.0, 0.0],
             debug: DebugView::Off,
             overlay: true,
+            plane: crate::diagram::PlaneSpec::Incidence,
+            zoom_offsets: false,
         }
     }
 }
@@ -84,6 +90,8 @@ pub struct Document {
     pub tree: Option<RayTree>,
     /// Selected node of `tree`.
     pub node: Option<NodeId>,
+    /// Bumped whenever `tree` is re-traced.
+    pub tree_version: u64,
     /// View options.
     pub view: ViewOptions,
     /// The last error (bad scene, failed export); the last good scene stays loaded.
@@ -131,6 +139,7 @@ impl Document {
             selection: None,
             tree: None,
             node: None,
+            tree_version: 0,
             view: ViewOptions::default(),
             error: None,
             status: String::new(),

@@ -111,10 +111,13 @@ fn overlay(painter: &egui::Painter, place: ImagePlacement, doc: &Document) {
     let to_screen = |p: [f64; 2]| place.rect.min + vec2(p[0] as f32, p[1] as f32) * place.zoom;
     for seg in path_segments(&doc.scene.camera, tree) {
         let selected = doc.node == Some(seg.node);
-        let (width, colour) = if selected {
-            (3.5, SELECTED)
-        } else {
-            (1.5, kind_colour(seg.kind))
+        // Shadow rays are many and long: draw them faint so the bounce path stays readable.
+        let (width, colour) = match (selected, seg.kind) {
+            (true, _) => (3.5, SELECTED),
+            (false, crate::tree::RayKind::Shadow) => {
+                (1.0, kind_colour(seg.kind).gamma_multiply(0.45))
+            }
+            (false, k) => (1.5, kind_colour(k)),
         };
         let [a, b] = seg.film.map(to_screen);
         painter.line_segment(

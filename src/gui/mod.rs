@@ -9,6 +9,7 @@
 
 mod app;
 pub mod breakdown;
+pub mod diagram_ui;
 pub mod document;
 pub mod export;
 mod image_ui;

@@ -124,6 +124,7 @@ impl Session {
         let keep = self.doc.node;
         self.doc.selection = Some([x, y]);
         self.doc.tree = trace_pixel(&self.doc.scene, x, y);
+        self.doc.tree_version += 1;
         let n = self.doc.tree.as_ref().map_or(0, |t| t.nodes.len());
         self.doc.node = keep
             .filter(|id| id.index() < n)
@@ -199,9 +200,7 @@ impl Session {
                 .as_ref()
                 .ok_or_else(|| "select a pixel first".to_string())
                 .and_then(export::tree_json),
-            ExportKind::DiagramSvg | ExportKind::DiagramPng => {
-                Err("diagram export needs the diagram module (not merged yet)".into())
-            }
+            ExportKind::DiagramSvg | ExportKind::DiagramPng => diagram_bytes(doc, kind),
         };
         let result = bytes.and_then(|b| {
             self.files
@@ -261,4 +260,17 @@ impl Session {
         }
         true
     }
+}
+
+/// The selected pixel's diagram at 1280x720 as SVG or PNG, with the panel's plane and selection.
+fn diagram_bytes(doc: &Document, kind: ExportKind) -> Result<Vec<u8>, String> {
+    use crate::diagram::{Diagram, Style, Theme, to_png, to_svg};
+    let tree = doc.tree.as_ref().ok_or("select a pixel first")?;
+    let opts = super::diagram_ui::diagram_options(doc, [1280, 720]);
+    let d = Diagram::build(&doc.scene, tree, &opts).map_err(|e| e.to_string())?;
+    let style = Style::new(Theme::Light);
+    Ok(match kind {
+        ExportKind::DiagramPng => to_png(&d, &style),
+        _ => to_svg(&d, &style).into_bytes(),
+    })
 }

@@ -4,14 +4,14 @@ use crate::math::{Rgb, linear_to_srgb8};
 use crate::tree::RayKind;
 use egui::Color32;
 
-/// The colour of a ray kind, everywhere (tree, overlay, legend).
+/// The colour of a ray kind, everywhere (tree, overlay, legend); the diagram's dark theme.
 #[must_use]
 pub fn kind_colour(kind: RayKind) -> Color32 {
     match kind {
         RayKind::Camera => Color32::from_rgb(235, 235, 235),
-        RayKind::Reflected => Color32::from_rgb(90, 170, 255),
-        RayKind::Refracted => Color32::from_rgb(80, 220, 140),
-        RayKind::Shadow => Color32::from_rgb(250, 190, 60),
+        RayKind::Reflected => Color32::from_rgb(255, 107, 107),
+        RayKind::Refracted => Color32::from_rgb(77, 171, 247),
+        RayKind::Shadow => Color32::from_rgb(255, 212, 59),
     }
 }
 
