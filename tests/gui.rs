@@ -195,5 +195,5 @@ fn exports_write_next_to_the_export_base() {
         .expect("tree written");
     assert!(json.contains("raytree.tree/1"));
     assert!(files.get("scenes/classic.png").is_some());
-    assert!(has(&h, "wrote scenes/classic.png"));
+    assert!(has(&h, "wrote scenes/classic-diagram-150-100.svg"));
 }
