@@ -24,7 +24,12 @@ impl Files for NoFiles {
 }
 
 fn session() -> Session {
-    Session::new(None, Box::new(NoFiles), Box::new(|_| Ok(())), Arc::new(|| {}))
+    Session::new(
+        None,
+        Box::new(NoFiles),
+        Box::new(|_| Ok(())),
+        Arc::new(|| {}),
+    )
 }
 
 fn benches(c: &mut Criterion) {

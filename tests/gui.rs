@@ -188,7 +188,9 @@ fn exports_write_next_to_the_export_base() {
     h.run();
     h.get_by_label("diagram SVG").click();
     h.run();
-    let svg = files.get("scenes/classic-diagram-150-100.svg").expect("diagram written");
+    let svg = files
+        .get("scenes/classic-diagram-150-100.svg")
+        .expect("diagram written");
     assert!(svg.contains("<svg") && svg.contains("mirror ball"));
     let json = files
         .get("scenes/classic-tree-150-100.json")
