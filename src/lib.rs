@@ -8,8 +8,10 @@
 
 pub mod check;
 pub mod cost;
+pub mod diagram;
 pub mod effects;
 pub mod geometry;
+pub mod gui;
 pub mod math;
 pub mod render;
 pub mod scene;

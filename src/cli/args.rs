@@ -25,6 +25,11 @@ pub enum Command {
     Cost(CostArgs),
     /// Compare two images (PNG or EXR): error metrics and a false-colour error map.
     Compare(CompareArgs),
+
+    /// Open the inspector window: click a pixel, see its ray tree.
+    View(ViewArgs),
+    /// Draw a cross-section diagram of one pixel's ray tree (SVG or PNG).
+    Diagram(DiagramArgs),
 }
 
 /// Settings every tracing command can override (defaults come from the scene file).
@@ -95,6 +100,19 @@ pub struct EffectsArgs {
     pub overrides: Overrides,
 }
 
+/// `raytree view`.
+#[derive(Debug, Args)]
+pub struct ViewArgs {
+    /// Scene JSON (default: the built-in classic scene); reloaded when it changes on disk.
+    pub scene: Option<PathBuf>,
+    /// Select pixel X,Y at start.
+    #[arg(long, value_name = "X,Y")]
+    pub pixel: Option<String>,
+    /// Settings overrides.
+    #[command(flatten)]
+    pub overrides: Overrides,
+}
+
 /// `raytree cost`.
 #[derive(Debug, Args)]
 pub struct CostArgs {
@@ -127,4 +145,43 @@ pub struct CompareArgs {
     /// Error shown as full white in the map (default: the largest error).
     #[arg(long)]
     pub scale: Option<f64>,
+}
+
+/// `raytree diagram`. Here `--size` is the figure's size (the scene's image size is kept, so
+/// `--pixel` means the same pixel as in `render`); `--max-depth` is the tracer's limit.
+#[derive(Debug, Args)]
+#[command(mut_arg("size", |a| a.help("Figure size WIDTHxHEIGHT in pixels [default: 1280x720]")))]
+pub struct DiagramArgs {
+    /// Scene JSON (default: the built-in classic scene).
+    pub scene: Option<PathBuf>,
+    /// Pixel X,Y (0,0 is top-left).
+    #[arg(long, value_name = "X,Y")]
+    pub pixel: String,
+    /// Output figure: .svg or .png.
+    #[arg(short, long, default_value = "diagram.svg")]
+    pub output: PathBuf,
+    /// Slicing plane: incidence (default), camera, x=V, y=V, z=V or PX,PY,PZ,NX,NY,NZ.
+    #[arg(long, default_value = "incidence", allow_hyphen_values = true)]
+    pub plane: String,
+    /// Colour theme.
+    #[arg(long, value_name = "light|dark", default_value = "light")]
+    pub theme: String,
+    /// Draw rays up to this depth only (the tracer's own limit is --max-depth).
+    #[arg(long, value_name = "N")]
+    pub draw_depth: Option<u32>,
+    /// Ray kinds to draw, comma-separated.
+    #[arg(long, value_name = "camera,reflected,refracted,shadow")]
+    pub kinds: Option<String>,
+    /// Which sample of the pixel to draw (for spp > 1).
+    #[arg(long, value_name = "K", default_value_t = 0)]
+    pub sample: usize,
+    /// Zoomed insets at spawn points showing the offset epsilon to scale.
+    #[arg(long)]
+    pub zoom_offsets: bool,
+    /// Label angles, indices, R/T and Beer factors on depths up to N.
+    #[arg(long, value_name = "N", default_value_t = 2)]
+    pub label_depth: u32,
+    /// Settings overrides.
+    #[command(flatten)]
+    pub overrides: Overrides,
 }

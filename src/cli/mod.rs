@@ -3,12 +3,14 @@
 mod args;
 mod compare_cmd;
 mod cost_cmd;
+mod diagram_cmd;
 mod effects_cmd;
 mod load;
 mod output;
 mod plot;
 mod render_cmd;
 mod trace_cmd;
+mod view_cmd;
 
 use clap::Parser;
 use std::process::ExitCode;
@@ -24,6 +26,8 @@ pub fn run() -> ExitCode {
         Command::Effects(a) => effects_cmd::run(&a),
         Command::Cost(a) => cost_cmd::run(&a),
         Command::Compare(a) => compare_cmd::run(&a),
+        Command::View(a) => view_cmd::run(&a),
+        Command::Diagram(a) => diagram_cmd::run(&a),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,
