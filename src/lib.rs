@@ -15,7 +15,9 @@ pub mod text;
 pub mod trace;
 pub mod tree;
 
-pub use render::{Image, RenderStats, render, render_pixel, trace_pixel};
+pub use render::{
+    DiagnosticMap, Image, RenderStats, render, render_diagnosed, render_pixel, trace_pixel,
+};
 pub use scene::{Scene, SceneError, Settings};
-pub use trace::{NoopRecorder, RayCounts, Recorder, Tracer, TreeRecorder};
+pub use trace::{DiagnosticRecorder, NoopRecorder, RayCounts, Recorder, Tracer, TreeRecorder};
 pub use tree::{NodeId, RayKind, RayNode, RayTree};

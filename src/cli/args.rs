@@ -36,8 +36,9 @@ pub struct Overrides {
     /// Offset epsilon in world units.
     #[arg(long)]
     pub epsilon: Option<f64>,
-    /// Offset strategy: normal (P +/- eps N) or ray (t_min = eps).
-    #[arg(long, value_name = "normal|ray")]
+    /// Offset strategy: normal (P +/- eps N), ray (t_min = eps), scaled (eps relative to |P|)
+    /// or robust (floating-point error bounds, ignores --epsilon).
+    #[arg(long, value_name = "normal|ray|scaled|robust")]
     pub offset: Option<String>,
     /// Fresnel model.
     #[arg(long, value_name = "exact|schlick|none")]
@@ -58,6 +59,9 @@ pub struct RenderArgs {
     /// Output image: .png or .exr.
     #[arg(short, long, default_value = "render.png")]
     pub output: PathBuf,
+    /// Also count self-hit and leaking rays (extra intersections per ray).
+    #[arg(long)]
+    pub diagnose: bool,
     /// Settings overrides.
     #[command(flatten)]
     pub overrides: Overrides,
