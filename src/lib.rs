@@ -6,6 +6,7 @@
 #![forbid(unsafe_code)]
 #![warn(missing_docs)]
 
+pub mod acne;
 pub mod check;
 pub mod geometry;
 pub mod math;

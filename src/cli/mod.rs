@@ -1,6 +1,9 @@
 //! Subcommands. Every user error (bad scene, bad flag, unwritable output) exits with code 2.
 
+mod acne_cmd;
+mod acne_figures;
 mod args;
+mod canvas;
 mod load;
 mod output;
 mod render_cmd;
@@ -17,6 +20,7 @@ pub fn run() -> ExitCode {
     let result = match cli.command {
         Command::Render(a) => render_cmd::run(&a),
         Command::Trace(a) => trace_cmd::run(&a),
+        Command::Acne(a) => acne_cmd::run(&a),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,
