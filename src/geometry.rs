@@ -259,14 +259,15 @@ impl Shape {
     }
 
     /// Distance from its spawn point within which a ray meeting this same shape again counts as
-    /// a self-hit: `1e-6` of the shape's size for curved solids (a legitimate re-hit, such as a
-    /// chord inside a sphere, is that short only at grazing angles of measure ~0), and any
+    /// a self-hit: `1e-6` of the radius of a sphere or the thinnest side of a box (a legitimate
+    /// re-hit, such as a chord inside a sphere, is that short only at grazing angles or next to
+    /// an edge, both of measure ~0), and any
     /// distance for flat shapes, which a straight ray leaving them can never meet again.
     #[must_use]
     pub fn self_hit_radius(&self) -> f64 {
         match *self {
             Shape::Sphere { radius, .. } => SELF_HIT_FRACTION * radius,
-            Shape::Box { min, max } => SELF_HIT_FRACTION * 0.5 * (max - min).length(),
+            Shape::Box { min, max } => SELF_HIT_FRACTION * (max - min).min_element(),
             Shape::Plane { .. } | Shape::Triangle { .. } => f64::INFINITY,
         }
     }

@@ -4,7 +4,7 @@
 //!
 //! - **self-hit**: the ray's closest hit (for a shadow ray: the closest object before the light)
 //!   is the object it was spawned from, within [`Shape::self_hit_radius`] of the spawn point
-//!   (`1e-6` of the size of a sphere or box; any distance for planes and triangles, which a
+//!   (`1e-6` of a sphere's radius or a box's thinnest side; any distance for planes and triangles, which a
 //!   straight ray cannot leave and meet again). This is the acne of a too-small offset.
 //! - **leak**: the offset skipped a surface that a zero offset would have met: some surface
 //!   crosses the segment from the true spawn point to the offset origin, or the ray itself at
