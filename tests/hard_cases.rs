@@ -117,7 +117,7 @@ proptest! {
 
     /// Random interfaces: R in [0, 1], R + T = 1, unit directions and Snell's law.
     #[test]
-    fn fresnel_and_snell_sweep(n1 in 1.0f64..3.0, n2 in 1.0f64..3.0, theta in 0.0f64..1.570_796, phi in 0.0f64..6.283) {
+    fn fresnel_and_snell_sweep(n1 in 1.0f64..3.0, n2 in 1.0f64..3.0, theta in 0.0..std::f64::consts::FRAC_PI_2, phi in 0.0..std::f64::consts::TAU) {
         let d = DVec3::new(theta.sin() * phi.cos(), -theta.cos(), theta.sin() * phi.sin());
         let r = reflect(d, DVec3::Y);
         prop_assert!((r.length() - 1.0).abs() < 1e-14);
