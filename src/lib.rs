@@ -8,6 +8,8 @@
 
 pub mod acne;
 pub mod check;
+pub mod cost;
+pub mod effects;
 pub mod geometry;
 pub mod math;
 pub mod render;
@@ -17,7 +19,8 @@ pub mod trace;
 pub mod tree;
 
 pub use render::{
-    DiagnosticMap, Image, RenderStats, render, render_diagnosed, render_pixel, trace_pixel,
+    DiagnosticMap, Image, RenderStats, render, render_diagnosed, render_pixel, render_pixel_with,
+    render_with, trace_pixel,
 };
 pub use scene::{Scene, SceneError, Settings};
 pub use trace::{DiagnosticRecorder, NoopRecorder, RayCounts, Recorder, Tracer, TreeRecorder};

@@ -103,9 +103,21 @@ pub fn render_pixel<R: Recorder>(
     y: u32,
     rec: &mut R,
     counts: &mut RayCounts,
+    on_sample: impl FnMut(SampleRecord),
+) -> Rgb {
+    render_pixel_with(&Tracer::new(scene), x, y, rec, counts, on_sample)
+}
+
+/// [`render_pixel`] with a prepared tracer (and so a chosen effect plan).
+pub fn render_pixel_with<R: Recorder>(
+    tracer: &Tracer,
+    x: u32,
+    y: u32,
+    rec: &mut R,
+    counts: &mut RayCounts,
     mut on_sample: impl FnMut(SampleRecord),
 ) -> Rgb {
-    let tracer = Tracer::new(scene);
+    let scene = tracer.scene();
     let spp = scene.settings.spp.max(1);
     let mut sum = Rgb::ZERO;
     for s in 0..spp {
@@ -148,7 +160,12 @@ pub fn trace_pixel(scene: &Scene, x: u32, y: u32) -> Option<RayTree> {
 /// number of rows finished so far, from worker threads. Non-finite pixels are written black and
 /// counted; [`RenderStats::first_nonfinite`] names the first so its tree can be inspected.
 pub fn render(scene: &Scene, progress: &(dyn Fn(u32) + Sync)) -> (Image, RenderStats) {
-    let (image, stats, _) = render_with::<NoopRecorder>(scene, progress);
+    render_with(&Tracer::new(scene), progress)
+}
+
+/// [`render`] with a prepared tracer (and so a chosen effect plan).
+pub fn render_with(tracer: &Tracer, progress: &(dyn Fn(u32) + Sync)) -> (Image, RenderStats) {
+    let (image, stats, _) = render_recorded::<NoopRecorder>(tracer, progress);
     (image, stats)
 }
 
@@ -158,15 +175,16 @@ pub fn render_diagnosed(
     scene: &Scene,
     progress: &(dyn Fn(u32) + Sync),
 ) -> (Image, RenderStats, DiagnosticMap) {
-    render_with::<DiagnosticRecorder>(scene, progress)
+    render_recorded::<DiagnosticRecorder>(&Tracer::new(scene), progress)
 }
 
 type Row = (Vec<Rgb>, Vec<(u32, u32)>, RayCounts);
 
-fn render_with<R: Recorder + Default>(
-    scene: &Scene,
+fn render_recorded<R: Recorder + Default>(
+    tracer: &Tracer,
     progress: &(dyn Fn(u32) + Sync),
 ) -> (Image, RenderStats, DiagnosticMap) {
+    let scene = tracer.scene();
     let (w, h) = (scene.camera.width, scene.camera.height);
     let done = std::sync::atomic::AtomicU32::new(0);
     let rows: Vec<Row> = (0..h)
@@ -178,7 +196,7 @@ fn render_with<R: Recorder + Default>(
             let row = (0..w)
                 .map(|x| {
                     let before = counts;
-                    let l = render_pixel(scene, x, y, &mut rec, &mut counts, |_| {});
+                    let l = render_pixel_with(tracer, x, y, &mut rec, &mut counts, |_| {});
                     if R::DIAGNOSE {
                         let self_hits = counts.self_hits - before.self_hits;
                         let leaks = counts.leaks - before.leaks;

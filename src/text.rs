@@ -17,6 +17,14 @@ fn w(c: Rgb) -> String {
     }
 }
 
+/// The JSON name of a unit enum variant (`"exact"` -> `exact`).
+fn serde_name<T: serde::Serialize>(v: &T) -> String {
+    serde_json::to_string(v)
+        .unwrap_or_default()
+        .trim_matches('"')
+        .to_string()
+}
+
 fn deg(cos: f64) -> f64 {
     cos.clamp(-1.0, 1.0).acos().to_degrees()
 }
@@ -148,15 +156,15 @@ fn node_summary(n: &RayNode) -> String {
 pub fn tree_text(tree: &RayTree) -> String {
     let st = &tree.settings;
     let mut out = format!(
-        "pixel ({}, {})  radiance {}  spp {}  max_depth {}  fresnel {:?}  shadows {:?}  offset {:?} {:e}\n",
+        "pixel ({}, {})  radiance {}  spp {}  max_depth {}  fresnel {}  shadows {}  offset {} {:e}\n",
         tree.pixel[0],
         tree.pixel[1],
         rgb(tree.radiance),
         st.spp,
         st.max_depth,
-        st.fresnel,
-        st.shadows,
-        st.offset.strategy,
+        serde_name(&st.fresnel),
+        serde_name(&st.shadows),
+        serde_name(&st.offset.strategy),
         st.offset.epsilon,
     );
     for s in &tree.samples {

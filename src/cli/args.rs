@@ -21,6 +21,12 @@ pub enum Command {
     Trace(TraceArgs),
     /// Sweep offset strategies x epsilons x scene scales; count self-hit (acne) and leak pixels.
     Acne(AcneArgs),
+    /// Print which effects the scene calls for, and why.
+    Effects(EffectsArgs),
+    /// Measure what accuracy costs in time: a settings sweep against a reference.
+    Cost(CostArgs),
+    /// Compare two images (PNG or EXR): error metrics and a false-colour error map.
+    Compare(CompareArgs),
 }
 
 /// Settings every tracing command can override (defaults come from the scene file).
@@ -109,4 +115,48 @@ pub struct AcneArgs {
     /// earlier report.
     #[arg(short, long, default_value = "acne-report")]
     pub output: PathBuf,
+}
+
+/// `raytree effects`.
+#[derive(Debug, Args)]
+pub struct EffectsArgs {
+    /// Scene JSON (default: the built-in classic scene).
+    pub scene: Option<PathBuf>,
+    /// Settings overrides.
+    #[command(flatten)]
+    pub overrides: Overrides,
+}
+
+/// `raytree cost`.
+#[derive(Debug, Args)]
+pub struct CostArgs {
+    /// Scene JSON (default: the built-in classic scene).
+    pub scene: Option<PathBuf>,
+    /// Report directory (cost.md, cost.csv, cost.json, cost.png).
+    #[arg(short, long, default_value = "cost-report")]
+    pub output: PathBuf,
+    /// A small sweep at 160x90 (default size 320x180).
+    #[arg(long)]
+    pub quick: bool,
+    /// Timed repeats per setting (median reported); default 5, quick 3.
+    #[arg(long)]
+    pub repeats: Option<u32>,
+    /// Settings overrides (the base of the sweep).
+    #[command(flatten)]
+    pub overrides: Overrides,
+}
+
+/// `raytree compare`.
+#[derive(Debug, Args)]
+pub struct CompareArgs {
+    /// First image (.png or .exr).
+    pub a: PathBuf,
+    /// Second image (.png or .exr).
+    pub b: PathBuf,
+    /// Write a false-colour error map here (.png).
+    #[arg(short = 'o', long = "output")]
+    pub map: Option<PathBuf>,
+    /// Error shown as full white in the map (default: the largest error).
+    #[arg(long)]
+    pub scale: Option<f64>,
 }

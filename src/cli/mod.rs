@@ -4,8 +4,12 @@ mod acne_cmd;
 mod acne_figures;
 mod args;
 mod canvas;
+mod compare_cmd;
+mod cost_cmd;
+mod effects_cmd;
 mod load;
 mod output;
+mod plot;
 mod render_cmd;
 mod trace_cmd;
 
@@ -21,6 +25,9 @@ pub fn run() -> ExitCode {
         Command::Render(a) => render_cmd::run(&a),
         Command::Trace(a) => trace_cmd::run(&a),
         Command::Acne(a) => acne_cmd::run(&a),
+        Command::Effects(a) => effects_cmd::run(&a),
+        Command::Cost(a) => cost_cmd::run(&a),
+        Command::Compare(a) => compare_cmd::run(&a),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,

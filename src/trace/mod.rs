@@ -10,8 +10,9 @@ mod shadow;
 pub use media::{MediaStack, Medium};
 pub use recorder::{DiagnosticRecorder, NoopRecorder, Recorder, TreeRecorder};
 
+use crate::effects::EffectPlan;
 use crate::math::{self, Fresnel, Ray, Rgb, beer, reflect, refract};
-use crate::scene::{Hit, Material, Scene};
+use crate::scene::{Hit, Material, OffsetStrategy, Scene};
 use crate::tree::{
     Attenuation, EndReason, HitInfo, Interface, NodeId, RayKind, RayNode, ShadowInfo,
 };
@@ -73,25 +74,52 @@ struct Spawn {
     weight: Rgb,
 }
 
-/// State carried down one path of the tree.
-#[derive(Clone, Copy, Debug)]
-struct PathState {
-    depth: u32,
-    throughput: Rgb,
-    media: MediaStack,
+/// What the secondary rays of one hit add up to.
+struct Secondary {
+    total: Rgb,
+    end: EndReason,
+    truncated: Rgb,
 }
 
-/// Traces rays through one scene. Cheap to create; holds only a reference.
+/// State carried down one path of the tree.
+#[derive(Clone, Copy, Debug)]
+struct PathState<'m> {
+    depth: u32,
+    throughput: Rgb,
+    /// By reference: most rays do not change media, so nothing is copied for them.
+    media: &'m MediaStack,
+}
+
+/// Traces rays through one scene, running only the effects of its [`EffectPlan`].
 #[derive(Clone, Copy, Debug)]
 pub struct Tracer<'a> {
     scene: &'a Scene,
+    plan: EffectPlan,
 }
 
 impl<'a> Tracer<'a> {
-    /// A tracer over `scene` with its settings.
+    /// A tracer over `scene` with its settings and the effects the scene calls for.
     #[must_use]
     pub fn new(scene: &'a Scene) -> Self {
-        Self { scene }
+        Self::with_plan(scene, EffectPlan::for_scene(scene))
+    }
+
+    /// A tracer with an explicit plan (e.g. [`EffectPlan::everything`] for comparisons).
+    #[must_use]
+    pub fn with_plan(scene: &'a Scene, plan: EffectPlan) -> Self {
+        Self { scene, plan }
+    }
+
+    /// The scene.
+    #[must_use]
+    pub fn scene(&self) -> &'a Scene {
+        self.scene
+    }
+
+    /// The effects this tracer runs.
+    #[must_use]
+    pub fn plan(&self) -> &EffectPlan {
+        &self.plan
     }
 
     /// Radiance along a camera ray, recording into `rec` and counting into `counts`.
@@ -111,7 +139,7 @@ impl<'a> Tracer<'a> {
         let state = PathState {
             depth: 0,
             throughput: Rgb::ONE,
-            media: MediaStack::default(),
+            media: &MediaStack::default(),
         };
         self.trace_ray(ray, spawn, state, rec, counts)
     }
@@ -171,13 +199,18 @@ impl<'a> Tracer<'a> {
         {
             self.diagnose(&ray, spawn.point, object, hit, id, rec, counts);
         }
-        // Path length from the true spawn point, so the offset does not bias Beer's law.
-        let distance = hit.map_or(f64::INFINITY, |h| (ray.at(h.t) - spawn.point).length());
         // Beer's law on this segment, inside the innermost absorbing medium.
-        let medium = state.media.top().map(|m| m.object as usize);
+        let medium = state
+            .media
+            .top()
+            .filter(|_| self.plan.absorption)
+            .map(|m| m.object as usize);
         let absorption = medium.map_or(Rgb::ZERO, |o| self.scene.material_of(o).absorption);
-        let atten = beer(absorption, distance);
+        let mut atten = Rgb::ONE;
         if absorption != Rgb::ZERO {
+            // Path length from the true spawn point, so the offset does not bias Beer's law.
+            let distance = hit.map_or(f64::INFINITY, |h| (ray.at(h.t) - spawn.point).length());
+            atten = beer(absorption, distance);
             rec.update(id, |n| {
                 n.attenuation = Some(Attenuation {
                     medium: medium.unwrap_or(0),
@@ -238,7 +271,7 @@ impl<'a> Tracer<'a> {
         let ambient = scene.ambient * albedo;
         let mut local = emitted + ambient;
         if !m.diffuse.is_black() || m.specular != Rgb::ZERO {
-            for light in 0..scene.lights.len() {
+            for light in (0..scene.lights.len()).filter(|i| self.plan.light_on(*i)) {
                 let at = (hit.object, p);
                 local += self.direct(light, at, n, -d, albedo, m, id, state.depth, rec, counts);
             }
@@ -248,15 +281,12 @@ impl<'a> Tracer<'a> {
             node.ambient = ambient;
             node.local = local;
         });
-        let mut total = local;
-        let mut end = EndReason::Surface;
-        let mut truncated = Rgb::ZERO;
 
         // Dielectric split (only where the material transmits).
         let mut reflect_w = m.reflectivity;
         let mut refraction = None;
-        if m.is_transmissive() {
-            let (event, dir) = self.interface(d, n, cos_i, hit.object, m, entering, state.media);
+        if self.plan.refraction && m.is_transmissive() {
+            let (event, dir) = self.interface(d, n, cos_i, hit.object, m, entering, *state.media);
             let f = event.fresnel;
             reflect_w += m.transmissivity * f.r;
             if let Some(dir) = dir {
@@ -264,65 +294,114 @@ impl<'a> Tracer<'a> {
             }
             rec.update(id, |node| node.interface = Some(event));
         }
-        let children = [
-            (RayKind::Reflected, reflect(d, n), n, reflect_w, state.media),
-            match refraction {
-                Some((dir, w)) => {
-                    let media = if entering {
-                        state
-                            .media
-                            .entered(hit.object, m.ior.unwrap_or(state.media.ior()))
-                    } else {
-                        state.media.left(hit.object)
-                    };
-                    (RayKind::Refracted, dir, -n, w, media)
-                }
-                None => (RayKind::Refracted, d, -n, Rgb::ZERO, state.media),
-            },
-        ];
-        for (kind, dir, side, weight, media) in children {
-            if weight.max_element() <= 0.0 {
-                continue;
-            }
-            let child_throughput = throughput * weight;
-            let cut = if state.depth >= scene.settings.max_depth {
-                Some(EndReason::MaxDepth)
-            } else if child_throughput.max_element() < scene.settings.min_weight {
-                Some(EndReason::MinWeight)
-            } else {
-                None
-            };
-            if let Some(reason) = cut {
-                truncated += weight;
-                if end != EndReason::MaxDepth {
-                    end = reason;
-                }
-                continue;
-            }
-            if end == EndReason::Surface {
-                end = EndReason::Continued;
-            }
-            let child_ray = self.spawn_ray(hit.object, p, side, dir);
+        let at = Spawn {
+            kind: RayKind::Reflected,
+            parent: id,
+            point: p,
+            object: Some(hit.object),
+            weight: Rgb::ZERO,
+        };
+        let mut acc = Secondary {
+            total: local,
+            end: EndReason::Surface,
+            truncated: Rgb::ZERO,
+        };
+        if reflect_w.max_element() > 0.0 {
             let spawn = Spawn {
-                kind,
-                parent: id,
-                point: p,
-                object: Some(hit.object),
-                weight,
+                weight: reflect_w,
+                ..at
             };
-            let child_state = PathState {
-                depth: state.depth + 1,
-                throughput: child_throughput,
-                media,
-            };
-            let (l, _) = self.trace_ray(child_ray, spawn, child_state, rec, counts);
-            total += weight * l;
+            self.secondary(
+                &mut acc,
+                spawn,
+                reflect(d, n),
+                n,
+                throughput,
+                state.depth,
+                state.media,
+                rec,
+                counts,
+            );
         }
+        if let Some((dir, weight)) = refraction.filter(|r| r.1.max_element() > 0.0) {
+            let media = if entering {
+                state
+                    .media
+                    .entered(hit.object, m.ior.unwrap_or(state.media.ior()))
+            } else {
+                state.media.left(hit.object)
+            };
+            let spawn = Spawn {
+                kind: RayKind::Refracted,
+                weight,
+                ..at
+            };
+            self.secondary(
+                &mut acc,
+                spawn,
+                dir,
+                -n,
+                throughput,
+                state.depth,
+                &media,
+                rec,
+                counts,
+            );
+        }
+        let Secondary {
+            total,
+            end,
+            truncated,
+        } = acc;
         rec.update(id, |node| {
             node.end = end;
             node.truncated = truncated;
         });
         total
+    }
+
+    /// Trace one secondary ray (or record why it was cut) and add its weighted radiance.
+    #[allow(clippy::too_many_arguments)]
+    fn secondary<R: Recorder>(
+        &self,
+        acc: &mut Secondary,
+        spawn: Spawn,
+        dir: DVec3,
+        side: DVec3,
+        throughput: Rgb,
+        depth: u32,
+        media: &MediaStack,
+        rec: &mut R,
+        counts: &mut RayCounts,
+    ) {
+        let settings = &self.scene.settings;
+        let child_throughput = throughput * spawn.weight;
+        let cut = if depth >= settings.max_depth {
+            Some(EndReason::MaxDepth)
+        } else if child_throughput.max_element() < settings.min_weight {
+            Some(EndReason::MinWeight)
+        } else {
+            None
+        };
+        if let Some(reason) = cut {
+            acc.truncated += spawn.weight;
+            if acc.end != EndReason::MaxDepth {
+                acc.end = reason;
+            }
+            return;
+        }
+        if acc.end == EndReason::Surface {
+            acc.end = EndReason::Continued;
+        }
+        let object = spawn.object.expect("secondary rays leave a surface");
+        let ray = self.spawn_ray(object, spawn.point, side, dir);
+        let state = PathState {
+            depth: depth + 1,
+            throughput: child_throughput,
+            media,
+        };
+        let (l, _) = self.trace_ray(ray, spawn, state, rec, counts);
+        acc.total += spawn.weight * l;
     }
 
     /// n1, n2, Snell and Fresnel at a transmissive hit; the refracted direction unless TIR.
@@ -397,7 +476,12 @@ impl<'a> Tracer<'a> {
             node
         });
         let brdf = if cos > 0.0 {
-            albedo * std::f64::consts::FRAC_1_PI + blinn_phong(m, n, wi, wo)
+            let highlight = if self.plan.specular {
+                blinn_phong(m, n, wi, wo)
+            } else {
+                Rgb::ZERO
+            };
+            albedo * std::f64::consts::FRAC_1_PI + highlight
         } else {
             Rgb::ZERO
         };
@@ -419,13 +503,26 @@ impl<'a> Tracer<'a> {
             return Rgb::ZERO;
         }
         counts.add_kind(RayKind::Shadow);
-        // The light is at `dist` from `p`; measured from the offset origin for the normal strategy.
-        let seg = (dist - (ray.origin - p).length()).max(0.0);
+        // The light is at `dist` from `p`; a normal offset moves the origin by its epsilon, so
+        // stop that much short of the light (no square root on this hot path).
+        let eps = self.scene.settings.offset.epsilon;
+        let seg = match self.scene.settings.offset.strategy {
+            OffsetStrategy::Normal => (dist - eps).max(0.0),
+            OffsetStrategy::Ray => dist,
+            OffsetStrategy::Scaled => (dist - offset::scaled_epsilon(eps, p)).max(0.0),
+            OffsetStrategy::Robust => (dist - (ray.origin - p).length()).max(0.0),
+        };
         if R::DIAGNOSE {
             let first = self.scene.intersect(&ray, seg);
             self.diagnose(&ray, p, object, first, id, rec, counts);
         }
-        let tr = shadow::transmission(self.scene, &ray, seg, R::RECORDS);
+        let tr = shadow::transmission(
+            self.scene,
+            &ray,
+            seg,
+            self.plan.translucent_shadows,
+            R::RECORDS,
+        );
         let arriving = irradiance * tr.transmittance;
         rec.update(id, |node| {
             node.weight = weight;

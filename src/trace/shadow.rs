@@ -1,7 +1,7 @@
 //! Shadow rays: opaque, or translucent by the lecture's attenuation approximation (no caustics).
 
 use crate::math::{Ray, Rgb, beer};
-use crate::scene::{Scene, ShadowMode};
+use crate::scene::Scene;
 use crate::tree::Blocker;
 
 /// Light passing from the ray's origin to distance `dist`, and the blockers (when recording).
@@ -15,46 +15,50 @@ pub(crate) struct Transmission {
 /// Opaque mode: the first blocker stops the ray. Translucent mode: each object crossing the
 /// segment passes `transmissivity * exp(-absorption * chord)`, where the chord is the part of
 /// the segment inside it (lecture slide "Attenuation: Shadows Rays...").
-pub(crate) fn transmission(scene: &Scene, ray: &Ray, dist: f64, record: bool) -> Transmission {
+pub(crate) fn transmission(
+    scene: &Scene,
+    ray: &Ray,
+    dist: f64,
+    translucent: bool,
+    record: bool,
+) -> Transmission {
     let mut out = Transmission {
         transmittance: Rgb::ONE,
         blockers: Vec::new(),
     };
-    match scene.settings.shadows {
-        ShadowMode::Opaque => {
-            if let Some(hit) = scene.intersect(ray, dist) {
-                out.transmittance = Rgb::ZERO;
-                if record {
-                    out.blockers
-                        .push(blocker(scene, hit.object, hit.t, 0.0, Rgb::ZERO));
-                }
+    if !translucent {
+        // Opaque: any blocker stops the ray.
+        if let Some(hit) = scene.intersect(ray, dist) {
+            out.transmittance = Rgb::ZERO;
+            if record {
+                out.blockers
+                    .push(blocker(scene, hit.object, hit.t, 0.0, Rgb::ZERO));
             }
         }
-        ShadowMode::Translucent => {
-            for (i, o) in scene.objects.iter().enumerate() {
-                let Some((t0, t1)) = o.shape.inside_interval(ray) else {
-                    continue;
-                };
-                let (a, b) = (t0.max(ray.t_min), t1.min(dist));
-                // A crossing counts when some of it lies strictly inside the segment.
-                let crosses = if t0 == t1 {
-                    t0 > ray.t_min && t0 < dist
-                } else {
-                    a < b
-                };
-                if !crosses {
-                    continue;
-                }
-                let m = scene.material_of(i);
-                let chord = if t0 == t1 { 0.0 } else { b - a };
-                let factor = m.transmissivity * beer(m.absorption, chord);
-                out.transmittance *= factor;
-                if record {
-                    out.blockers.push(blocker(scene, i, a, chord, factor));
-                }
-                if out.transmittance == Rgb::ZERO && !record {
-                    break;
-                }
+    } else {
+        for (i, o) in scene.objects.iter().enumerate() {
+            let Some((t0, t1)) = o.shape.inside_interval(ray) else {
+                continue;
+            };
+            let (a, b) = (t0.max(ray.t_min), t1.min(dist));
+            // A crossing counts when some of it lies strictly inside the segment.
+            let crosses = if t0 == t1 {
+                t0 > ray.t_min && t0 < dist
+            } else {
+                a < b
+            };
+            if !crosses {
+                continue;
+            }
+            let m = scene.material_of(i);
+            let chord = if t0 == t1 { 0.0 } else { b - a };
+            let factor = m.transmissivity * beer(m.absorption, chord);
+            out.transmittance *= factor;
+            if record {
+                out.blockers.push(blocker(scene, i, a, chord, factor));
+            }
+            if out.transmittance == Rgb::ZERO && !record {
+                break;
             }
         }
     }
