@@ -163,15 +163,14 @@ pub fn run(a: &AcneArgs) -> Result<()> {
     for &st in &cfg.strategies {
         let ok = report.clean_everywhere(st);
         let list: Vec<String> = ok.iter().map(|e| raytree::acne::sci(*e)).collect();
-        println!(
-            "{:>7}: clean at every scale with epsilon {}",
-            st.name(),
-            if list.is_empty() {
-                "(none)".to_string()
-            } else {
-                list.join(", ")
-            }
-        );
+        let verdict = if !st.uses_epsilon() && ok.len() == cfg.epsilons.len() {
+            "clean at every scale (uses no epsilon)".to_string()
+        } else if list.is_empty() {
+            "no epsilon is clean at every scale".to_string()
+        } else {
+            format!("clean at every scale with epsilon {}", list.join(", "))
+        };
+        println!("{:>7}: {verdict}", st.name());
     }
     Ok(())
 }
