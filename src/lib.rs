@@ -6,6 +6,7 @@
 #![forbid(unsafe_code)]
 #![warn(missing_docs)]
 
+pub mod acne;
 pub mod check;
 pub mod cost;
 pub mod diagram;
@@ -20,8 +21,9 @@ pub mod trace;
 pub mod tree;
 
 pub use render::{
-    Image, RenderStats, render, render_pixel, render_pixel_with, render_with, trace_pixel,
+    DiagnosticMap, Image, RenderStats, render, render_diagnosed, render_pixel, render_pixel_with,
+    render_with, trace_pixel,
 };
 pub use scene::{Scene, SceneError, Settings};
-pub use trace::{NoopRecorder, RayCounts, Recorder, Tracer, TreeRecorder};
+pub use trace::{DiagnosticRecorder, NoopRecorder, RayCounts, Recorder, Tracer, TreeRecorder};
 pub use tree::{NodeId, RayKind, RayNode, RayTree};

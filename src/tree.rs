@@ -151,6 +151,17 @@ pub struct Blocker {
     pub factor: Rgb,
 }
 
+/// A surface the spawn offset skipped (see `trace::diagnose`).
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct Leak {
+    /// Object index.
+    pub object: usize,
+    /// Object name.
+    pub object_name: String,
+    /// Distance of the skipped crossing from the spawn point.
+    pub distance: f64,
+}
+
 /// Shadow-ray details.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 pub struct ShadowInfo {
@@ -219,6 +230,13 @@ pub struct RayNode {
     pub end: EndReason,
     /// Shadow details (shadow rays only).
     pub shadow: Option<ShadowInfo>,
+    /// The ray's first hit is the surface it was spawned from, a self-intersection (set only
+    /// when diagnostics ran; always for recorded trees).
+    #[serde(default)]
+    pub self_hit: bool,
+    /// The spawn offset skipped this surface, which a zero offset would have met.
+    #[serde(default)]
+    pub leak: Option<Leak>,
 }
 
 impl RayNode {
@@ -254,6 +272,8 @@ impl RayNode {
             truncated: Rgb::ZERO,
             end: EndReason::Pending,
             shadow: None,
+            self_hit: false,
+            leak: None,
         }
     }
 

@@ -19,6 +19,8 @@ pub enum Command {
     Render(RenderArgs),
     /// Print the full ray tree of one pixel.
     Trace(TraceArgs),
+    /// Sweep offset strategies x epsilons x scene scales; count self-hit (acne) and leak pixels.
+    Acne(AcneArgs),
     /// Print which effects the scene calls for, and why.
     Effects(EffectsArgs),
     /// Measure what accuracy costs in time: a settings sweep against a reference.
@@ -47,8 +49,9 @@ pub struct Overrides {
     /// Offset epsilon in world units.
     #[arg(long)]
     pub epsilon: Option<f64>,
-    /// Offset strategy: normal (P +/- eps N) or ray (t_min = eps).
-    #[arg(long, value_name = "normal|ray")]
+    /// Offset strategy: normal (P +/- eps N), ray (t_min = eps), scaled (eps relative to |P|)
+    /// or robust (floating-point error bounds, ignores --epsilon).
+    #[arg(long, value_name = "normal|ray|scaled|robust")]
     pub offset: Option<String>,
     /// Fresnel model.
     #[arg(long, value_name = "exact|schlick|none")]
@@ -69,6 +72,9 @@ pub struct RenderArgs {
     /// Output image: .png or .exr.
     #[arg(short, long, default_value = "render.png")]
     pub output: PathBuf,
+    /// Also count self-hit and leaking rays (extra intersections per ray).
+    #[arg(long)]
+    pub diagnose: bool,
     /// Settings overrides.
     #[command(flatten)]
     pub overrides: Overrides,
@@ -88,6 +94,32 @@ pub struct TraceArgs {
     /// Settings overrides.
     #[command(flatten)]
     pub overrides: Overrides,
+}
+
+/// `raytree acne`.
+#[derive(Debug, Args)]
+pub struct AcneArgs {
+    /// Scene JSON (default: the built-in classic scene).
+    pub scene: Option<PathBuf>,
+    /// Offset strategies, comma-separated.
+    #[arg(long, default_value = "normal,ray,scaled,robust")]
+    pub strategies: String,
+    /// Epsilons, comma-separated.
+    #[arg(long, default_value = "1e-7,1e-6,1e-5,1e-4,1e-3,1e-2,1e-1")]
+    pub epsilons: String,
+    /// Scene scales, comma-separated (the scene is scaled about the origin, then moved away).
+    #[arg(long, default_value = "1e-3,1e-2,1e-1,1,1e1,1e2,1e3,1e4,1e5,1e6")]
+    pub scales: String,
+    /// How far the scaled scene is moved from the origin, per unit scale and axis.
+    #[arg(long, default_value_t = 1e3)]
+    pub shift: f64,
+    /// Size of each render, WIDTHxHEIGHT.
+    #[arg(long, value_name = "WxH", default_value = "48x36")]
+    pub size: String,
+    /// Output directory (report.md, report.json, heat maps, plot.png); replaced if it holds an
+    /// earlier report.
+    #[arg(short, long, default_value = "acne-report")]
+    pub output: PathBuf,
 }
 
 /// `raytree effects`.

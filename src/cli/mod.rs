@@ -1,6 +1,9 @@
 //! Subcommands. Every user error (bad scene, bad flag, unwritable output) exits with code 2.
 
+mod acne_cmd;
+mod acne_figures;
 mod args;
+mod canvas;
 mod compare_cmd;
 mod cost_cmd;
 mod diagram_cmd;
@@ -23,6 +26,7 @@ pub fn run() -> ExitCode {
     let result = match cli.command {
         Command::Render(a) => render_cmd::run(&a),
         Command::Trace(a) => trace_cmd::run(&a),
+        Command::Acne(a) => acne_cmd::run(&a),
         Command::Effects(a) => effects_cmd::run(&a),
         Command::Cost(a) => cost_cmd::run(&a),
         Command::Compare(a) => compare_cmd::run(&a),

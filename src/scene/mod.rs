@@ -2,6 +2,7 @@
 
 pub mod desc;
 mod locate;
+mod transform;
 mod validate;
 
 use crate::geometry::Shape;
@@ -10,6 +11,7 @@ use glam::DVec3;
 
 pub use desc::{OffsetDesc, OffsetStrategy, SceneDesc, Settings, ShadowMode};
 pub use locate::locate;
+pub use transform::transformed;
 pub use validate::{SceneError, check_settings};
 
 /// The built-in default scene: the lecture's classic (mirror ball, glass ball, checkered floor,

@@ -1,12 +1,14 @@
 //! The Whitted tracer, exactly as the lecture's `trace(ray, objects, lights)` recursion, with a
 //! [`Recorder`] hook that sees every ray.
 
+pub mod diagnose;
 mod media;
+pub mod offset;
 mod recorder;
 mod shadow;
 
 pub use media::{MediaStack, Medium};
-pub use recorder::{NoopRecorder, Recorder, TreeRecorder};
+pub use recorder::{DiagnosticRecorder, NoopRecorder, Recorder, TreeRecorder};
 
 use crate::effects::EffectPlan;
 use crate::math::{self, Fresnel, Ray, Rgb, beer, reflect, refract};
@@ -27,6 +29,10 @@ pub struct RayCounts {
     pub refracted: u64,
     /// Shadow rays actually cast.
     pub shadow: u64,
+    /// Spawned rays that re-hit the surface they left (counted only by diagnosing recorders).
+    pub self_hits: u64,
+    /// Spawned rays whose offset skipped a surface (counted only by diagnosing recorders).
+    pub leaks: u64,
 }
 
 impl RayCounts {
@@ -52,6 +58,8 @@ impl std::ops::AddAssign for RayCounts {
         self.reflected += o.reflected;
         self.refracted += o.refracted;
         self.shadow += o.shadow;
+        self.self_hits += o.self_hits;
+        self.leaks += o.leaks;
     }
 }
 
@@ -61,6 +69,8 @@ struct Spawn {
     kind: RayKind,
     parent: Option<NodeId>,
     point: DVec3,
+    /// The object the ray leaves (`None` for camera rays).
+    object: Option<usize>,
     weight: Rgb,
 }
 
@@ -123,6 +133,7 @@ impl<'a> Tracer<'a> {
             kind: RayKind::Camera,
             parent: None,
             point: ray.origin,
+            object: None,
             weight: Rgb::ONE,
         };
         let state = PathState {
@@ -133,13 +144,31 @@ impl<'a> Tracer<'a> {
         self.trace_ray(ray, spawn, state, rec, counts)
     }
 
-    /// Offset a spawn point by the configured strategy: the lecture's `P +/- eps N` or `t_min = eps`.
-    fn spawn_ray(&self, point: DVec3, side: DVec3, direction: DVec3) -> Ray {
-        let eps = self.scene.settings.offset.epsilon;
-        match self.scene.settings.offset.strategy {
-            OffsetStrategy::Normal => Ray::new(point + eps * side, direction, 0.0),
-            OffsetStrategy::Ray => Ray::new(point, direction, eps),
-        }
+    /// Offset a spawn point on `object` by the configured strategy ([`offset::spawn`]).
+    fn spawn_ray(&self, object: usize, point: DVec3, side: DVec3, direction: DVec3) -> Ray {
+        let shape = &self.scene.objects[object].shape;
+        offset::spawn(self.scene.settings.offset, shape, point, side, direction)
+    }
+
+    /// Run the diagnostics for a spawned ray, count and record them.
+    #[allow(clippy::too_many_arguments)]
+    fn diagnose<R: Recorder>(
+        &self,
+        ray: &Ray,
+        point: DVec3,
+        object: usize,
+        hit: Option<Hit>,
+        id: Option<NodeId>,
+        rec: &mut R,
+        counts: &mut RayCounts,
+    ) {
+        let d = diagnose::diagnose(self.scene, ray, point, object, hit);
+        counts.self_hits += u64::from(d.self_hit);
+        counts.leaks += u64::from(d.leak.is_some());
+        rec.update(id, |n| {
+            n.self_hit = d.self_hit;
+            n.leak = d.leak;
+        });
     }
 
     fn trace_ray<R: Recorder>(
@@ -165,6 +194,11 @@ impl<'a> Tracer<'a> {
             n
         });
         let hit = self.scene.intersect(&ray, f64::INFINITY);
+        if R::DIAGNOSE
+            && let Some(object) = spawn.object
+        {
+            self.diagnose(&ray, spawn.point, object, hit, id, rec, counts);
+        }
         // Beer's law on this segment, inside the innermost absorbing medium.
         let medium = state
             .media
@@ -238,7 +272,8 @@ impl<'a> Tracer<'a> {
         let mut local = emitted + ambient;
         if !m.diffuse.is_black() || m.specular != Rgb::ZERO {
             for light in (0..scene.lights.len()).filter(|i| self.plan.light_on(*i)) {
-                local += self.direct(light, p, n, -d, albedo, m, id, state.depth, rec, counts);
+                let at = (hit.object, p);
+                local += self.direct(light, at, n, -d, albedo, m, id, state.depth, rec, counts);
             }
         }
         rec.update(id, |node| {
@@ -263,6 +298,7 @@ impl<'a> Tracer<'a> {
             kind: RayKind::Reflected,
             parent: id,
             point: p,
+            object: Some(hit.object),
             weight: Rgb::ZERO,
         };
         let mut acc = Secondary {
@@ -357,7 +393,8 @@ impl<'a> Tracer<'a> {
         if acc.end == EndReason::Surface {
             acc.end = EndReason::Continued;
         }
-        let ray = self.spawn_ray(spawn.point, side, dir);
+        let object = spawn.object.expect("secondary rays leave a surface");
+        let ray = self.spawn_ray(object, spawn.point, side, dir);
         let state = PathState {
             depth: depth + 1,
             throughput: child_throughput,
@@ -419,7 +456,7 @@ impl<'a> Tracer<'a> {
     fn direct<R: Recorder>(
         &self,
         light: usize,
-        p: DVec3,
+        (object, p): (usize, DVec3),
         n: DVec3,
         wo: DVec3,
         albedo: Rgb,
@@ -432,7 +469,7 @@ impl<'a> Tracer<'a> {
         let l = &self.scene.lights[light];
         let (wi, dist, irradiance) = l.sample(p);
         let cos = n.dot(wi);
-        let ray = self.spawn_ray(p, n, wi);
+        let ray = self.spawn_ray(object, p, n, wi);
         let id = rec.push(parent, || {
             let mut node = RayNode::new(RayKind::Shadow, depth, p, ray.origin, ray.direction);
             node.t_min = ray.t_min;
@@ -466,12 +503,19 @@ impl<'a> Tracer<'a> {
             return Rgb::ZERO;
         }
         counts.add_kind(RayKind::Shadow);
-        // The light is at `dist` from `p`; the normal offset moves the origin by eps, so stop
-        // eps short of the light (no square root on this hot path).
+        // The light is at `dist` from `p`; a normal offset moves the origin by its epsilon, so
+        // stop that much short of the light (no square root on this hot path).
+        let eps = self.scene.settings.offset.epsilon;
         let seg = match self.scene.settings.offset.strategy {
-            OffsetStrategy::Normal => (dist - self.scene.settings.offset.epsilon).max(0.0),
+            OffsetStrategy::Normal => (dist - eps).max(0.0),
             OffsetStrategy::Ray => dist,
+            OffsetStrategy::Scaled => (dist - offset::scaled_epsilon(eps, p)).max(0.0),
+            OffsetStrategy::Robust => (dist - (ray.origin - p).length()).max(0.0),
         };
+        if R::DIAGNOSE {
+            let first = self.scene.intersect(&ray, seg);
+            self.diagnose(&ray, p, object, first, id, rec, counts);
+        }
         let tr = shadow::transmission(
             self.scene,
             &ray,
