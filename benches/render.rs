@@ -40,7 +40,9 @@ fn throughput(c: &mut Criterion) {
         let scene = classic(1280, 720, spp);
         let rays = render(&scene, &|_| {}).1.rays.total();
         g.throughput(Throughput::Elements(rays));
-        g.bench_function(format!("spp{spp}"), |b| b.iter(|| render(black_box(&scene), &|_| {})));
+        g.bench_function(format!("spp{spp}"), |b| {
+            b.iter(|| render(black_box(&scene), &|_| {}))
+        });
     }
     g.finish();
 }
@@ -61,7 +63,9 @@ fn recorder_cost(c: &mut Criterion) {
     let scene = classic(320, 180, 1);
     let mut g = c.benchmark_group("recorder_320x180");
     g.sample_size(20).measurement_time(Duration::from_secs(5));
-    g.bench_function("noop", |b| b.iter(|| image_loop(black_box(&scene), &mut NoopRecorder)));
+    g.bench_function("noop", |b| {
+        b.iter(|| image_loop(black_box(&scene), &mut NoopRecorder))
+    });
     g.bench_function("counting", |b| {
         b.iter(|| image_loop(black_box(&scene), &mut CountingRecorder::default()))
     });

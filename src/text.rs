@@ -19,7 +19,10 @@ fn w(c: Rgb) -> String {
 
 /// The JSON name of a unit enum variant (`"exact"` -> `exact`).
 fn serde_name<T: serde::Serialize>(v: &T) -> String {
-    serde_json::to_string(v).unwrap_or_default().trim_matches('"').to_string()
+    serde_json::to_string(v)
+        .unwrap_or_default()
+        .trim_matches('"')
+        .to_string()
 }
 
 fn deg(cos: f64) -> f64 {

@@ -214,9 +214,10 @@ impl Diagram {
     }
 }
 
-/// Whether a 3D distance from the plane counts as "off the plane".
+/// Whether a 3D distance from the plane counts as "off the plane": more than 1/1000 of the
+/// figure's extent (about a pixel at 1280 wide), so rounding and near-planar bounces stay solid.
 pub(super) fn is_off(d: f64, extent3: f64) -> bool {
-    d.abs() > 1e-6 * extent3
+    d.abs() > 1e-3 * extent3
 }
 
 /// Opacity for a distance from the plane: 1 on it, fading to 0.3.
