@@ -131,12 +131,26 @@ impl Diagram {
             DVec2::new(fs, top),
             DVec2::new(w - fs, legend_rect.min.y - fs * 0.5),
         );
-        let (lo, hi) = pts
-            .iter()
-            .fold((DVec2::INFINITY, DVec2::NEG_INFINITY), |(lo, hi), p| {
-                let q = frame.plane_coords(*p);
+        let bounds = |pts: &mut dyn Iterator<Item = DVec3>| {
+            pts.fold((DVec2::INFINITY, DVec2::NEG_INFINITY), |(lo, hi), p| {
+                let q = frame.plane_coords(p);
                 (lo.min(q), hi.max(q))
-            });
+            })
+        };
+        let (lo, hi) = bounds(&mut pts.iter().copied());
+        // Where the rays interact (hits, blockers, spawn points). When the eye or a light is
+        // far away, frame on this part and let those rays enter or leave through the frame.
+        let mut core = segs.iter().flat_map(|s| {
+            let start = (s.node.kind != RayKind::Camera).then_some(s.start);
+            let end = s
+                .end
+                .filter(|_| matches!(s.end_kind, RayEnd::Hit | RayEnd::Blocked));
+            start.into_iter().chain(end)
+        });
+        let (clo, chi) = bounds(&mut core);
+        let zoomed = clo.x.is_finite()
+            && (hi - lo).max_element() > 3.0 * (chi - clo).max_element().max(extent3 * 0.02);
+        let (lo, hi) = if zoomed { (clo, chi) } else { (lo, hi) };
         let (lo, hi) = if lo.x.is_finite() {
             (lo, hi)
         } else {
@@ -156,6 +170,9 @@ impl Diagram {
                 && s.node
                     .parent
                     .is_some_and(|p| tree.node(p).interface.as_ref().is_some_and(|i| i.tir));
+            if zoomed {
+                clip_to(&mut r, &view);
+            }
             rays.push(r);
         }
         let mut pending: Vec<Pending> = legend_pending;
@@ -171,7 +188,11 @@ impl Diagram {
         let objs = objects::slices(scene, &frame, &view, fs, &mut pending);
         let hits = annotate::hits(tree, &segs, &rays, &frame, fs, opts, &mut pending);
         let lights = light_marks(scene, &segs, &rays, &frame, extent3, fs, &mut pending);
-        let camera = camera_drawn.then(|| {
+        let eye_visible = view.contains_rect(&Rect::new(
+            frame.to_canvas(cam.position),
+            frame.to_canvas(cam.position),
+        ));
+        let camera = (camera_drawn && eye_visible).then(|| {
             camera_mark(
                 scene,
                 pixel3,
@@ -214,9 +235,10 @@ impl Diagram {
     }
 }
 
-/// Whether a 3D distance from the plane counts as "off the plane".
+/// Whether a 3D distance from the plane counts as "off the plane": more than 1/1000 of the
+/// figure's extent (about a pixel at 1280 wide), so rounding and near-planar bounces stay solid.
 pub(super) fn is_off(d: f64, extent3: f64) -> bool {
-    d.abs() > 1e-6 * extent3
+    d.abs() > 1e-3 * extent3
 }
 
 /// Opacity for a distance from the plane: 1 on it, fading to 0.3.
@@ -298,7 +320,14 @@ fn light_marks(
         };
         let (point, directional, dist) = match light.kind {
             LightKind::Point { position, .. } => {
-                (frame.to_canvas(position), None, frame.distance(position))
+                let p = frame.to_canvas(position);
+                // A light outside the frame is marked where its shadow ray leaves it.
+                let p = if (p - r.to).length() > 1.0 && r.end == RayEnd::Light {
+                    r.to
+                } else {
+                    p
+                };
+                (p, None, frame.distance(position))
             }
             LightKind::Directional { direction, .. } => {
                 if matches!(r.end, RayEnd::Light) {
@@ -397,4 +426,34 @@ fn camera_mark(
         pixel: p,
         pixel_span: cut(&pixel),
     }
+}
+
+/// Clip a segment to `rect` (Liang-Barsky); a segment entirely outside keeps zero length at
+/// its start so it still appears once in the model.
+fn clip_to(r: &mut RaySegment, rect: &Rect) {
+    let d = r.to - r.from;
+    let (mut t0, mut t1) = (0.0f64, 1.0f64);
+    for (p, q) in [
+        (-d.x, r.from.x - rect.min.x),
+        (d.x, rect.max.x - r.from.x),
+        (-d.y, r.from.y - rect.min.y),
+        (d.y, rect.max.y - r.from.y),
+    ] {
+        if p == 0.0 {
+            if q < 0.0 {
+                t1 = -1.0;
+            }
+        } else if p < 0.0 {
+            t0 = t0.max(q / p);
+        } else {
+            t1 = t1.min(q / p);
+        }
+    }
+    if t0 > t1 {
+        r.to = r.from;
+        return;
+    }
+    let from = r.from + d * t0;
+    r.to = r.from + d * t1;
+    r.from = from;
 }

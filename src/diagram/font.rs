@@ -3,7 +3,8 @@
 //! advance widths for layout and glyph outlines for the PNG back-end.
 
 use ab_glyph::{Font, FontRef, GlyphId, OutlineCurve};
-use std::sync::LazyLock;
+use std::collections::HashMap;
+use std::sync::{Arc, LazyLock, Mutex};
 
 /// The font's bytes.
 pub const FONT_BYTES: &[u8] = epaint_default_fonts::UBUNTU_LIGHT;
@@ -16,6 +17,19 @@ static FONT: LazyLock<FontRef<'static>> =
 
 fn units_per_em() -> f64 {
     f64::from(FONT.units_per_em().unwrap_or(1000.0))
+}
+
+/// Glyph outlines, parsed once per glyph.
+fn outline(id: GlyphId) -> Option<std::sync::Arc<ab_glyph::Outline>> {
+    static CACHE: LazyLock<Mutex<HashMap<GlyphId, Option<Arc<ab_glyph::Outline>>>>> =
+        LazyLock::new(|| Mutex::new(HashMap::new()));
+    let mut cache = CACHE
+        .lock()
+        .unwrap_or_else(std::sync::PoisonError::into_inner);
+    cache
+        .entry(id)
+        .or_insert_with(|| FONT.outline(id).map(Arc::new))
+        .clone()
 }
 
 /// Glyph ids of `text` with their x offsets in font units, and the total advance.
@@ -63,7 +77,7 @@ pub fn text_outline(text: &str, size: f64) -> Vec<PathCmd> {
     let (glyphs, _) = layout(text);
     let mut cmds = Vec::new();
     for (id, x0) in glyphs {
-        let Some(outline) = FONT.outline(id) else {
+        let Some(outline) = outline(id) else {
             continue;
         };
         let x0 = x0 as f32;
@@ -103,6 +117,76 @@ pub fn text_outline(text: &str, size: f64) -> Vec<PathCmd> {
         }
     }
     cmds
+}
+
+/// A glyph's anti-aliased coverage at one size and sub-pixel phase.
+#[derive(Clone, Debug, PartialEq)]
+pub struct GlyphMask {
+    /// Left edge relative to the pen position (pixels).
+    pub left: i32,
+    /// Top edge relative to the baseline (pixels, y down).
+    pub top: i32,
+    /// Width.
+    pub width: usize,
+    /// Height.
+    pub height: usize,
+    /// Coverage, row-major, 0..=255.
+    pub coverage: Vec<u8>,
+}
+
+/// Sub-pixel phases per pixel for glyph masks.
+const PHASES: f64 = 4.0;
+
+fn glyph_mask(id: GlyphId, size: f64, phase: u8) -> Option<Arc<GlyphMask>> {
+    type Key = (GlyphId, u64, u8);
+    static CACHE: LazyLock<Mutex<HashMap<Key, Option<Arc<GlyphMask>>>>> =
+        LazyLock::new(|| Mutex::new(HashMap::new()));
+    let mut cache = CACHE
+        .lock()
+        .unwrap_or_else(std::sync::PoisonError::into_inner);
+    cache
+        .entry((id, size.to_bits(), phase))
+        .or_insert_with(|| {
+            let px = (size * f64::from(FONT.height_unscaled()) / units_per_em()) as f32;
+            let g = id.with_scale_and_position(
+                px,
+                ab_glyph::point(f32::from(phase) / PHASES as f32, 0.0),
+            );
+            let og = FONT.outline_glyph(g)?;
+            let b = og.px_bounds();
+            let (width, height) = (b.width() as usize, b.height() as usize);
+            let mut coverage = vec![0u8; width * height];
+            og.draw(|x, y, c| {
+                if let Some(v) = coverage.get_mut(y as usize * width + x as usize) {
+                    *v = (c.clamp(0.0, 1.0) * 255.0).round() as u8;
+                }
+            });
+            Some(Arc::new(GlyphMask {
+                left: b.min.x as i32,
+                top: b.min.y as i32,
+                width,
+                height,
+                coverage,
+            }))
+        })
+        .clone()
+}
+
+/// Glyph masks of `text` at `size` with their integer pen positions, starting at `x0` on the
+/// baseline (masks are cached per glyph, size and quarter-pixel phase).
+#[must_use]
+pub fn text_masks(text: &str, size: f64, x0: f64) -> Vec<(i32, Arc<GlyphMask>)> {
+    let k = size / units_per_em();
+    let (glyphs, _) = layout(text);
+    glyphs
+        .into_iter()
+        .filter_map(|(id, x)| {
+            let pen = x0 + x * k;
+            let whole = pen.floor();
+            let phase = (((pen - whole) * PHASES).floor() as u8).min(PHASES as u8 - 1);
+            glyph_mask(id, size, phase).map(|m| (whole as i32, m))
+        })
+        .collect()
 }
 
 #[cfg(test)]

@@ -112,9 +112,7 @@ pub(super) fn place(mut pending: Vec<Pending>, canvas: Rect, obstacles: Vec<Rect
             pos += shift;
             b = Rect::new(b.min + shift, b.max + shift);
         }
-        if !p.fixed {
-            taken.push(b);
-        }
+        taken.push(b);
         out.push(Label {
             pos,
             text: p.text,

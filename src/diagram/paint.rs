@@ -337,9 +337,9 @@ pub fn display_list(d: &Diagram, style: &Style) -> Vec<Prim> {
         if h.tir {
             out.push(Prim::Circle {
                 center: h.point,
-                radius: 0.6 * fs,
+                radius: 0.42 * fs,
                 fill: None,
-                stroke: Some((style.rays[1], 2.0 * ws)),
+                stroke: Some((style.rays[1].fade(h.fade), 1.6 * ws)),
             });
         }
         if h.truncated {

@@ -181,7 +181,7 @@ pub fn choose(
     let camera_plane = || {
         let n = dir.cross(cam.up).try_normalize().unwrap_or(cam.right);
         (
-            PlaneFrame::new(eye, n, cam.up, dir),
+            PlaneFrame::new(eye, n, DVec3::Y, dir),
             "through the camera ray and the camera's up vector".to_string(),
         )
     };
@@ -196,7 +196,7 @@ pub fn choose(
             };
             match dir.cross(hit.normal).try_normalize() {
                 Some(n) if dir.cross(hit.normal).length() > 1e-6 => (
-                    PlaneFrame::new(hit.point, n, cam.up, dir),
+                    PlaneFrame::new(hit.point, n, DVec3::Y, dir),
                     format!("plane of incidence at {}", hit.object_name),
                 ),
                 _ => {
