@@ -185,28 +185,128 @@ fn sphere_hit(center: DVec3, radius: f64, ray: &Ray, t_max: f64) -> Option<Shape
     Some(ShapeHit { t, normal })
 }
 
-/// Möller-Trumbore ray-triangle distance (J. Graphics Tools 2(1), 1997), two-sided.
+/// Watertight ray-triangle test (Woop, Benthin, Wald, "Watertight Ray/Triangle Intersection",
+/// JCGT 2(1), 2013), two-sided; returns the hit distance.
+///
+/// The vertices are translated to the ray origin and sheared so the ray runs along +z; the
+/// three 2D edge functions are then computed per vertex with the same operations for every
+/// triangle, so an edge shared by two triangles gives exactly negated values on both sides and
+/// no ray passes between them. Unlike the paper's `f32` kernel no higher-precision fallback is
+/// needed for the edge functions: they already are `f64`.
 pub(crate) fn triangle_t(v: &[DVec3; 3], ray: &Ray) -> Option<f64> {
-    let e1 = v[1] - v[0];
-    let e2 = v[2] - v[0];
-    let p = ray.direction.cross(e2);
-    let det = e1.dot(p);
+    let d = ray.direction;
+    let kz = d.abs().max_position();
+    let (mut kx, mut ky) = ((kz + 1) % 3, (kz + 2) % 3);
+    if d[kz] < 0.0 {
+        std::mem::swap(&mut kx, &mut ky);
+    }
+    let (sx, sy, sz) = (d[kx] / d[kz], d[ky] / d[kz], 1.0 / d[kz]);
+    if !(sx.is_finite() && sy.is_finite() && sz.is_finite()) {
+        return None;
+    }
+    let [a, b, c] = v.map(|p| p - ray.origin);
+    let shear = |p: DVec3| (p[kx] - sx * p[kz], p[ky] - sy * p[kz]);
+    let ((ax, ay), (bx, by), (cx, cy)) = (shear(a), shear(b), shear(c));
+    let u = cx * by - cy * bx;
+    let w_ = ax * cy - ay * cx;
+    let w = bx * ay - by * ax;
+    if (u < 0.0 || w_ < 0.0 || w < 0.0) && (u > 0.0 || w_ > 0.0 || w > 0.0) {
+        return None;
+    }
+    let det = u + w_ + w;
     if det == 0.0 || !det.is_finite() {
         return None;
     }
-    let inv = 1.0 / det;
-    let s = ray.origin - v[0];
-    let u = s.dot(p) * inv;
-    if !(0.0..=1.0).contains(&u) {
-        return None;
-    }
-    let q = s.cross(e1);
-    let w = ray.direction.dot(q) * inv;
-    if w < 0.0 || u + w > 1.0 {
-        return None;
-    }
-    Some(e2.dot(q) * inv)
+    let t_scaled = u * (sz * a[kz]) + w_ * (sz * b[kz]) + w * (sz * c[kz]);
+    Some(t_scaled / det)
 }
+
+/// `gamma(n) = n u / (1 - n u)` with `u` the unit roundoff: the bound on the relative error of
+/// `n` chained floating-point operations (Higham; pbrt-v4 `gamma`, PBR 4th ed. section 6.8.1).
+#[must_use]
+pub fn gamma(n: u32) -> f64 {
+    let nu = f64::from(n) * (f64::EPSILON * 0.5);
+    nu / (1.0 - nu)
+}
+
+impl Shape {
+    /// Move a computed hit point `p` onto the surface (up to rounding) and bound the error that
+    /// remains, per component: pbrt-v4's reprojection and conservative error bounds
+    /// (Pharr, Jakob, Humphreys, PBR 4th ed., section 6.8.5 "Robust spawned ray origins").
+    ///
+    /// `normal` is the normal at `p` (either orientation). Spheres are reprojected radially (pbrt's
+    /// `pHit *= radius / Distance(pHit, 0)`), planes and triangles projected onto their plane
+    /// (the triangle bound also covers the rounding of the stored normal over the triangle's
+    /// extent), and a box hit snaps the face coordinate exactly onto the face.
+    #[must_use]
+    pub fn surface_point(&self, p: DVec3, normal: DVec3) -> (DVec3, DVec3) {
+        match *self {
+            Shape::Sphere { center, radius } => {
+                let v = p - center;
+                let len = v.length();
+                if len == 0.0 || !len.is_finite() {
+                    return (p, gamma(8) * (center.abs() + radius));
+                }
+                let v = v * (radius / len);
+                (center + v, gamma(8) * (center.abs() + v.abs()))
+            }
+            Shape::Plane { point, normal } => {
+                let q = p - (p - point).dot(normal) * normal;
+                (q, gamma(8) * (p.abs() + point.abs()))
+            }
+            Shape::Triangle {
+                vertices: [a, b, c],
+                normal,
+            } => {
+                let q = p - (p - a).dot(normal) * normal;
+                (q, gamma(16) * (a.abs() + b.abs() + c.abs() + p.abs()))
+            }
+            Shape::Box { min, max } => {
+                let mut q = p;
+                for i in 0..3 {
+                    if normal[i] != 0.0 {
+                        let to_max = (max[i] - p[i]).abs() < (p[i] - min[i]).abs();
+                        q[i] = if to_max { max[i] } else { min[i] };
+                    }
+                }
+                // The face coordinate is exact; the others do not move the origin off the face.
+                (q, gamma(2) * q.abs() * (DVec3::ONE - normal.abs()))
+            }
+            // Without knowing the triangle: no reprojection, and a bound as for a triangle
+            // with the mesh's largest coordinates. The tracer passes the hit triangle instead
+            // (`Scene::surface_shape`), which gives the triangle's own, tighter bound.
+            Shape::Mesh(ref m) => {
+                let b = m.bounds();
+                let far = b.min.abs().max(b.max.abs());
+                (p, gamma(16) * (3.0 * far + p.abs()))
+            }
+        }
+    }
+
+    /// Distance from its spawn point within which a ray meeting this same shape again counts as
+    /// a self-hit: `1e-6` of the radius of a sphere or the thinnest side of a box (a legitimate
+    /// re-hit, such as a chord inside a sphere, is that short only at grazing angles or next to
+    /// an edge, both of measure ~0), and any
+    /// distance for flat shapes, which a straight ray leaving them can never meet again.
+    /// For a mesh, `1e-6` of its bounding box's largest side: another triangle that close
+    /// (across an edge) is the same surface; the triangle left itself is flat and counts at
+    /// any distance (the diagnostics compare triangles).
+    #[must_use]
+    pub fn self_hit_radius(&self) -> f64 {
+        match *self {
+            Shape::Sphere { radius, .. } => SELF_HIT_FRACTION * radius,
+            Shape::Box { min, max } => SELF_HIT_FRACTION * (max - min).min_element(),
+            Shape::Plane { .. } | Shape::Triangle { .. } => f64::INFINITY,
+            Shape::Mesh(ref m) => {
+                let b = m.bounds();
+                SELF_HIT_FRACTION * (b.max - b.min).max_element()
+            }
+        }
+    }
+}
+
+/// Fraction of a curved shape's size below which a re-hit is a self-hit.
+pub const SELF_HIT_FRACTION: f64 = 1e-6;
 
 /// Slab test (Kay & Kajiya 1986): the line's parameter interval inside the box.
 fn slab_interval(min: DVec3, max: DVec3, ray: &Ray) -> Option<(f64, f64)> {

@@ -6,9 +6,14 @@
 #![forbid(unsafe_code)]
 #![warn(missing_docs)]
 
+pub mod acne;
 pub mod bvh;
 pub mod check;
+pub mod cost;
+pub mod diagram;
+pub mod effects;
 pub mod geometry;
+pub mod gui;
 pub mod math;
 pub mod mesh;
 pub mod render;
@@ -17,7 +22,10 @@ pub mod text;
 pub mod trace;
 pub mod tree;
 
-pub use render::{Image, RenderStats, render, render_pixel, trace_pixel};
+pub use render::{
+    DiagnosticMap, Image, RenderStats, render, render_diagnosed, render_pixel, render_pixel_with,
+    render_with, trace_pixel,
+};
 pub use scene::{Scene, SceneError, Settings};
-pub use trace::{NoopRecorder, RayCounts, Recorder, Tracer, TreeRecorder};
+pub use trace::{DiagnosticRecorder, NoopRecorder, RayCounts, Recorder, Tracer, TreeRecorder};
 pub use tree::{NodeId, RayKind, RayNode, RayTree};

@@ -211,6 +211,16 @@ pub fn linear_to_srgb(v: f64) -> f64 {
     }
 }
 
+/// sRGB-encoded value in `[0, 1]` to linear (IEC 61966-2-1).
+#[must_use]
+pub fn srgb_to_linear(v: f64) -> f64 {
+    if v <= 0.040_45 {
+        v / 12.92
+    } else {
+        ((v + 0.055) / 1.055).powf(2.4)
+    }
+}
+
 /// Linear radiance to an 8-bit sRGB code value.
 #[must_use]
 pub fn linear_to_srgb8(v: f64) -> u8 {
@@ -323,5 +333,8 @@ mod tests {
         assert_eq!(linear_to_srgb8(1.0), 255);
         assert_eq!(linear_to_srgb8(f64::NAN), 0);
         assert!((linear_to_srgb(0.214_041_14) - 0.5).abs() < 1e-6);
+        for v in [0.0, 0.002, 0.04, 0.3, 1.0] {
+            assert!((srgb_to_linear(linear_to_srgb(v)) - v).abs() < 1e-12);
+        }
     }
 }

@@ -6,7 +6,7 @@
 
 use crate::math::Rgb;
 use crate::scene::Scene;
-use crate::trace::{NoopRecorder, RayCounts, Recorder, Tracer, TreeRecorder};
+use crate::trace::{DiagnosticRecorder, NoopRecorder, RayCounts, Recorder, Tracer, TreeRecorder};
 use crate::tree::{RayTree, SampleRecord, TREE_SCHEMA};
 use rayon::prelude::*;
 
@@ -47,6 +47,23 @@ pub struct RenderStats {
     pub nonfinite_pixels: u64,
     /// The first such pixel, in scan order.
     pub first_nonfinite: Option<(u32, u32)>,
+    /// Pixels with at least one self-hit ray (diagnosed renders only; see `trace::diagnose`).
+    pub self_hit_pixels: u64,
+    /// Pixels with at least one leaking ray (diagnosed renders only).
+    pub leak_pixels: u64,
+}
+
+/// Per-pixel diagnostic counts of a diagnosed render, row-major like [`Image`].
+#[derive(Clone, Debug, Default, PartialEq, Eq)]
+pub struct DiagnosticMap {
+    /// Width in pixels.
+    pub width: u32,
+    /// Height in pixels.
+    pub height: u32,
+    /// Self-hit rays per pixel.
+    pub self_hits: Vec<u32>,
+    /// Leaking rays per pixel.
+    pub leaks: Vec<u32>,
 }
 
 /// SplitMix64 (Steele, Lea, Flood 2014): a tiny, well-mixed hash for per-pixel seeds.
@@ -86,9 +103,21 @@ pub fn render_pixel<R: Recorder>(
     y: u32,
     rec: &mut R,
     counts: &mut RayCounts,
+    on_sample: impl FnMut(SampleRecord),
+) -> Rgb {
+    render_pixel_with(&Tracer::new(scene), x, y, rec, counts, on_sample)
+}
+
+/// [`render_pixel`] with a prepared tracer (and so a chosen effect plan).
+pub fn render_pixel_with<R: Recorder>(
+    tracer: &Tracer,
+    x: u32,
+    y: u32,
+    rec: &mut R,
+    counts: &mut RayCounts,
     mut on_sample: impl FnMut(SampleRecord),
 ) -> Rgb {
-    let tracer = Tracer::new(scene);
+    let scene = tracer.scene();
     let spp = scene.settings.spp.max(1);
     let mut sum = Rgb::ZERO;
     for s in 0..spp {
@@ -128,24 +157,66 @@ pub fn trace_pixel(scene: &Scene, x: u32, y: u32) -> Option<RayTree> {
 }
 
 /// Render the whole image in parallel (rows over rayon's pool). `progress` is called with the
-/// number of rows finished so far, from worker threads.
+/// number of rows finished so far, from worker threads. Non-finite pixels are written black and
+/// counted; [`RenderStats::first_nonfinite`] names the first so its tree can be inspected.
 pub fn render(scene: &Scene, progress: &(dyn Fn(u32) + Sync)) -> (Image, RenderStats) {
+    render_with(&Tracer::new(scene), progress)
+}
+
+/// [`render`] with a prepared tracer (and so a chosen effect plan).
+pub fn render_with(tracer: &Tracer, progress: &(dyn Fn(u32) + Sync)) -> (Image, RenderStats) {
+    let (image, stats, _) = render_recorded::<NoopRecorder>(tracer, progress);
+    (image, stats)
+}
+
+/// [`render`] with the self-hit and leak diagnostics on: the same image, plus the counts in
+/// [`RenderStats`] and per pixel. Costs extra intersections per spawned ray.
+pub fn render_diagnosed(
+    scene: &Scene,
+    progress: &(dyn Fn(u32) + Sync),
+) -> (Image, RenderStats, DiagnosticMap) {
+    render_recorded::<DiagnosticRecorder>(&Tracer::new(scene), progress)
+}
+
+type Row = (Vec<Rgb>, Vec<(u32, u32)>, RayCounts);
+
+fn render_recorded<R: Recorder + Default>(
+    tracer: &Tracer,
+    progress: &(dyn Fn(u32) + Sync),
+) -> (Image, RenderStats, DiagnosticMap) {
+    let scene = tracer.scene();
     let (w, h) = (scene.camera.width, scene.camera.height);
     let done = std::sync::atomic::AtomicU32::new(0);
-    let rows: Vec<(Vec<Rgb>, RayCounts)> = (0..h)
+    let rows: Vec<Row> = (0..h)
         .into_par_iter()
         .map(|y| {
             let mut counts = RayCounts::default();
+            let mut diag = Vec::new();
+            let mut rec = R::default();
             let row = (0..w)
-                .map(|x| render_pixel(scene, x, y, &mut NoopRecorder, &mut counts, |_| {}))
+                .map(|x| {
+                    let before = counts;
+                    let l = render_pixel_with(tracer, x, y, &mut rec, &mut counts, |_| {});
+                    if R::DIAGNOSE {
+                        let self_hits = counts.self_hits - before.self_hits;
+                        let leaks = counts.leaks - before.leaks;
+                        diag.push((self_hits as u32, leaks as u32));
+                    }
+                    l
+                })
                 .collect();
             progress(done.fetch_add(1, std::sync::atomic::Ordering::Relaxed) + 1);
-            (row, counts)
+            (row, diag, counts)
         })
         .collect();
     let mut stats = RenderStats::default();
     let mut pixels = Vec::with_capacity((w * h) as usize);
-    for (y, (row, counts)) in rows.into_iter().enumerate() {
+    let mut map = DiagnosticMap {
+        width: w,
+        height: h,
+        ..DiagnosticMap::default()
+    };
+    for (y, (row, diag, counts)) in rows.into_iter().enumerate() {
         stats.rays += counts;
         for (x, p) in row.into_iter().enumerate() {
             if p.is_finite() {
@@ -156,13 +227,19 @@ pub fn render(scene: &Scene, progress: &(dyn Fn(u32) + Sync)) -> (Image, RenderS
                 pixels.push(Rgb::ZERO);
             }
         }
+        for (s, l) in diag {
+            stats.self_hit_pixels += u64::from(s > 0);
+            stats.leak_pixels += u64::from(l > 0);
+            map.self_hits.push(s);
+            map.leaks.push(l);
+        }
     }
     let image = Image {
         width: w,
         height: h,
         pixels,
     };
-    (image, stats)
+    (image, stats, map)
 }
 
 #[cfg(test)]

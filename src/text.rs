@@ -46,9 +46,32 @@ pub fn end_text(e: EndReason) -> &'static str {
     }
 }
 
+/// The diagnostics of a node, as a suffix: `  SELF-HIT` and `  LEAK skipped <name> at <d>`.
+#[must_use]
+pub fn diagnostic_text(n: &RayNode) -> String {
+    let mut s = String::new();
+    if n.self_hit {
+        s.push_str("  SELF-HIT (re-hit the surface it left)");
+    }
+    if let Some(l) = &n.leak {
+        let _ = write!(
+            s,
+            "  LEAK (offset skipped {} at {:.3e})",
+            l.object_name, l.distance
+        );
+    }
+    s
+}
+
 /// One line describing a node (without indentation).
 #[must_use]
 pub fn node_line(n: &RayNode) -> String {
+    let mut s = node_summary(n);
+    s.push_str(&diagnostic_text(n));
+    s
+}
+
+fn node_summary(n: &RayNode) -> String {
     let mut s = format!("{} #{}", n.kind.name(), n.id.0);
     if n.kind == RayKind::Shadow {
         if let Some(sh) = &n.shadow {

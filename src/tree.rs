@@ -159,6 +159,17 @@ pub struct Blocker {
     pub factor: Rgb,
 }
 
+/// A surface the spawn offset skipped (see `trace::diagnose`).
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct Leak {
+    /// Object index.
+    pub object: usize,
+    /// Object name.
+    pub object_name: String,
+    /// Distance of the skipped crossing from the spawn point.
+    pub distance: f64,
+}
+
 /// Shadow-ray details.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 pub struct ShadowInfo {
@@ -230,6 +241,13 @@ pub struct RayNode {
     /// Acceleration-structure work for this ray's intersection query.
     #[serde(default)]
     pub traversal: TraversalCost,
+    /// The ray's first hit is the surface it was spawned from, a self-intersection (set only
+    /// when diagnostics ran; always for recorded trees).
+    #[serde(default)]
+    pub self_hit: bool,
+    /// The spawn offset skipped this surface, which a zero offset would have met.
+    #[serde(default)]
+    pub leak: Option<Leak>,
 }
 
 impl RayNode {
@@ -266,6 +284,8 @@ impl RayNode {
             end: EndReason::Pending,
             shadow: None,
             traversal: TraversalCost::default(),
+            self_hit: false,
+            leak: None,
         }
     }
 

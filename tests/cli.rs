@@ -240,3 +240,78 @@ fn bad_arguments_and_outputs_exit_2_without_files() {
     fails(&raytree(&["render", "--bogus"], d));
     assert_eq!(std::fs::read_dir(d).unwrap().count(), 1, "no output files");
 }
+
+#[test]
+fn effects_cost_and_compare() {
+    let dir = tempfile::tempdir().unwrap();
+    let d = dir.path();
+    let o = raytree(&["effects", &fixture("mirrors.json")], d);
+    let text = String::from_utf8_lossy(&o.stdout);
+    assert!(
+        text.contains("[off] refraction (Snell)") && text.contains("[on ] reflection"),
+        "{text}"
+    );
+    let o = raytree(
+        &[
+            "cost",
+            "--quick",
+            "--size",
+            "16x9",
+            "--repeats",
+            "1",
+            "-o",
+            "rep",
+        ],
+        d,
+    );
+    assert!(o.status.success(), "{}", stderr(&o));
+    let csv = std::fs::read_to_string(d.join("rep/cost.csv")).unwrap();
+    assert_eq!(csv.lines().count(), 1 + 4 + 3 + 2 + 2 + 2, "{csv}");
+    assert!(
+        csv.lines().any(|l| l.ends_with(",true")),
+        "a Pareto front exists"
+    );
+    let json: serde_json::Value =
+        serde_json::from_slice(&std::fs::read(d.join("rep/cost.json")).unwrap()).unwrap();
+    assert_eq!(json["reference"]["max_depth"], 32);
+    assert!(image::open(d.join("rep/cost.png")).is_ok());
+    // An image compared with itself has zero error; different images do not.
+    for args in [
+        ["render", "-o", "a.png", "--size", "32x18"],
+        ["render", "-o", "b.png", "--size", "32x18"],
+    ] {
+        assert!(raytree(&args, d).status.success());
+    }
+    assert!(
+        raytree(
+            &[
+                "render",
+                "-o",
+                "c.png",
+                "--size",
+                "32x18",
+                "--max-depth",
+                "0"
+            ],
+            d
+        )
+        .status
+        .success()
+    );
+    let o = raytree(&["compare", "a.png", "b.png", "-o", "map.png"], d);
+    assert!(o.status.success(), "{}", stderr(&o));
+    assert!(String::from_utf8_lossy(&o.stdout).contains("RMSE 0.000000e0  max error 0.000000"));
+    let o = raytree(&["compare", "a.png", "c.png"], d);
+    assert!(!String::from_utf8_lossy(&o.stdout).contains("RMSE 0.000000e0"));
+    assert!(
+        raytree(&["render", "-o", "small.png", "--size", "8x8"], d)
+            .status
+            .success()
+    );
+    let err = fails(&raytree(
+        &["compare", "a.png", "small.png", "-o", "map2.png"],
+        d,
+    ));
+    assert!(err.contains("sizes differ"), "{err}");
+    assert!(!d.join("map2.png").exists());
+}

@@ -294,3 +294,84 @@ fn shared_meshes_load_when_present() {
         );
     }
 }
+
+/// What the merge with main's numerics, effects and diagram work must keep for meshes: the
+/// watertight test on shared vertices, robust offsets and self-hit diagnostics per triangle,
+/// translucent shadows through mesh chords (tree = render), moved scenes, and diagram slices.
+#[test]
+fn meshes_get_watertight_hits_robust_offsets_diagnostics_and_diagram_slices() {
+    use raytree::diagram::model::SliceShape;
+    use raytree::diagram::{Diagram, DiagramOptions};
+    use raytree::scene::{OffsetStrategy, ShadowMode, transformed};
+
+    // Watertight: a ray from the centre through every vertex (shared by 5-6 triangles) hits.
+    let obj = ico_obj(2, 0.0, 0);
+    let objects = r#"{"type": "mesh", "file": "ico", "translate": [0, 0.4, 0], "material": "glass", "name": "ico"}"#;
+    let mut scene = with_obj(&scene_json(objects, 32, 24), &obj);
+    let centre = DVec3::new(0.0, 0.4, 0.0);
+    for p in &icosphere(2).positions {
+        let ray = Ray::new(centre, p.normalize(), 0.0);
+        let hit = scene.intersect(&ray, f64::INFINITY);
+        assert!(
+            hit.is_some_and(|h| h.object == 1),
+            "ray through vertex {p} escaped"
+        );
+    }
+
+    // Offsets: no offset at all re-hits the triangle left; the robust offset never does.
+    scene.settings.offset.strategy = OffsetStrategy::Normal;
+    scene.settings.offset.epsilon = 0.0;
+    let (_, stats, _) = raytree::render_diagnosed(&scene, &|_| {});
+    assert!(stats.self_hit_pixels > 0, "{stats:?}");
+    scene.settings.offset.strategy = OffsetStrategy::Robust;
+    let (image, stats, _) = raytree::render_diagnosed(&scene, &|_| {});
+    assert_eq!(stats.self_hit_pixels, 0, "{stats:?}");
+    assert!(stats.rays.refracted > 100, "{stats:?}");
+
+    // Translucent shadows through the mesh: every tree equals the render, with mesh blockers.
+    scene.settings.shadows = ShadowMode::Translucent;
+    let (translucent, _) = render(&scene, &|_| {});
+    assert_ne!(translucent.pixels, image.pixels);
+    let mut mesh_blockers = 0;
+    for y in 0..24 {
+        for x in 0..32 {
+            let tree = trace_pixel(&scene, x, y).unwrap();
+            assert_eq!(tree.radiance, translucent.get(x, y), "pixel {x},{y}");
+            assert!(tree_violations(&tree, scene.background).is_empty());
+            mesh_blockers += tree
+                .nodes
+                .iter()
+                .filter_map(|n| n.shadow.as_ref())
+                .flat_map(|s| &s.blockers)
+                .filter(|b| b.object == 1 && b.chord > 0.0)
+                .count();
+        }
+    }
+    assert!(mesh_blockers > 0);
+
+    // A moved scene moves its mesh (and rebuilds its BVH): the same image.
+    let moved = transformed(&scene, 4.0, DVec3::new(8.0, 0.0, -16.0));
+    let (b, _) = render(&moved, &|_| {});
+    let worst = translucent
+        .pixels
+        .iter()
+        .zip(&b.pixels)
+        .map(|(x, y)| (*x - *y).abs().max_element())
+        .fold(0.0, f64::max);
+    assert!(worst < 1e-6, "worst pixel difference {worst}");
+
+    // The diagram cuts the mesh into segments (a closed polygon's worth around the sphere).
+    let tree = trace_pixel(&scene, 16, 12).unwrap();
+    let d = Diagram::build(&scene, &tree, &DiagramOptions::default()).unwrap();
+    let ico = d
+        .objects
+        .iter()
+        .find(|o| o.name == "ico")
+        .expect("ico sliced");
+    let SliceShape::Segments(s) = &ico.shape else {
+        panic!("mesh slice is {:?}", ico.shape);
+    };
+    assert!(s.len() >= 12, "{}", s.len());
+    let svg = raytree::diagram::to_svg(&d, &raytree::diagram::Style::default());
+    assert!(svg.contains("<svg"));
+}

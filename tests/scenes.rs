@@ -218,3 +218,59 @@ fn slab_displaces_but_keeps_direction() {
         "Snell"
     );
 }
+
+#[test]
+fn switching_off_unused_effects_is_bit_identical() {
+    use raytree::effects::EffectPlan;
+    use raytree::{Tracer, render_with};
+    let mut scenes = fixtures();
+    // A diffuse-and-mirror scene in translucent mode: translucent shadows are planned off.
+    let mut m = scenes.iter().find(|f| f.0 == "mirrors").unwrap().1.clone();
+    m.settings.shadows = raytree::scene::ShadowMode::Translucent;
+    scenes.push(("mirrors-translucent".into(), m));
+    for (name, scene) in scenes {
+        let scene = small(scene, 48, 27, 1);
+        let planned = EffectPlan::for_scene(&scene);
+        let all = EffectPlan::everything(&scene);
+        let a = render_with(&Tracer::with_plan(&scene, planned), &|_| {}).0;
+        let b = render_with(&Tracer::with_plan(&scene, all), &|_| {}).0;
+        assert!(
+            a == b,
+            "{name}: planned render differs from everything-on ({planned:?})"
+        );
+    }
+}
+
+#[test]
+fn effect_plan_of_each_fixture() {
+    use raytree::effects::EffectPlan;
+    // (fixture, reflection, refraction, tir, absorption, translucent shadows)
+    let expect = [
+        ("absorption", true, true, true, true, true),
+        ("classic", true, true, true, false, false),
+        ("mirrors", true, false, false, false, false),
+        ("nested", true, true, true, true, true),
+        ("slab", true, true, true, false, true),
+        ("tir-block", true, true, true, false, true),
+        ("translucent-shadow", true, true, true, true, true),
+        ("water-grazing", true, true, true, true, true),
+    ];
+    let all = fixtures();
+    for (name, refl, refr, tir, abs, trans) in expect {
+        let s = &all.iter().find(|f| f.0 == name).unwrap().1;
+        let p = EffectPlan::for_scene(s);
+        assert_eq!(
+            (
+                p.reflection,
+                p.refraction,
+                p.tir,
+                p.absorption,
+                p.translucent_shadows
+            ),
+            (refl, refr, tir, abs, trans),
+            "{name}"
+        );
+        assert_eq!(p.fresnel, refr, "{name}");
+        assert!(p.light_on(0), "{name}");
+    }
+}

@@ -19,6 +19,19 @@ pub enum Command {
     Render(RenderArgs),
     /// Print the full ray tree of one pixel.
     Trace(TraceArgs),
+    /// Sweep offset strategies x epsilons x scene scales; count self-hit (acne) and leak pixels.
+    Acne(AcneArgs),
+    /// Print which effects the scene calls for, and why.
+    Effects(EffectsArgs),
+    /// Measure what accuracy costs in time: a settings sweep against a reference.
+    Cost(CostArgs),
+    /// Compare two images (PNG or EXR): error metrics and a false-colour error map.
+    Compare(CompareArgs),
+
+    /// Open the inspector window: click a pixel, see its ray tree.
+    View(ViewArgs),
+    /// Draw a cross-section diagram of one pixel's ray tree (SVG or PNG).
+    Diagram(DiagramArgs),
 }
 
 /// Settings every tracing command can override (defaults come from the scene file).
@@ -36,8 +49,9 @@ pub struct Overrides {
     /// Offset epsilon in world units.
     #[arg(long)]
     pub epsilon: Option<f64>,
-    /// Offset strategy: normal (P +/- eps N) or ray (t_min = eps).
-    #[arg(long, value_name = "normal|ray")]
+    /// Offset strategy: normal (P +/- eps N), ray (t_min = eps), scaled (eps relative to |P|)
+    /// or robust (floating-point error bounds, ignores --epsilon).
+    #[arg(long, value_name = "normal|ray|scaled|robust")]
     pub offset: Option<String>,
     /// Fresnel model.
     #[arg(long, value_name = "exact|schlick|none")]
@@ -58,6 +72,9 @@ pub struct RenderArgs {
     /// Output image: .png or .exr.
     #[arg(short, long, default_value = "render.png")]
     pub output: PathBuf,
+    /// Also count self-hit and leaking rays (extra intersections per ray).
+    #[arg(long)]
+    pub diagnose: bool,
     /// Settings overrides.
     #[command(flatten)]
     pub overrides: Overrides,
@@ -74,6 +91,128 @@ pub struct TraceArgs {
     /// Print JSON (schema raytree.tree/1) instead of text.
     #[arg(long)]
     pub json: bool,
+    /// Settings overrides.
+    #[command(flatten)]
+    pub overrides: Overrides,
+}
+
+/// `raytree acne`.
+#[derive(Debug, Args)]
+pub struct AcneArgs {
+    /// Scene JSON (default: the built-in classic scene).
+    pub scene: Option<PathBuf>,
+    /// Offset strategies, comma-separated.
+    #[arg(long, default_value = "normal,ray,scaled,robust")]
+    pub strategies: String,
+    /// Epsilons, comma-separated.
+    #[arg(long, default_value = "1e-7,1e-6,1e-5,1e-4,1e-3,1e-2,1e-1")]
+    pub epsilons: String,
+    /// Scene scales, comma-separated (the scene is scaled about the origin, then moved away).
+    #[arg(long, default_value = "1e-3,1e-2,1e-1,1,1e1,1e2,1e3,1e4,1e5,1e6")]
+    pub scales: String,
+    /// How far the scaled scene is moved from the origin, per unit scale and axis.
+    #[arg(long, default_value_t = 1e3)]
+    pub shift: f64,
+    /// Size of each render, WIDTHxHEIGHT.
+    #[arg(long, value_name = "WxH", default_value = "48x36")]
+    pub size: String,
+    /// Output directory (report.md, report.json, heat maps, plot.png); replaced if it holds an
+    /// earlier report.
+    #[arg(short, long, default_value = "acne-report")]
+    pub output: PathBuf,
+}
+
+/// `raytree effects`.
+#[derive(Debug, Args)]
+pub struct EffectsArgs {
+    /// Scene JSON (default: the built-in classic scene).
+    pub scene: Option<PathBuf>,
+    /// Settings overrides.
+    #[command(flatten)]
+    pub overrides: Overrides,
+}
+
+/// `raytree view`.
+#[derive(Debug, Args)]
+pub struct ViewArgs {
+    /// Scene JSON (default: the built-in classic scene); reloaded when it changes on disk.
+    pub scene: Option<PathBuf>,
+    /// Select pixel X,Y at start.
+    #[arg(long, value_name = "X,Y")]
+    pub pixel: Option<String>,
+    /// Settings overrides.
+    #[command(flatten)]
+    pub overrides: Overrides,
+}
+
+/// `raytree cost`.
+#[derive(Debug, Args)]
+pub struct CostArgs {
+    /// Scene JSON (default: the built-in classic scene).
+    pub scene: Option<PathBuf>,
+    /// Report directory (cost.md, cost.csv, cost.json, cost.png).
+    #[arg(short, long, default_value = "cost-report")]
+    pub output: PathBuf,
+    /// A small sweep at 160x90 (default size 320x180).
+    #[arg(long)]
+    pub quick: bool,
+    /// Timed repeats per setting (median reported); default 5, quick 3.
+    #[arg(long)]
+    pub repeats: Option<u32>,
+    /// Settings overrides (the base of the sweep).
+    #[command(flatten)]
+    pub overrides: Overrides,
+}
+
+/// `raytree compare`.
+#[derive(Debug, Args)]
+pub struct CompareArgs {
+    /// First image (.png or .exr).
+    pub a: PathBuf,
+    /// Second image (.png or .exr).
+    pub b: PathBuf,
+    /// Write a false-colour error map here (.png).
+    #[arg(short = 'o', long = "output")]
+    pub map: Option<PathBuf>,
+    /// Error shown as full white in the map (default: the largest error).
+    #[arg(long)]
+    pub scale: Option<f64>,
+}
+
+/// `raytree diagram`. Here `--size` is the figure's size (the scene's image size is kept, so
+/// `--pixel` means the same pixel as in `render`); `--max-depth` is the tracer's limit.
+#[derive(Debug, Args)]
+#[command(mut_arg("size", |a| a.help("Figure size WIDTHxHEIGHT in pixels [default: 1280x720]")))]
+pub struct DiagramArgs {
+    /// Scene JSON (default: the built-in classic scene).
+    pub scene: Option<PathBuf>,
+    /// Pixel X,Y (0,0 is top-left).
+    #[arg(long, value_name = "X,Y")]
+    pub pixel: String,
+    /// Output figure: .svg or .png.
+    #[arg(short, long, default_value = "diagram.svg")]
+    pub output: PathBuf,
+    /// Slicing plane: incidence (default), camera, x=V, y=V, z=V or PX,PY,PZ,NX,NY,NZ.
+    #[arg(long, default_value = "incidence", allow_hyphen_values = true)]
+    pub plane: String,
+    /// Colour theme.
+    #[arg(long, value_name = "light|dark", default_value = "light")]
+    pub theme: String,
+    /// Draw rays up to this depth only (the tracer's own limit is --max-depth).
+    #[arg(long, value_name = "N")]
+    pub draw_depth: Option<u32>,
+    /// Ray kinds to draw, comma-separated.
+    #[arg(long, value_name = "camera,reflected,refracted,shadow")]
+    pub kinds: Option<String>,
+    /// Which sample of the pixel to draw (for spp > 1).
+    #[arg(long, value_name = "K", default_value_t = 0)]
+    pub sample: usize,
+    /// Zoomed insets at spawn points showing the offset epsilon to scale.
+    #[arg(long)]
+    pub zoom_offsets: bool,
+    /// Label angles, indices, R/T and Beer factors on depths up to N.
+    #[arg(long, value_name = "N", default_value_t = 2)]
+    pub label_depth: u32,
     /// Settings overrides.
     #[command(flatten)]
     pub overrides: Overrides,

@@ -119,3 +119,47 @@ pub fn encode(image: &Image, format: ImageFormat) -> Result<Vec<u8>> {
     }
     Ok(bytes.into_inner())
 }
+
+/// Encode 8-bit RGB bytes as PNG in memory.
+pub fn encode_rgb8_png(rgb: &[u8], width: u32, height: u32) -> Result<Vec<u8>> {
+    use image::ImageEncoder;
+    let mut bytes = std::io::Cursor::new(Vec::new());
+    image::codecs::png::PngEncoder::new(&mut bytes).write_image(
+        rgb,
+        width,
+        height,
+        image::ExtendedColorType::Rgb8,
+    )?;
+    Ok(bytes.into_inner())
+}
+
+/// Read a PNG (sRGB, decoded to linear) or EXR (linear) into an [`Image`].
+pub fn read_image(path: &Path) -> Result<Image> {
+    let format = image_format(path)
+        .map_err(|_| anyhow::anyhow!("cannot read {}: expected .png or .exr", path.display()))?;
+    let img = image::open(path).with_context(|| format!("cannot read image {}", path.display()))?;
+    let (width, height) = (img.width(), img.height());
+    let pixels = match format {
+        ImageFormat::Exr => img
+            .into_rgb32f()
+            .pixels()
+            .map(|p| {
+                raytree::math::Rgb::new(f64::from(p.0[0]), f64::from(p.0[1]), f64::from(p.0[2]))
+            })
+            .collect(),
+        ImageFormat::Png => img
+            .into_rgb8()
+            .pixels()
+            .map(|p| {
+                raytree::math::Rgb::from_array(
+                    p.0.map(|c| raytree::math::srgb_to_linear(f64::from(c) / 255.0)),
+                )
+            })
+            .collect(),
+    };
+    Ok(Image {
+        width,
+        height,
+        pixels,
+    })
+}

@@ -21,7 +21,13 @@ pub fn run(a: &RenderArgs) -> Result<()> {
     );
     bar.set_message(format!("rendering {} {w}x{h}", loaded.label));
     let start = Instant::now();
-    let (image, stats) = raytree::render(scene, &|rows| bar.set_position(u64::from(rows)));
+    let progress = |rows| bar.set_position(u64::from(rows));
+    let (image, stats) = if a.diagnose {
+        let (image, stats, _) = raytree::render_diagnosed(scene, &progress);
+        (image, stats)
+    } else {
+        raytree::render(scene, &progress)
+    };
     let secs = start.elapsed().as_secs_f64();
     bar.finish_and_clear();
     pending.commit(&encode(&image, format)?)?;
@@ -41,11 +47,25 @@ pub fn run(a: &RenderArgs) -> Result<()> {
         r.refracted,
         r.shadow
     );
+    if a.diagnose {
+        println!(
+            "diagnostics: {} self-hit rays in {} pixels, {} leaking rays in {} pixels (offset {} {:e})",
+            r.self_hits,
+            stats.self_hit_pixels,
+            r.leaks,
+            stats.leak_pixels,
+            scene.settings.offset.strategy.name(),
+            scene.settings.offset.epsilon
+        );
+    }
     if let Some((x, y)) = stats.first_nonfinite {
         eprintln!(
-            "warning: {} pixels were not finite and were written black; first at {x},{y} (see `raytree trace --pixel {x},{y}`)",
+            "warning: {} pixels were not finite and were written black; first at {x},{y} (`raytree trace --pixel {x},{y}`); its tree:",
             stats.nonfinite_pixels
         );
+        if let Some(tree) = raytree::trace_pixel(scene, x, y) {
+            eprint!("{}", raytree::text::tree_text(&tree));
+        }
     }
     Ok(())
 }

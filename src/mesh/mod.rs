@@ -12,7 +12,7 @@ pub mod obj;
 pub mod shading;
 
 use crate::bvh::{Aabb, BoxRay, Bvh, TraversalCost, Visit};
-use crate::geometry::triangle_t;
+use crate::geometry::{Shape, triangle_t};
 use crate::math::Ray;
 use glam::{DAffine3, DMat3, DVec3};
 use serde::{Deserialize, Serialize};
@@ -162,6 +162,15 @@ impl Mesh {
                 true
             }
         };
+        Some(Self::with_bvh(
+            &tris,
+            any_smooth.then_some(&corners[..]),
+            &source,
+        ))
+    }
+
+    /// Build the BVH over `tris` and store everything in its leaf order.
+    fn with_bvh(tris: &[[DVec3; 3]], corners: Option<&[[DVec3; 3]]>, source: &[u32]) -> Self {
         let boxes: Vec<Aabb> = tris
             .iter()
             .map(|&[a, b, c]| Aabb {
@@ -171,12 +180,25 @@ impl Mesh {
             .collect();
         let bvh = Bvh::build(&boxes);
         let reorder = |v: &[[DVec3; 3]]| bvh.order.iter().map(|&i| v[i as usize]).collect();
-        Some(Self {
-            tris: reorder(&tris),
-            corner_normals: any_smooth.then(|| reorder(&corners)),
+        Self {
+            tris: reorder(tris),
+            corner_normals: corners.map(reorder),
             source: bvh.order.iter().map(|&i| source[i as usize]).collect(),
             bvh,
-        })
+        }
+    }
+
+    /// This mesh under `x -> scale * x + translation` (`scale > 0`, for
+    /// [`crate::scene::transformed`]): the same triangles, normals and face numbers, with the
+    /// BVH rebuilt.
+    #[must_use]
+    pub fn scaled(&self, scale: f64, translation: DVec3) -> Self {
+        let tris: Vec<[DVec3; 3]> = self
+            .tris
+            .iter()
+            .map(|t| t.map(|v| scale * v + translation))
+            .collect();
+        Self::with_bvh(&tris, self.corner_normals.as_deref(), &self.source)
     }
 
     /// Number of triangles kept.
@@ -195,6 +217,15 @@ impl Mesh {
     #[must_use]
     pub fn triangle(&self, i: usize) -> [DVec3; 3] {
         self.tris[i]
+    }
+
+    /// Stored triangle `i` as a stand-alone [`Shape::Triangle`] (outward normal).
+    #[must_use]
+    pub fn triangle_shape(&self, i: usize) -> Shape {
+        Shape::Triangle {
+            vertices: self.tris[i],
+            normal: self.geometric_normal(i),
+        }
     }
 
     /// The face index in the input data of stored triangle `i`.

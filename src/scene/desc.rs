@@ -271,6 +271,39 @@ pub enum OffsetStrategy {
     Normal,
     /// Start at `P` and accept hits only beyond `t = eps`.
     Ray,
+    /// `P +/- eps' N` with `eps' = eps * max(1, max_i |P_i|)`: relative to the magnitude of the
+    /// hit point's coordinates, whose rounding error grows with them.
+    Scaled,
+    /// No tuning constant: pbrt-v4's conservative error bounds (`OffsetRayOrigin`, Pharr, Jakob,
+    /// Humphreys, *Physically Based Rendering*, 4th ed., section 6.8.6); `epsilon` is ignored.
+    Robust,
+}
+
+impl OffsetStrategy {
+    /// Every strategy, in documentation order.
+    pub const ALL: [OffsetStrategy; 4] = [
+        OffsetStrategy::Normal,
+        OffsetStrategy::Ray,
+        OffsetStrategy::Scaled,
+        OffsetStrategy::Robust,
+    ];
+
+    /// The name used in JSON and on the command line.
+    #[must_use]
+    pub fn name(self) -> &'static str {
+        match self {
+            OffsetStrategy::Normal => "normal",
+            OffsetStrategy::Ray => "ray",
+            OffsetStrategy::Scaled => "scaled",
+            OffsetStrategy::Robust => "robust",
+        }
+    }
+
+    /// Whether the strategy uses `epsilon` at all.
+    #[must_use]
+    pub fn uses_epsilon(self) -> bool {
+        self != OffsetStrategy::Robust
+    }
 }
 
 /// Offset strategy and its epsilon.

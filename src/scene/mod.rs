@@ -4,6 +4,7 @@ mod accel;
 pub mod desc;
 mod locate;
 mod mesh_object;
+mod transform;
 mod validate;
 
 use crate::bvh::TraversalCost;
@@ -11,10 +12,12 @@ use crate::geometry::Shape;
 use crate::math::{Ray, Rgb};
 use crate::mesh::MeshData;
 use glam::DVec3;
+use std::borrow::Cow;
 
 pub use accel::{Accel, traversal_cost_image};
 pub use desc::{OffsetDesc, OffsetStrategy, SceneDesc, Settings, ShadowMode};
 pub use locate::locate;
+pub use transform::transformed;
 pub use validate::{SceneError, check_settings};
 
 /// The built-in default scene: the lecture's classic (mirror ball, glass ball, checkered floor,
@@ -290,6 +293,16 @@ impl Scene {
         match (&self.objects[hit.object].shape, hit.triangle) {
             (Shape::Mesh(m), Some(t)) => Some(m.source_triangle(t as usize)),
             _ => None,
+        }
+    }
+
+    /// The surface a ray leaves from object `object`: the object's shape, or for a mesh hit
+    /// on stored `triangle` that triangle alone (what the robust offset bounds its error by).
+    #[must_use]
+    pub fn surface_shape(&self, object: usize, triangle: Option<u32>) -> Cow<'_, Shape> {
+        match (&self.objects[object].shape, triangle) {
+            (Shape::Mesh(m), Some(t)) => Cow::Owned(m.triangle_shape(t as usize)),
+            (shape, _) => Cow::Borrowed(shape),
         }
     }
 

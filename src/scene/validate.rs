@@ -107,16 +107,35 @@ fn bare_message(e: &serde_json::Error) -> String {
     }
 }
 
+/// serde reports a missing field at the path of the object that lacks it (empty for the
+/// document); name the field itself, so that every rejection has a path (`camera`,
+/// `objects[0].radius`).
+fn with_missing_field(path: String, message: &str) -> String {
+    let Some(field) = message
+        .strip_prefix("missing field `")
+        .and_then(|r| r.split('`').next())
+    else {
+        return path;
+    };
+    if path.is_empty() {
+        field.to_string()
+    } else {
+        format!("{path}.{field}")
+    }
+}
+
 pub(super) fn from_json(src: &str, load_mesh: MeshLoader) -> Result<Scene, SceneError> {
     let mut de = serde_json::Deserializer::from_str(src);
     let desc: SceneDesc = serde_path_to_error::deserialize(&mut de).map_err(|e| {
         let path = e.path().to_string();
         let inner = e.inner();
+        let message = bare_message(inner);
+        let path = if path == "." { String::new() } else { path };
         SceneError {
-            path: if path == "." { String::new() } else { path },
+            path: with_missing_field(path, &message),
             line: Some(inner.line()),
             column: Some(inner.column()),
-            message: bare_message(inner),
+            message,
         }
     })?;
     de.end().map_err(|e| SceneError {

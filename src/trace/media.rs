@@ -2,7 +2,7 @@
 //! (a glass ball inside water refracts with 1.5 / 1.333, not 1.5 / 1).
 
 /// Deepest nesting tracked; deeper entries are dropped (outermost first).
-const CAPACITY: usize = 8;
+const CAPACITY: usize = 6;
 
 /// One medium: the object and its effective index of refraction.
 #[derive(Clone, Copy, Debug, PartialEq)]

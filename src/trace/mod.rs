@@ -1,14 +1,17 @@
 //! The Whitted tracer, exactly as the lecture's `trace(ray, objects, lights)` recursion, with a
 //! [`Recorder`] hook that sees every ray.
 
+pub mod diagnose;
 mod media;
+pub mod offset;
 mod recorder;
 mod shadow;
 
 pub use media::{MediaStack, Medium};
-pub use recorder::{NoopRecorder, Recorder, TreeRecorder};
+pub use recorder::{DiagnosticRecorder, NoopRecorder, Recorder, TreeRecorder};
 
 use crate::bvh::TraversalCost;
+use crate::effects::EffectPlan;
 use crate::math::{self, Fresnel, Ray, Rgb, beer, reflect, refract};
 use crate::mesh::shading;
 use crate::scene::{Hit, Material, OffsetStrategy, Scene};
@@ -28,6 +31,10 @@ pub struct RayCounts {
     pub refracted: u64,
     /// Shadow rays actually cast.
     pub shadow: u64,
+    /// Spawned rays that re-hit the surface they left (counted only by diagnosing recorders).
+    pub self_hits: u64,
+    /// Spawned rays whose offset skipped a surface (counted only by diagnosing recorders).
+    pub leaks: u64,
 }
 
 impl RayCounts {
@@ -53,6 +60,8 @@ impl std::ops::AddAssign for RayCounts {
         self.reflected += o.reflected;
         self.refracted += o.refracted;
         self.shadow += o.shadow;
+        self.self_hits += o.self_hits;
+        self.leaks += o.leaks;
     }
 }
 
@@ -62,28 +71,59 @@ struct Spawn {
     kind: RayKind,
     parent: Option<NodeId>,
     point: DVec3,
+    /// The object the ray leaves (`None` for camera rays).
+    object: Option<usize>,
+    /// For meshes: the stored triangle the ray leaves.
+    triangle: Option<u32>,
     weight: Rgb,
+}
+
+/// What the secondary rays of one hit add up to.
+struct Secondary {
+    total: Rgb,
+    end: EndReason,
+    truncated: Rgb,
 }
 
 /// State carried down one path of the tree.
 #[derive(Clone, Copy, Debug)]
-struct PathState {
+struct PathState<'m> {
     depth: u32,
     throughput: Rgb,
-    media: MediaStack,
+    /// By reference: most rays do not change media, so nothing is copied for them.
+    media: &'m MediaStack,
 }
 
-/// Traces rays through one scene. Cheap to create; holds only a reference.
+/// Traces rays through one scene, running only the effects of its [`EffectPlan`].
 #[derive(Clone, Copy, Debug)]
 pub struct Tracer<'a> {
     scene: &'a Scene,
+    plan: EffectPlan,
 }
 
 impl<'a> Tracer<'a> {
-    /// A tracer over `scene` with its settings.
+    /// A tracer over `scene` with its settings and the effects the scene calls for.
     #[must_use]
     pub fn new(scene: &'a Scene) -> Self {
-        Self { scene }
+        Self::with_plan(scene, EffectPlan::for_scene(scene))
+    }
+
+    /// A tracer with an explicit plan (e.g. [`EffectPlan::everything`] for comparisons).
+    #[must_use]
+    pub fn with_plan(scene: &'a Scene, plan: EffectPlan) -> Self {
+        Self { scene, plan }
+    }
+
+    /// The scene.
+    #[must_use]
+    pub fn scene(&self) -> &'a Scene {
+        self.scene
+    }
+
+    /// The effects this tracer runs.
+    #[must_use]
+    pub fn plan(&self) -> &EffectPlan {
+        &self.plan
     }
 
     /// Radiance along a camera ray, recording into `rec` and counting into `counts`.
@@ -97,23 +137,50 @@ impl<'a> Tracer<'a> {
             kind: RayKind::Camera,
             parent: None,
             point: ray.origin,
+            object: None,
+            triangle: None,
             weight: Rgb::ONE,
         };
         let state = PathState {
             depth: 0,
             throughput: Rgb::ONE,
-            media: MediaStack::default(),
+            media: &MediaStack::default(),
         };
         self.trace_ray(ray, spawn, state, rec, counts)
     }
 
-    /// Offset a spawn point by the configured strategy: the lecture's `P +/- eps N` or `t_min = eps`.
-    fn spawn_ray(&self, point: DVec3, side: DVec3, direction: DVec3) -> Ray {
-        let eps = self.scene.settings.offset.epsilon;
-        match self.scene.settings.offset.strategy {
-            OffsetStrategy::Normal => Ray::new(point + eps * side, direction, 0.0),
-            OffsetStrategy::Ray => Ray::new(point, direction, eps),
-        }
+    /// Offset a spawn point on `object` (for meshes: on stored `triangle`) by the configured
+    /// strategy ([`offset::spawn`]).
+    fn spawn_ray(
+        &self,
+        (object, triangle): (usize, Option<u32>),
+        point: DVec3,
+        side: DVec3,
+        direction: DVec3,
+    ) -> Ray {
+        let shape = self.scene.surface_shape(object, triangle);
+        offset::spawn(self.scene.settings.offset, &shape, point, side, direction)
+    }
+
+    /// Run the diagnostics for a spawned ray, count and record them.
+    #[allow(clippy::too_many_arguments)]
+    fn diagnose<R: Recorder>(
+        &self,
+        ray: &Ray,
+        point: DVec3,
+        from: (usize, Option<u32>),
+        hit: Option<Hit>,
+        id: Option<NodeId>,
+        rec: &mut R,
+        counts: &mut RayCounts,
+    ) {
+        let d = diagnose::diagnose(self.scene, ray, point, from, hit);
+        counts.self_hits += u64::from(d.self_hit);
+        counts.leaks += u64::from(d.leak.is_some());
+        rec.update(id, |n| {
+            n.self_hit = d.self_hit;
+            n.leak = d.leak;
+        });
     }
 
     fn trace_ray<R: Recorder>(
@@ -141,13 +208,24 @@ impl<'a> Tracer<'a> {
         let mut cost = TraversalCost::default();
         let hit = self.scene.intersect_counted(&ray, f64::INFINITY, &mut cost);
         rec.update(id, |n| n.traversal = cost);
-        // Path length from the true spawn point, so the offset does not bias Beer's law.
-        let distance = hit.map_or(f64::INFINITY, |h| (ray.at(h.t) - spawn.point).length());
+        if R::DIAGNOSE
+            && let Some(object) = spawn.object
+        {
+            let from = (object, spawn.triangle);
+            self.diagnose(&ray, spawn.point, from, hit, id, rec, counts);
+        }
         // Beer's law on this segment, inside the innermost absorbing medium.
-        let medium = state.media.top().map(|m| m.object as usize);
+        let medium = state
+            .media
+            .top()
+            .filter(|_| self.plan.absorption)
+            .map(|m| m.object as usize);
         let absorption = medium.map_or(Rgb::ZERO, |o| self.scene.material_of(o).absorption);
-        let atten = beer(absorption, distance);
+        let mut atten = Rgb::ONE;
         if absorption != Rgb::ZERO {
+            // Path length from the true spawn point, so the offset does not bias Beer's law.
+            let distance = hit.map_or(f64::INFINITY, |h| (ray.at(h.t) - spawn.point).length());
+            atten = beer(absorption, distance);
             rec.update(id, |n| {
                 n.attenuation = Some(Attenuation {
                     medium: medium.unwrap_or(0),
@@ -194,9 +272,9 @@ impl<'a> Tracer<'a> {
         // Shading normal on the incident side: lighting, mirror and Snell (mesh::shading rule).
         let smooth = scene.shading_normal(hit, p);
         let mut ns = smooth.map_or(n, |s| shading::shading_normal(d, n, s, entering));
-        if ns != n && m.is_transmissive() {
+        if ns != n && self.plan.refraction && m.is_transmissive() {
             let cos = (-d.dot(ns)).clamp(0.0, 1.0);
-            let (_, t) = self.interface(d, ns, cos, hit.object, m, entering, state.media);
+            let (_, t) = self.interface(d, ns, cos, hit.object, m, entering, *state.media);
             if t.is_some_and(|t| !shading::refraction_consistent(n, t)) {
                 ns = n;
             }
@@ -221,8 +299,21 @@ impl<'a> Tracer<'a> {
         let ambient = scene.ambient * albedo;
         let mut local = emitted + ambient;
         if !m.diffuse.is_black() || m.specular != Rgb::ZERO {
-            for light in 0..scene.lights.len() {
-                local += self.direct(light, p, n, ns, -d, albedo, m, id, state.depth, rec, counts);
+            for light in (0..scene.lights.len()).filter(|i| self.plan.light_on(*i)) {
+                let at = ((hit.object, hit.triangle), p);
+                let normals = (n, ns);
+                local += self.direct(
+                    light,
+                    at,
+                    normals,
+                    -d,
+                    albedo,
+                    m,
+                    id,
+                    state.depth,
+                    rec,
+                    counts,
+                );
             }
         }
         rec.update(id, |node| {
@@ -230,15 +321,12 @@ impl<'a> Tracer<'a> {
             node.ambient = ambient;
             node.local = local;
         });
-        let mut total = local;
-        let mut end = EndReason::Surface;
-        let mut truncated = Rgb::ZERO;
 
         // Dielectric split (only where the material transmits).
         let mut reflect_w = m.reflectivity;
         let mut refraction = None;
-        if m.is_transmissive() {
-            let (event, dir) = self.interface(d, ns, cos_i, hit.object, m, entering, state.media);
+        if self.plan.refraction && m.is_transmissive() {
+            let (event, dir) = self.interface(d, ns, cos_i, hit.object, m, entering, *state.media);
             let f = event.fresnel;
             reflect_w += m.transmissivity * f.r;
             if let Some(dir) = dir {
@@ -246,70 +334,115 @@ impl<'a> Tracer<'a> {
             }
             rec.update(id, |node| node.interface = Some(event));
         }
-        let children = [
-            (
-                RayKind::Reflected,
+        let at = Spawn {
+            kind: RayKind::Reflected,
+            parent: id,
+            point: p,
+            object: Some(hit.object),
+            triangle: hit.triangle,
+            weight: Rgb::ZERO,
+        };
+        let mut acc = Secondary {
+            total: local,
+            end: EndReason::Surface,
+            truncated: Rgb::ZERO,
+        };
+        if reflect_w.max_element() > 0.0 {
+            let spawn = Spawn {
+                weight: reflect_w,
+                ..at
+            };
+            self.secondary(
+                &mut acc,
+                spawn,
                 reflect(d, ns),
                 n,
-                reflect_w,
+                throughput,
+                state.depth,
                 state.media,
-            ),
-            match refraction {
-                Some((dir, w)) => {
-                    let media = if entering {
-                        state
-                            .media
-                            .entered(hit.object, m.ior.unwrap_or(state.media.ior()))
-                    } else {
-                        state.media.left(hit.object)
-                    };
-                    (RayKind::Refracted, dir, -n, w, media)
-                }
-                None => (RayKind::Refracted, d, -n, Rgb::ZERO, state.media),
-            },
-        ];
-        for (kind, dir, side, weight, media) in children {
-            if weight.max_element() <= 0.0 {
-                continue;
-            }
-            let child_throughput = throughput * weight;
-            let cut = if state.depth >= scene.settings.max_depth {
-                Some(EndReason::MaxDepth)
-            } else if child_throughput.max_element() < scene.settings.min_weight {
-                Some(EndReason::MinWeight)
-            } else {
-                None
-            };
-            if let Some(reason) = cut {
-                truncated += weight;
-                if end != EndReason::MaxDepth {
-                    end = reason;
-                }
-                continue;
-            }
-            if end == EndReason::Surface {
-                end = EndReason::Continued;
-            }
-            let child_ray = self.spawn_ray(p, side, dir);
-            let spawn = Spawn {
-                kind,
-                parent: id,
-                point: p,
-                weight,
-            };
-            let child_state = PathState {
-                depth: state.depth + 1,
-                throughput: child_throughput,
-                media,
-            };
-            let (l, _) = self.trace_ray(child_ray, spawn, child_state, rec, counts);
-            total += weight * l;
+                rec,
+                counts,
+            );
         }
+        if let Some((dir, weight)) = refraction.filter(|r| r.1.max_element() > 0.0) {
+            let media = if entering {
+                state
+                    .media
+                    .entered(hit.object, m.ior.unwrap_or(state.media.ior()))
+            } else {
+                state.media.left(hit.object)
+            };
+            let spawn = Spawn {
+                kind: RayKind::Refracted,
+                weight,
+                ..at
+            };
+            self.secondary(
+                &mut acc,
+                spawn,
+                dir,
+                -n,
+                throughput,
+                state.depth,
+                &media,
+                rec,
+                counts,
+            );
+        }
+        let Secondary {
+            total,
+            end,
+            truncated,
+        } = acc;
         rec.update(id, |node| {
             node.end = end;
             node.truncated = truncated;
         });
         total
+    }
+
+    /// Trace one secondary ray (or record why it was cut) and add its weighted radiance.
+    #[allow(clippy::too_many_arguments)]
+    fn secondary<R: Recorder>(
+        &self,
+        acc: &mut Secondary,
+        spawn: Spawn,
+        dir: DVec3,
+        side: DVec3,
+        throughput: Rgb,
+        depth: u32,
+        media: &MediaStack,
+        rec: &mut R,
+        counts: &mut RayCounts,
+    ) {
+        let settings = &self.scene.settings;
+        let child_throughput = throughput * spawn.weight;
+        let cut = if depth >= settings.max_depth {
+            Some(EndReason::MaxDepth)
+        } else if child_throughput.max_element() < settings.min_weight {
+            Some(EndReason::MinWeight)
+        } else {
+            None
+        };
+        if let Some(reason) = cut {
+            acc.truncated += spawn.weight;
+            if acc.end != EndReason::MaxDepth {
+                acc.end = reason;
+            }
+            return;
+        }
+        if acc.end == EndReason::Surface {
+            acc.end = EndReason::Continued;
+        }
+        let object = spawn.object.expect("secondary rays leave a surface");
+        let ray = self.spawn_ray((object, spawn.triangle), spawn.point, side, dir);
+        let state = PathState {
+            depth: depth + 1,
+            throughput: child_throughput,
+            media,
+        };
+        let (l, _) = self.trace_ray(ray, spawn, state, rec, counts);
+        acc.total += spawn.weight * l;
     }
 
     /// n1, n2, Snell and Fresnel at a transmissive hit; the refracted direction unless TIR.
@@ -364,9 +497,8 @@ impl<'a> Tracer<'a> {
     fn direct<R: Recorder>(
         &self,
         light: usize,
-        p: DVec3,
-        n: DVec3,
-        ns: DVec3,
+        (from, p): ((usize, Option<u32>), DVec3),
+        (n, ns): (DVec3, DVec3),
         wo: DVec3,
         albedo: Rgb,
         m: &Material,
@@ -384,14 +516,19 @@ impl<'a> Tracer<'a> {
         } else {
             n.dot(wi)
         };
-        let ray = self.spawn_ray(p, n, wi);
+        let ray = self.spawn_ray(from, p, n, wi);
         let id = rec.push(parent, || {
             let mut node = RayNode::new(RayKind::Shadow, depth, p, ray.origin, ray.direction);
             node.t_min = ray.t_min;
             node
         });
         let brdf = if cos > 0.0 {
-            albedo * std::f64::consts::FRAC_1_PI + blinn_phong(m, ns, wi, wo)
+            let highlight = if self.plan.specular {
+                blinn_phong(m, ns, wi, wo)
+            } else {
+                Rgb::ZERO
+            };
+            albedo * std::f64::consts::FRAC_1_PI + highlight
         } else {
             Rgb::ZERO
         };
@@ -413,9 +550,26 @@ impl<'a> Tracer<'a> {
             return Rgb::ZERO;
         }
         counts.add_kind(RayKind::Shadow);
-        // The light is at `dist` from `p`; measured from the offset origin for the normal strategy.
-        let seg = (dist - (ray.origin - p).length()).max(0.0);
-        let tr = shadow::transmission(self.scene, &ray, seg, R::RECORDS);
+        // The light is at `dist` from `p`; a normal offset moves the origin by its epsilon, so
+        // stop that much short of the light (no square root on this hot path).
+        let eps = self.scene.settings.offset.epsilon;
+        let seg = match self.scene.settings.offset.strategy {
+            OffsetStrategy::Normal => (dist - eps).max(0.0),
+            OffsetStrategy::Ray => dist,
+            OffsetStrategy::Scaled => (dist - offset::scaled_epsilon(eps, p)).max(0.0),
+            OffsetStrategy::Robust => (dist - (ray.origin - p).length()).max(0.0),
+        };
+        if R::DIAGNOSE {
+            let first = self.scene.intersect(&ray, seg);
+            self.diagnose(&ray, p, from, first, id, rec, counts);
+        }
+        let tr = shadow::transmission(
+            self.scene,
+            &ray,
+            seg,
+            self.plan.translucent_shadows,
+            R::RECORDS,
+        );
         let arriving = irradiance * tr.transmittance;
         rec.update(id, |node| {
             node.traversal = tr.cost;

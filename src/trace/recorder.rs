@@ -7,6 +7,10 @@ use crate::tree::{NodeId, RayNode};
 pub trait Recorder {
     /// Whether this recorder keeps anything (lets the tracer skip optional bookkeeping).
     const RECORDS: bool;
+    /// Whether the tracer runs the self-hit and leak diagnostics (extra intersections) and
+    /// counts them in [`crate::RayCounts`]. Defaults to [`Recorder::RECORDS`], so the no-op
+    /// recorder of the plain render pays nothing.
+    const DIAGNOSE: bool = Self::RECORDS;
     /// A ray was spawned by `parent`; returns its id (or `None` when not recording).
     fn push(&mut self, parent: Option<NodeId>, make: impl FnOnce() -> RayNode) -> Option<NodeId>;
     /// Fill in node `id` once its results are known.
@@ -19,6 +23,23 @@ pub struct NoopRecorder;
 
 impl Recorder for NoopRecorder {
     const RECORDS: bool = false;
+
+    #[inline(always)]
+    fn push(&mut self, _: Option<NodeId>, _: impl FnOnce() -> RayNode) -> Option<NodeId> {
+        None
+    }
+
+    #[inline(always)]
+    fn update(&mut self, _: Option<NodeId>, _: impl FnOnce(&mut RayNode)) {}
+}
+
+/// Records nothing but runs the diagnostics, so a render can count self-hits and leaks.
+#[derive(Clone, Copy, Debug, Default)]
+pub struct DiagnosticRecorder;
+
+impl Recorder for DiagnosticRecorder {
+    const RECORDS: bool = false;
+    const DIAGNOSE: bool = true;
 
     #[inline(always)]
     fn push(&mut self, _: Option<NodeId>, _: impl FnOnce() -> RayNode) -> Option<NodeId> {

@@ -1,0 +1,110 @@
+//! "Simulate only what a scene calls for": a diffuse-only scene through the full tracer versus
+//! a plain ray caster (camera and shadow rays only) written here as the baseline.
+//!
+//! Run: `cargo bench --bench effects`. Figures are in docs/cost.md.
+
+use criterion::{Criterion, criterion_group, criterion_main};
+use raytree::math::Rgb;
+use raytree::{NoopRecorder, RayCounts, Scene, Tracer, render_pixel_with};
+use std::hint::black_box;
+use std::time::Duration;
+
+const DIFFUSE_ONLY: &str = r#"{
+  "camera": {"position": [0, 2, 7], "look_at": [0, 0.8, 0], "fov_y": 40, "width": 320, "height": 180},
+  "background": [0.3, 0.5, 0.8], "ambient": [0.05, 0.05, 0.05],
+  "materials": {
+    "floor": {"diffuse": [0.7, 0.7, 0.7]},
+    "red": {"diffuse": [0.8, 0.2, 0.2]},
+    "blue": {"diffuse": [0.2, 0.3, 0.8]}
+  },
+  "objects": [
+    {"type": "plane", "point": [0, 0, 0], "normal": [0, 1, 0], "material": "floor"},
+    {"type": "sphere", "center": [-1.2, 1, 0], "radius": 1, "material": "red"},
+    {"type": "sphere", "center": [1.2, 0.8, 0.8], "radius": 0.8, "material": "blue"},
+    {"type": "box", "min": [-0.4, 0, -2], "max": [0.4, 2.5, -1.2], "material": "floor"}
+  ],
+  "lights": [{"type": "point", "position": [4, 7, 6], "intensity": [120, 120, 120]}]
+}"#;
+
+/// The baseline: Appel-style ray casting, the lecture's `evaluate_rendering_equation`.
+fn ray_cast(scene: &Scene, x: u32, y: u32) -> Rgb {
+    let ray = scene.camera.ray(f64::from(x) + 0.5, f64::from(y) + 0.5);
+    let Some(hit) = scene.intersect(&ray, f64::INFINITY) else {
+        return scene.background;
+    };
+    let p = ray.at(hit.t);
+    let n = if ray.direction.dot(hit.normal) < 0.0 {
+        hit.normal
+    } else {
+        -hit.normal
+    };
+    let albedo = scene.material_of(hit.object).diffuse.at(p);
+    let mut color = scene.ambient * albedo;
+    let eps = scene.settings.offset.epsilon;
+    for light in &scene.lights {
+        let (wi, dist, e) = light.sample(p);
+        let cos = n.dot(wi);
+        if cos > 0.0 {
+            let shadow = raytree::math::Ray::new(p + eps * n, wi, 0.0);
+            if scene.intersect(&shadow, dist - eps).is_none() {
+                color += albedo * std::f64::consts::FRAC_1_PI * cos * e;
+            }
+        }
+    }
+    color
+}
+
+fn bench(c: &mut Criterion) {
+    let scene = Scene::from_json(DIFFUSE_ONLY).unwrap();
+    let (w, h) = (scene.camera.width, scene.camera.height);
+    // Same image (up to rounding), so the two loops do the same work.
+    let tracer = Tracer::new(&scene);
+    let mut counts = RayCounts::default();
+    for y in (0..h).step_by(7) {
+        for x in (0..w).step_by(5) {
+            let a = render_pixel_with(&tracer, x, y, &mut NoopRecorder, &mut counts, |_| {});
+            let b = ray_cast(&scene, x, y);
+            assert!(
+                (a - b).abs().max_element() < 1e-12,
+                "pixel {x},{y}: {a} vs {b}"
+            );
+        }
+    }
+    let mut g = c.benchmark_group("diffuse_only_320x180");
+    g.sample_size(30).measurement_time(Duration::from_secs(5));
+    g.bench_function("plain_ray_caster", |b| {
+        b.iter(|| {
+            let mut s = 0.0;
+            for y in 0..h {
+                for x in 0..w {
+                    s += ray_cast(black_box(&scene), x, y).x;
+                }
+            }
+            s
+        })
+    });
+    g.bench_function("raytree_tracer", |b| {
+        b.iter(|| {
+            let mut counts = RayCounts::default();
+            let mut s = 0.0;
+            for y in 0..h {
+                for x in 0..w {
+                    s += render_pixel_with(
+                        black_box(&tracer),
+                        x,
+                        y,
+                        &mut NoopRecorder,
+                        &mut counts,
+                        |_| {},
+                    )
+                    .x;
+                }
+            }
+            s
+        })
+    });
+    g.finish();
+}
+
+criterion_group!(benches, bench);
+criterion_main!(benches);

@@ -1,0 +1,132 @@
+//! `raytree diagram`.
+
+use super::args::DiagramArgs;
+use super::load::{load, pair};
+use super::output::Pending;
+use anyhow::{Result, anyhow, bail};
+use raytree::RayKind;
+use raytree::diagram::{Diagram, DiagramOptions, PlaneSpec, Style, Theme, to_png, to_svg};
+
+#[derive(Clone, Copy, PartialEq, Eq)]
+enum Format {
+    Svg,
+    Png,
+}
+
+fn parse_kinds(s: &str) -> Result<Vec<RayKind>> {
+    let mut kinds = Vec::new();
+    for part in s.split(',').map(str::trim).filter(|p| !p.is_empty()) {
+        let k = RayKind::ALL
+            .into_iter()
+            .find(|k| k.name() == part)
+            .ok_or_else(|| {
+                anyhow!(
+                    "--kinds: unknown kind {part:?} (expected camera, reflected, refracted, shadow)"
+                )
+            })?;
+        kinds.push(k);
+    }
+    if kinds.is_empty() {
+        bail!("--kinds: name at least one kind");
+    }
+    Ok(kinds)
+}
+
+/// Draw the cross-section diagram of one pixel's ray tree to an SVG or PNG file.
+pub fn run(a: &DiagramArgs) -> Result<()> {
+    let format = match a
+        .output
+        .extension()
+        .and_then(|e| e.to_str())
+        .map(str::to_ascii_lowercase)
+        .as_deref()
+    {
+        Some("svg") => Format::Svg,
+        Some("png") => Format::Png,
+        _ => bail!(
+            "cannot write {}: the output must end in .svg or .png",
+            a.output.display()
+        ),
+    };
+    let (x, y) = pair("pixel", &a.pixel, ',')?;
+    let plane = PlaneSpec::parse(&a.plane).map_err(|e| anyhow!("--plane: {e}"))?;
+    let (width, height) = match &a.overrides.size {
+        Some(s) => pair("size", s, 'x')?,
+        None => (1280, 720),
+    };
+    if !(64..=16384).contains(&width) || !(64..=16384).contains(&height) {
+        bail!("--size: the figure's width and height must be in 64..=16384, got {width}x{height}");
+    }
+    let theme = match a.theme.as_str() {
+        "light" => Theme::Light,
+        "dark" => Theme::Dark,
+        t => bail!("--theme: unknown theme {t:?} (expected light or dark)"),
+    };
+    let kinds = a
+        .kinds
+        .as_deref()
+        .map_or_else(|| Ok(RayKind::ALL.to_vec()), parse_kinds)?;
+    let mut overrides = a.overrides.clone();
+    overrides.size = None; // the figure's size, not the image's
+    let loaded = load(a.scene.as_deref(), &overrides)?;
+    let scene = &loaded.scene;
+    let cam = &scene.camera;
+    let Some(tree) = raytree::trace_pixel(scene, x, y) else {
+        bail!(
+            "--pixel {x},{y} is outside the {}x{} image",
+            cam.width,
+            cam.height
+        );
+    };
+    if a.sample >= tree.samples.len() {
+        bail!(
+            "--sample {}: the pixel has {} sample(s) (spp {})",
+            a.sample,
+            tree.samples.len(),
+            scene.settings.spp
+        );
+    }
+    let pending = Pending::create(&a.output)?;
+    let name = a
+        .scene
+        .as_ref()
+        .and_then(|p| p.file_name())
+        .map_or("built-in classic".to_string(), |n| {
+            n.to_string_lossy().into_owned()
+        });
+    let sample = if tree.samples.len() > 1 {
+        format!(", sample {}", a.sample)
+    } else {
+        String::new()
+    };
+    let opts = DiagramOptions {
+        plane,
+        width,
+        height,
+        max_depth: a.draw_depth,
+        kinds,
+        sample: a.sample,
+        zoom_offsets: a.zoom_offsets,
+        highlight: None,
+        label_depth: a.label_depth,
+        title: format!(
+            "{name}: pixel ({x}, {y}){sample}, {} rays",
+            tree.nodes.len()
+        ),
+    };
+    let diagram = Diagram::build(scene, &tree, &opts)?;
+    let style = Style::new(theme);
+    let bytes = match format {
+        Format::Svg => to_svg(&diagram, &style).into_bytes(),
+        Format::Png => to_png(&diagram, &style),
+    };
+    pending.commit(&bytes)?;
+    println!(
+        "wrote {} ({width}x{height}, {} rays drawn, {} off the plane; {})",
+        a.output.display(),
+        diagram.rays.len(),
+        diagram.off_plane_rays,
+        diagram.plane_text
+    );
+    Ok(())
+}

@@ -1,0 +1,125 @@
+//! The error-versus-time plot of `raytree cost` (plotters, bitmap back-end, embedded font).
+
+use anyhow::{Result, anyhow};
+use plotters::prelude::*;
+use plotters::style::FontStyle;
+use raytree::cost::CostReport;
+use std::sync::Once;
+
+/// Register egui's embedded Ubuntu Light as "sans-serif", so no system fonts are needed.
+fn register_font() {
+    static ONCE: Once = Once::new();
+    ONCE.call_once(|| {
+        let _ = plotters::style::register_font(
+            "sans-serif",
+            FontStyle::Normal,
+            epaint_default_fonts::UBUNTU_LIGHT,
+        );
+    });
+}
+
+const AXES: [(&str, RGBColor); 5] = [
+    ("max_depth", RGBColor(31, 119, 180)),
+    ("fresnel", RGBColor(255, 127, 14)),
+    ("spp", RGBColor(44, 160, 44)),
+    ("offset", RGBColor(214, 39, 40)),
+    ("min_weight", RGBColor(148, 103, 189)),
+];
+
+/// Draw RMSE (log) against median time (log) as RGB bytes of `w x h`; Pareto points ringed
+/// and joined.
+pub fn error_vs_time(report: &CostReport, w: u32, h: u32) -> Result<Vec<u8>> {
+    register_font();
+    let mut buf = vec![255u8; (w * h * 3) as usize];
+    {
+        let root = BitMapBackend::with_buffer(&mut buf, (w, h)).into_drawing_area();
+        root.fill(&WHITE).map_err(|e| anyhow!("plot: {e}"))?;
+        // Zero error cannot sit on a log axis: floor it at a tenth of the smallest non-zero error.
+        let nonzero = report
+            .rows
+            .iter()
+            .map(|r| r.error.rmse)
+            .filter(|e| *e > 0.0);
+        let floor = nonzero.clone().fold(f64::INFINITY, f64::min).min(1e-3) / 10.0;
+        let emax = nonzero.fold(floor * 10.0, f64::max) * 30.0; // room for the legend
+        let tmin = report
+            .rows
+            .iter()
+            .map(|r| r.median_ms)
+            .fold(f64::INFINITY, f64::min)
+            / 1.5;
+        let tmax = report.rows.iter().map(|r| r.median_ms).fold(0.0, f64::max) * 1.5;
+        let mut chart = ChartBuilder::on(&root)
+            .caption(
+                format!(
+                    "raytree cost: error vs time ({}x{})",
+                    report.size[0], report.size[1]
+                ),
+                ("sans-serif", 28),
+            )
+            .margin(20)
+            .x_label_area_size(50)
+            .y_label_area_size(80)
+            .build_cartesian_2d((tmin..tmax).log_scale(), (floor..emax).log_scale())
+            .map_err(|e| anyhow!("plot: {e}"))?;
+        chart
+            .configure_mesh()
+            .x_desc("median render time (ms)")
+            .y_desc("RMSE vs reference (linear)")
+            .label_style(("sans-serif", 16))
+            .x_label_formatter(&|v| format!("{v:.1}"))
+            .y_label_formatter(&|v| format!("{v:.0e}"))
+            .axis_desc_style(("sans-serif", 18))
+            .draw()
+            .map_err(|e| anyhow!("plot: {e}"))?;
+        let clamp = |e: f64| e.max(floor);
+        let mut front: Vec<(f64, f64)> = report
+            .rows
+            .iter()
+            .filter(|r| r.pareto)
+            .map(|r| (r.median_ms, clamp(r.error.rmse)))
+            .collect();
+        front.sort_by(|a, b| a.0.total_cmp(&b.0));
+        chart
+            .draw_series(LineSeries::new(front.clone(), BLACK.stroke_width(2)))
+            .map_err(|e| anyhow!("plot: {e}"))?
+            .label("Pareto front")
+            .legend(|(x, y)| PathElement::new(vec![(x, y), (x + 20, y)], BLACK.stroke_width(2)));
+        for (k, (axis, color)) in AXES.into_iter().enumerate() {
+            // Stagger labels by axis so settings that land on the same point stay legible.
+            let dy = -10 + 16 * k as i32 - 32;
+            let pts: Vec<_> = report.rows.iter().filter(|r| r.axis == axis).collect();
+            chart
+                .draw_series(pts.iter().map(|r| {
+                    let p = (r.median_ms, clamp(r.error.rmse));
+                    EmptyElement::at(p)
+                        + Circle::new((0, 0), 6, color.filled())
+                        + Text::new(
+                            r.value.clone(),
+                            (10, dy),
+                            ("sans-serif", 16).into_font().color(&color),
+                        )
+                }))
+                .map_err(|e| anyhow!("plot: {e}"))?
+                .label(axis)
+                .legend(move |(x, y)| Circle::new((x + 10, y), 6, color.filled()));
+        }
+        chart
+            .draw_series(
+                front
+                    .iter()
+                    .map(|p| Circle::new(*p, 10, BLACK.stroke_width(2))),
+            )
+            .map_err(|e| anyhow!("plot: {e}"))?;
+        chart
+            .configure_series_labels()
+            .background_style(WHITE.mix(0.9))
+            .border_style(BLACK)
+            .label_font(("sans-serif", 16))
+            .position(SeriesLabelPosition::UpperRight)
+            .draw()
+            .map_err(|e| anyhow!("plot: {e}"))?;
+        root.present().map_err(|e| anyhow!("plot: {e}"))?;
+    }
+    Ok(buf)
+}

@@ -1,0 +1,257 @@
+//! Annotations at hits and on segments: normals, angle arcs, n1/n2, R/T, TIR, Beer factors.
+
+use super::DiagramOptions;
+use super::build::Seg3;
+use super::layout::Pending;
+use super::model::{Anchor, AngleArc, HitMark, LabelRole, Point, RayEnd, RaySegment};
+use super::plane::PlaneFrame;
+use crate::math::Rgb;
+use crate::tree::{EndReason, RayKind, RayTree};
+use glam::DVec2;
+
+/// A factor as text: one number when the channels agree, else three.
+#[must_use]
+pub fn factor_text(f: Rgb) -> String {
+    if (f.max_element() - f.min_element()).abs() < 5e-3 {
+        format!("{:.2}", f.x)
+    } else {
+        format!("({:.2}, {:.2}, {:.2})", f.x, f.y, f.z)
+    }
+}
+
+fn anchor_for(dir: Point) -> Anchor {
+    if dir.x > 0.3 {
+        Anchor::Start
+    } else if dir.x < -0.3 {
+        Anchor::End
+    } else {
+        Anchor::Middle
+    }
+}
+
+/// Baseline position for text centred on `p` (shift down by a third of the size).
+fn centred(p: Point, fs: f64) -> Point {
+    p + DVec2::new(0.0, 0.35 * fs)
+}
+
+fn arc(center: Point, from: Point, to: Point, radius: f64, degrees: f64) -> AngleArc {
+    let start = from.y.atan2(from.x);
+    let mut sweep = to.y.atan2(to.x) - start;
+    while sweep > std::f64::consts::PI {
+        sweep -= std::f64::consts::TAU;
+    }
+    while sweep < -std::f64::consts::PI {
+        sweep += std::f64::consts::TAU;
+    }
+    AngleArc {
+        center,
+        radius,
+        start,
+        sweep,
+        degrees,
+    }
+}
+
+/// Hit marks for every drawn non-shadow ray that hit, and their labels.
+pub(super) fn hits(
+    tree: &RayTree,
+    segs: &[Seg3],
+    rays: &[RaySegment],
+    frame: &PlaneFrame,
+    fs: f64,
+    opts: &DiagramOptions,
+    pending: &mut Vec<Pending>,
+) -> Vec<HitMark> {
+    let mut out = Vec::new();
+    for (s, r) in segs.iter().zip(rays) {
+        let n = s.node;
+        let labelled = n.depth <= opts.label_depth;
+        let prio = 1 + n.depth;
+        if labelled {
+            segment_labels(s, r, fs, prio, pending);
+        }
+        let Some(hit) = &n.hit else { continue };
+        if n.kind == RayKind::Shadow {
+            continue;
+        }
+        let h = r.to;
+        let ni = if hit.entering {
+            hit.normal
+        } else {
+            -hit.normal
+        };
+        let proj = frame.dir_to_canvas(ni);
+        let nc = proj.try_normalize().unwrap_or(DVec2::ZERO);
+        let normal_len = 2.4 * fs * proj.length().min(1.0);
+        let tir = n.interface.as_ref().is_some_and(|i| i.tir);
+        let w = frame
+            .dir_to_canvas(-n.direction)
+            .try_normalize()
+            .unwrap_or(DVec2::ZERO);
+        let mut arcs = Vec::new();
+        let tangent = DVec2::new(-nc.y, nc.x);
+        let side = if w.dot(tangent) >= 0.0 { 1.0 } else { -1.0 };
+        if labelled {
+            let theta_i = hit.cos_i.clamp(-1.0, 1.0).acos().to_degrees();
+            let in_plane = !r.off_plane && proj.length() > 0.9 && w != DVec2::ZERO;
+            let radius = 1.9 * fs;
+            let mut angle_label = |a: Option<&AngleArc>, text: String, fallback: Point| {
+                let spot = a.map_or(fallback, |a| {
+                    let mid = a.start + a.sweep * 0.5;
+                    a.center + (a.radius + 1.1 * fs) * DVec2::new(mid.cos(), mid.sin())
+                });
+                let alt = spot + (spot - h).normalize_or_zero() * 1.2 * fs;
+                pending.push(
+                    Pending::new(
+                        vec![
+                            (centred(spot, fs), Anchor::Middle),
+                            (centred(alt, fs), Anchor::Middle),
+                        ],
+                        &text,
+                        fs,
+                        LabelRole::Angle,
+                        prio,
+                    )
+                    .for_node(n.id, n.kind),
+                );
+            };
+            if in_plane {
+                arcs.push(arc(h, nc, w, radius, theta_i));
+            }
+            angle_label(
+                arcs.last(),
+                format!("θi = {theta_i:.1}°"),
+                h + DVec2::new(fs, -fs),
+            );
+            let refracted = n
+                .children
+                .iter()
+                .map(|c| tree.node(*c))
+                .find(|c| c.kind == RayKind::Refracted);
+            if let (Some(i), Some(t)) = (&n.interface, refracted) {
+                let theta_t = i.cos_t.unwrap_or(1.0).clamp(-1.0, 1.0).acos().to_degrees();
+                let tc = frame.dir_to_canvas(t.direction).try_normalize();
+                let before = arcs.len();
+                if let (true, Some(tc)) = (in_plane, tc) {
+                    arcs.push(arc(h, -nc, tc, radius, theta_t));
+                }
+                let a = (arcs.len() > before).then(|| arcs.last()).flatten();
+                angle_label(
+                    a,
+                    format!("θt = {theta_t:.1}°"),
+                    h + DVec2::new(fs, 2.0 * fs),
+                );
+            }
+            if let Some(i) = &n.interface {
+                let tip = normal_len + 1.0 * fs;
+                let n1 = h + nc * tip;
+                let n2 = h - nc * tip;
+                for (p, text) in [
+                    (n1, format!("n1 = {:.2}", i.n1)),
+                    (n2, format!("n2 = {:.2}", i.n2)),
+                ] {
+                    let off = tangent * 0.8 * fs;
+                    pending.push(
+                        Pending::new(
+                            vec![
+                                (centred(p, fs), Anchor::Middle),
+                                (centred(p + off, fs), Anchor::Start),
+                                (centred(p - off, fs), Anchor::End),
+                            ],
+                            &text,
+                            fs,
+                            LabelRole::Interface,
+                            prio,
+                        )
+                        .for_node(n.id, n.kind),
+                    );
+                }
+                let rt = if i.tir {
+                    format!("TIR: θi > θc, R = {:.2}", i.fresnel.r)
+                } else {
+                    format!("R = {:.3}  T = {:.3}", i.fresnel.r, i.fresnel.t)
+                };
+                let d = tangent * side;
+                let spot = h - nc * 1.3 * fs + d * 0.8 * fs;
+                let spot2 = h + nc * 1.3 * fs - d * 2.5 * fs;
+                pending.push(
+                    Pending::new(
+                        vec![
+                            (centred(spot, fs), anchor_for(d)),
+                            (centred(spot2, fs), anchor_for(-d)),
+                            (centred(h - nc * 2.0 * fs, fs), Anchor::Middle),
+                        ],
+                        &rt,
+                        fs,
+                        LabelRole::Interface,
+                        prio,
+                    )
+                    .for_node(n.id, n.kind),
+                );
+            }
+        }
+        out.push(HitMark {
+            node: n.id,
+            point: h,
+            normal: nc,
+            normal_len,
+            tir,
+            truncated: matches!(n.end, EndReason::MaxDepth | EndReason::MinWeight),
+            arcs,
+            fade: r.fade,
+        });
+    }
+    out
+}
+
+/// Beer factors on segments and the outcome of shadow rays.
+fn segment_labels(s: &Seg3, r: &RaySegment, fs: f64, prio: u32, pending: &mut Vec<Pending>) {
+    let n = s.node;
+    let d = r.to - r.from;
+    if d.length() < 3.0 * fs {
+        return; // too short to carry text
+    }
+    let mid = (r.from + r.to) * 0.5;
+    let perp = DVec2::new(-d.y, d.x).normalize_or_zero();
+    let spots = |p: Point| {
+        vec![
+            (centred(p + perp * 0.9 * fs, fs), anchor_for(perp)),
+            (centred(p - perp * 0.9 * fs, fs), anchor_for(-perp)),
+        ]
+    };
+    let text = if let Some(a) = &n.attenuation {
+        if a.distance.is_finite() {
+            format!("Beer ×{} over {:.2}", factor_text(a.factor), a.distance)
+        } else {
+            "Beer: absorbed".to_string()
+        }
+    } else if let Some(sh) = &n.shadow {
+        match r.end {
+            RayEnd::Blocked => {
+                let who = sh.blockers.first().map_or("?", |b| b.object_name.as_str());
+                format!("blocked by {who}")
+            }
+            RayEnd::Light if n.end == EndReason::Attenuated => {
+                format!("×{} to {}", factor_text(sh.transmittance), sh.light_name)
+            }
+            _ => return,
+        }
+    } else {
+        return;
+    };
+    let at = if n.kind == RayKind::Shadow {
+        r.from + d * 0.3
+    } else {
+        mid
+    };
+    pending.push(
+        Pending::new(
+            spots(at),
+            &text,
+            fs * 0.95,
+            LabelRole::Attenuation,
+            prio + 1,
+        )
+        .for_node(n.id, n.kind),
+    );
+}

@@ -1,0 +1,237 @@
+//! Text layout: greedy collision-free label placement and the legend strip.
+//!
+//! Labels come with candidate positions and a priority (0 = must show: object names, lights,
+//! camera). They are placed in priority order; a label whose every candidate overlaps an
+//! already placed label, the legend or an inset is dropped. This keeps deep trees readable.
+
+use super::DiagramOptions;
+use super::build::{Seg3, is_off};
+use super::font::text_width;
+use super::model::{Anchor, Label, LabelRole, LegendEntry, LegendKey, Point, Rect};
+use super::plane::PlaneFrame;
+use crate::tree::{NodeId, RayKind};
+use glam::DVec2;
+
+/// A label waiting for a position.
+#[derive(Clone, Debug)]
+pub(super) struct Pending {
+    cands: Vec<(Point, Anchor)>,
+    text: String,
+    size: f64,
+    role: LabelRole,
+    priority: u32,
+    fixed: bool,
+    node: Option<NodeId>,
+    kind: Option<RayKind>,
+}
+
+impl Pending {
+    /// A label with candidate positions, tried in order.
+    pub fn new(
+        cands: Vec<(Point, Anchor)>,
+        text: &str,
+        size: f64,
+        role: LabelRole,
+        priority: u32,
+    ) -> Self {
+        Self {
+            cands,
+            text: text.to_string(),
+            size,
+            role,
+            priority,
+            fixed: false,
+            node: None,
+            kind: None,
+        }
+    }
+
+    /// A label placed exactly at `pos` whatever it overlaps.
+    pub fn fixed(pos: Point, anchor: Anchor, text: &str, size: f64, role: LabelRole) -> Self {
+        Self {
+            fixed: true,
+            ..Self::new(vec![(pos, anchor)], text, size, role, 0)
+        }
+    }
+
+    /// Attach the ray node and its kind.
+    pub fn for_node(mut self, node: NodeId, kind: RayKind) -> Self {
+        self.node = Some(node);
+        self.kind = Some(kind);
+        self
+    }
+}
+
+/// The box a label occupies.
+#[must_use]
+pub fn label_box(pos: Point, anchor: Anchor, text: &str, size: f64) -> Rect {
+    let w = text_width(text, size);
+    let x0 = match anchor {
+        Anchor::Start => pos.x,
+        Anchor::Middle => pos.x - w * 0.5,
+        Anchor::End => pos.x - w,
+    };
+    let pad = size * 0.12;
+    Rect::new(
+        DVec2::new(x0 - pad, pos.y - size * 0.78 - pad),
+        DVec2::new(x0 + w + pad, pos.y + size * 0.24 + pad),
+    )
+}
+
+/// Place labels in priority order, avoiding each other and `obstacles`, inside `canvas`.
+pub(super) fn place(mut pending: Vec<Pending>, canvas: Rect, obstacles: Vec<Rect>) -> Vec<Label> {
+    pending.sort_by_key(|p| (!p.fixed, p.priority));
+    let mut taken: Vec<Rect> = Vec::new();
+    let mut out = Vec::new();
+    for p in pending {
+        let boxes: Vec<Rect> = p
+            .cands
+            .iter()
+            .map(|(pos, a)| label_box(*pos, *a, &p.text, p.size))
+            .collect();
+        let free = |b: &Rect| {
+            canvas.contains_rect(b) && !taken.iter().chain(&obstacles).any(|t| t.overlaps(b))
+        };
+        let chosen = if p.fixed {
+            Some(0)
+        } else {
+            boxes
+                .iter()
+                .position(free)
+                .or((p.priority == 0).then_some(0))
+        };
+        let Some(i) = chosen else { continue };
+        let (mut pos, anchor) = p.cands[i];
+        let mut b = boxes[i];
+        if !p.fixed {
+            // Keep must-show labels inside the canvas.
+            let shift = DVec2::new(
+                (canvas.min.x - b.min.x).max(0.0) + (canvas.max.x - b.max.x).min(0.0),
+                (canvas.min.y - b.min.y).max(0.0) + (canvas.max.y - b.max.y).min(0.0),
+            );
+            pos += shift;
+            b = Rect::new(b.min + shift, b.max + shift);
+        }
+        taken.push(b);
+        out.push(Label {
+            pos,
+            text: p.text,
+            size: p.size,
+            anchor,
+            role: p.role,
+            node: p.node,
+            kind: p.kind,
+        });
+    }
+    out
+}
+
+/// The legend strip at the bottom: its labels, swatches and box.
+#[allow(clippy::too_many_arguments)]
+pub(super) fn legend(
+    segs: &[Seg3],
+    frame: &PlaneFrame,
+    extent3: f64,
+    plane_text: &str,
+    opts: &DiagramOptions,
+    w: f64,
+    h: f64,
+    fs: f64,
+) -> (Vec<Pending>, Vec<LegendEntry>, Rect) {
+    let size = fs * 0.9;
+    let mut items: Vec<(LegendKey, String)> = Vec::new();
+    for kind in RayKind::ALL {
+        if segs.iter().any(|s| s.node.kind == kind) {
+            let text = if kind == RayKind::Shadow {
+                "shadow (to light)"
+            } else {
+                kind.name()
+            };
+            items.push((LegendKey::Ray(kind), text.to_string()));
+        }
+    }
+    items.push((LegendKey::Normal, "normal".to_string()));
+    if segs
+        .iter()
+        .any(|s| s.end_kind == super::model::RayEnd::Blocked)
+    {
+        items.push((LegendKey::Blocked, "blocked shadow ray".to_string()));
+    }
+    let mut off = 0;
+    let mut max_d: f64 = 0.0;
+    for s in segs {
+        let end = s.end.unwrap_or(s.start + s.node.direction * extent3);
+        let d = frame.distance(s.start).abs().max(frame.distance(end).abs());
+        if is_off(d, extent3) {
+            off += 1;
+            max_d = max_d.max(d);
+        }
+    }
+    if off > 0 {
+        items.push((
+            LegendKey::OffPlane,
+            format!("{off} rays leave the plane: projected, dotted, fainter with distance (up to {max_d:.2})"),
+        ));
+    }
+    items.push((LegendKey::Note, format!("Plane: {plane_text}.")));
+    items.push((
+        LegendKey::Note,
+        format!(
+            "Width ~ throughput; angles, n, R/T, Beer shown to depth {}.",
+            opts.label_depth
+        ),
+    ));
+    // Flow the items into rows.
+    let swatch = 2.0 * fs;
+    let gap = 0.4 * fs;
+    let spacing = 1.3 * fs;
+    let avail = w - 2.0 * fs;
+    let mut rows: Vec<Vec<(LegendKey, String, f64)>> = vec![Vec::new()];
+    let mut x = 0.0;
+    for (key, text) in items {
+        let lead = if key == LegendKey::Note {
+            0.0
+        } else {
+            swatch + gap
+        };
+        let iw = lead + text_width(&text, size);
+        if x > 0.0 && x + iw > avail {
+            rows.push(Vec::new());
+            x = 0.0;
+        }
+        rows.last_mut().expect("one row").push((key, text, x));
+        x += iw + spacing;
+    }
+    let line = 1.45 * fs;
+    let height = rows.len() as f64 * line + 0.5 * fs;
+    let rect = Rect::new(
+        DVec2::new(fs * 0.5, h - fs * 0.4 - height),
+        DVec2::new(w - fs * 0.5, h - fs * 0.4),
+    );
+    let mut pending = Vec::new();
+    let mut entries = Vec::new();
+    for (r, row) in rows.into_iter().enumerate() {
+        let baseline = rect.min.y + 0.25 * fs + (r as f64 + 1.0) * line - 0.45 * fs;
+        for (key, text, x) in row {
+            let x0 = fs + x;
+            let tx = if key == LegendKey::Note {
+                x0
+            } else {
+                x0 + swatch + gap
+            };
+            pending.push(Pending::fixed(
+                DVec2::new(tx, baseline),
+                Anchor::Start,
+                &text,
+                size,
+                LabelRole::Legend,
+            ));
+            entries.push(LegendEntry {
+                key,
+                pos: DVec2::new(x0, baseline - 0.3 * size),
+                text,
+            });
+        }
+    }
+    (pending, entries, rect)
+}

@@ -1,0 +1,155 @@
+//! SVG back-end: hand-written XML with vector paths and real `<text>` (escaped).
+
+use super::font::SVG_FONT_FAMILY;
+use super::model::{Anchor, Diagram, Point};
+use super::paint::{Prim, Rgba, Style, display_list};
+use std::fmt::Write;
+
+/// Escape text for XML content and attribute values.
+#[must_use]
+pub fn escape(s: &str) -> String {
+    let mut out = String::with_capacity(s.len());
+    for c in s.chars() {
+        match c {
+            '&' => out.push_str("&amp;"),
+            '<' => out.push_str("&lt;"),
+            '>' => out.push_str("&gt;"),
+            '"' => out.push_str("&quot;"),
+            '\'' => out.push_str("&apos;"),
+            c if (c as u32) < 0x20 && c != '\t' && c != '\n' => {}
+            c => out.push(c),
+        }
+    }
+    out
+}
+
+fn color(c: Rgba) -> String {
+    format!("#{:02x}{:02x}{:02x}", c.0, c.1, c.2)
+}
+
+fn opacity(c: Rgba) -> f64 {
+    f64::from(c.3) / 255.0
+}
+
+fn points(p: &[Point]) -> String {
+    let mut s = String::new();
+    for (i, q) in p.iter().enumerate() {
+        let _ = write!(s, "{}{:.2},{:.2}", if i == 0 { "" } else { " " }, q.x, q.y);
+    }
+    s
+}
+
+/// The diagram as a standalone SVG document.
+#[must_use]
+pub fn to_svg(d: &Diagram, style: &Style) -> String {
+    let mut s = String::new();
+    let _ = writeln!(
+        s,
+        r#"<svg xmlns="http://www.w3.org/2000/svg" width="{w}" height="{h}" viewBox="0 0 {w} {h}" font-family="{f}">"#,
+        w = d.width,
+        h = d.height,
+        f = escape(SVG_FONT_FAMILY)
+    );
+    for p in display_list(d, style) {
+        match p {
+            Prim::Fill {
+                points: pts,
+                color: c,
+            } => {
+                let _ = writeln!(
+                    s,
+                    r#"<polygon points="{}" fill="{}" fill-opacity="{:.3}"/>"#,
+                    points(&pts),
+                    color(c),
+                    opacity(c)
+                );
+            }
+            Prim::Stroke {
+                points: pts,
+                color: c,
+                width,
+                dash,
+                closed,
+            } => {
+                let tag = if closed { "polygon" } else { "polyline" };
+                let dash = dash.map_or(String::new(), |[a, b]| {
+                    format!(r#" stroke-dasharray="{a:.2} {b:.2}""#)
+                });
+                let _ = writeln!(
+                    s,
+                    r#"<{tag} points="{}" fill="none" stroke="{}" stroke-opacity="{:.3}" stroke-width="{width:.2}" stroke-linecap="round" stroke-linejoin="round"{dash}/>"#,
+                    points(&pts),
+                    color(c),
+                    opacity(c)
+                );
+            }
+            Prim::Circle {
+                center,
+                radius,
+                fill,
+                stroke,
+            } => {
+                let f = fill.map_or("fill=\"none\"".to_string(), |c| {
+                    format!(r#"fill="{}" fill-opacity="{:.3}""#, color(c), opacity(c))
+                });
+                let st = stroke.map_or(String::new(), |(c, w)| {
+                    format!(
+                        r#" stroke="{}" stroke-opacity="{:.3}" stroke-width="{w:.2}""#,
+                        color(c),
+                        opacity(c)
+                    )
+                });
+                let _ = writeln!(
+                    s,
+                    r#"<circle cx="{:.2}" cy="{:.2}" r="{radius:.2}" {f}{st}/>"#,
+                    center.x, center.y
+                );
+            }
+            Prim::Text {
+                pos,
+                text,
+                size,
+                color: c,
+                anchor,
+                halo,
+            } => {
+                let anchor = match anchor {
+                    Anchor::Start => "start",
+                    Anchor::Middle => "middle",
+                    Anchor::End => "end",
+                };
+                let halo = halo.map_or(String::new(), |h| {
+                    format!(
+                        r#" stroke="{}" stroke-width="{:.2}" stroke-linejoin="round" paint-order="stroke""#,
+                        color(h),
+                        size * 0.22
+                    )
+                });
+                let _ = writeln!(
+                    s,
+                    r#"<text x="{:.2}" y="{:.2}" font-size="{size:.2}" fill="{}" text-anchor="{anchor}"{halo}>{}</text>"#,
+                    pos.x,
+                    pos.y,
+                    color(c),
+                    escape(&text)
+                );
+            }
+        }
+    }
+    s.push_str("</svg>\n");
+    s
+}
+
+#[cfg(test)]
+mod tests {
+    use super::escape;
+
+    #[test]
+    fn escapes_markup() {
+        assert_eq!(
+            escape(r#"a<b & "c" 'd'>"#),
+            "a&lt;b &amp; &quot;c&quot; &apos;d&apos;&gt;"
+        );
+        assert_eq!(escape("θi = 41.8°"), "θi = 41.8°");
+    }
+}

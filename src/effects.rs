@@ -1,0 +1,252 @@
+//! Which effects a scene calls for, and why: the tracer runs only these.
+
+use crate::math::{FresnelModel, Rgb, critical_angle};
+use crate::scene::{LightKind, Scene, ShadowMode};
+
+/// The effects the tracer evaluates for one scene and its settings. Computed once per tracer;
+/// every flag that is off removes its code from the per-ray path.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct EffectPlan {
+    /// Some material reflects (mirror reflectivity, or Fresnel/TIR reflection of a dielectric).
+    pub reflection: bool,
+    /// Some material transmits: Snell refraction and the media stack.
+    pub refraction: bool,
+    /// Fresnel weights are evaluated (refraction on and a model other than `none`).
+    pub fresnel: bool,
+    /// Total internal reflection is possible: some interface has n1 > n2.
+    pub tir: bool,
+    /// Beer's law: some transmissive material absorbs.
+    pub absorption: bool,
+    /// Shadow rays pass translucent blockers (mode translucent and something transmits).
+    pub translucent_shadows: bool,
+    /// Some material has a Blinn-Phong highlight.
+    pub specular: bool,
+    /// Lights that can light something: bit i for light i (lights past 64 are always on).
+    pub lights: u64,
+    /// Recursion happens (max_depth > 0 and something reflects or refracts).
+    pub recursion: bool,
+    /// More than one sample per pixel.
+    pub supersampling: bool,
+}
+
+/// One line of the plan: an effect, whether it runs, and why.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct EffectLine {
+    /// Effect name.
+    pub effect: String,
+    /// Whether the tracer runs it.
+    pub on: bool,
+    /// The materials, lights or settings that decide it.
+    pub reason: String,
+}
+
+fn nonzero(c: Rgb) -> bool {
+    c.max_element() > 0.0
+}
+
+impl EffectPlan {
+    /// Every effect the settings allow switched on, whether the scene uses it or not (to check
+    /// that switching unused effects off changes nothing).
+    #[must_use]
+    pub fn everything(scene: &Scene) -> Self {
+        let s = &scene.settings;
+        Self {
+            reflection: true,
+            refraction: true,
+            fresnel: s.fresnel != FresnelModel::None,
+            tir: true,
+            absorption: true,
+            translucent_shadows: s.shadows == ShadowMode::Translucent,
+            specular: true,
+            lights: u64::MAX,
+            recursion: s.max_depth > 0,
+            supersampling: s.spp > 1,
+        }
+    }
+
+    /// The plan for `scene` with its settings.
+    #[must_use]
+    pub fn for_scene(scene: &Scene) -> Self {
+        let s = &scene.settings;
+        let mats = &scene.materials;
+        let transmissive = mats.iter().any(|m| m.is_transmissive());
+        let reflective = mats.iter().any(|m| nonzero(m.reflectivity));
+        let fresnel = transmissive && s.fresnel != FresnelModel::None;
+        let tir = transmissive && max_ior_step(scene).is_some();
+        let shaded = mats
+            .iter()
+            .any(|m| !m.diffuse.is_black() || nonzero(m.specular));
+        let mut lights = 0u64;
+        for (i, l) in scene.lights.iter().enumerate() {
+            let power = match l.kind {
+                LightKind::Point { intensity, .. } => intensity,
+                LightKind::Directional { irradiance, .. } => irradiance,
+            };
+            if shaded && nonzero(power) || i >= 64 {
+                lights |= 1 << i.min(63);
+            }
+        }
+        let reflection = reflective || fresnel || tir;
+        Self {
+            reflection,
+            refraction: transmissive,
+            fresnel,
+            tir,
+            absorption: mats
+                .iter()
+                .any(|m| m.is_transmissive() && nonzero(m.absorption)),
+            translucent_shadows: s.shadows == ShadowMode::Translucent && transmissive,
+            specular: mats.iter().any(|m| nonzero(m.specular)),
+            lights,
+            recursion: s.max_depth > 0 && (reflection || transmissive),
+            supersampling: s.spp > 1,
+        }
+    }
+
+    /// Whether light `i` is traced.
+    #[must_use]
+    pub fn light_on(&self, i: usize) -> bool {
+        self.lights & (1 << i.min(63)) != 0
+    }
+
+    /// The plan as lines with reasons, for `raytree effects`.
+    #[must_use]
+    pub fn explain(&self, scene: &Scene) -> Vec<EffectLine> {
+        let names = |pred: &dyn Fn(&crate::scene::Material) -> bool| {
+            let v: Vec<&str> = scene
+                .materials
+                .iter()
+                .filter(|m| pred(m))
+                .map(|m| m.name.as_str())
+                .collect();
+            if v.is_empty() {
+                "no material".to_string()
+            } else {
+                v.join(", ")
+            }
+        };
+        let s = &scene.settings;
+        let line = |effect: &str, on: bool, reason: String| EffectLine {
+            effect: effect.to_string(),
+            on,
+            reason,
+        };
+        let mut out = vec![
+            line(
+                "reflection",
+                self.reflection,
+                format!(
+                    "reflectivity > 0: {}; Fresnel/TIR reflection of transmissive: {}",
+                    names(&|m| nonzero(m.reflectivity)),
+                    names(&|m| m.is_transmissive())
+                ),
+            ),
+            line(
+                "refraction (Snell)",
+                self.refraction,
+                format!("transmissivity > 0: {}", names(&|m| m.is_transmissive())),
+            ),
+            line(
+                "Fresnel",
+                self.fresnel,
+                if self.refraction {
+                    format!("model {:?} at transmissive surfaces", s.fresnel).to_lowercase()
+                } else {
+                    "no transmissive material".to_string()
+                },
+            ),
+            line(
+                "total internal reflection",
+                self.tir,
+                match max_ior_step(scene) {
+                    Some((n1, n2)) if self.refraction => format!(
+                        "n1 {n1} > n2 {n2}: critical angle {:.2} deg",
+                        critical_angle(n1, n2).unwrap_or(0.0).to_degrees()
+                    ),
+                    _ => "no interface with n1 > n2".to_string(),
+                },
+            ),
+            line(
+                "Beer absorption",
+                self.absorption,
+                format!(
+                    "absorption > 0 in a transmissive material: {}",
+                    names(&|m| m.is_transmissive() && nonzero(m.absorption))
+                ),
+            ),
+            line(
+                "translucent shadows",
+                self.translucent_shadows,
+                format!(
+                    "shadows {:?}, transmissive: {}",
+                    s.shadows,
+                    names(&|m| m.is_transmissive())
+                )
+                .to_lowercase(),
+            ),
+            line(
+                "Blinn-Phong highlights",
+                self.specular,
+                format!("specular > 0: {}", names(&|m| nonzero(m.specular))),
+            ),
+            line(
+                "recursion",
+                self.recursion,
+                format!("max_depth {}", s.max_depth),
+            ),
+            line(
+                "supersampling",
+                self.supersampling,
+                format!("spp {}", s.spp),
+            ),
+        ];
+        for (i, l) in scene.lights.iter().enumerate() {
+            let on = self.light_on(i);
+            out.push(line(
+                &format!("shadow rays to {}", l.name),
+                on,
+                if on {
+                    "emits, and some material has diffuse or specular".to_string()
+                } else {
+                    "zero power, or no material is lit by lights".to_string()
+                },
+            ));
+        }
+        out
+    }
+}
+
+/// The largest drop in index a ray can meet, `(n1, n2)` with `n1 > n2`, if any. Media: air
+/// (1.0) and every transmissive material with an ior.
+fn max_ior_step(scene: &Scene) -> Option<(f64, f64)> {
+    let iors = scene
+        .materials
+        .iter()
+        .filter(|m| m.is_transmissive())
+        .filter_map(|m| m.ior)
+        .chain(std::iter::once(1.0));
+    let (lo, hi) = iors.fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), n| {
+        (lo.min(n), hi.max(n))
+    });
+    (hi > lo).then_some((hi, lo))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn classic_plan() {
+        let s = Scene::default_scene();
+        let p = EffectPlan::for_scene(&s);
+        assert!(p.reflection && p.refraction && p.fresnel && p.tir && p.specular && p.recursion);
+        assert!(!p.absorption && !p.translucent_shadows && !p.supersampling);
+        assert!(p.light_on(0));
+        let lines = p.explain(&s);
+        let tir = lines
+            .iter()
+            .find(|l| l.effect.starts_with("total"))
+            .unwrap();
+        assert!(tir.reason.contains("41.81"), "{}", tir.reason);
+    }
+}

@@ -1,0 +1,215 @@
+//! The thin `eframe::App`: lays out the panels, owns the image texture, applies commands.
+
+use super::diagram_ui::{DiagramCache, diagram_ui};
+use super::document::{Command, Document};
+use super::image_ui::{ImagePlacement, image_ui};
+use super::session::Session;
+use super::stats::{self, DebugView};
+use super::{settings_ui as settings, tree_ui};
+use egui::{Color32, ColorImage, Key, RichText, TextureHandle, TextureOptions};
+
+/// Seconds between checks of the scene file's modification time.
+const POLL_SECONDS: f64 = 1.0;
+
+/// The inspector window.
+pub struct InspectorApp {
+    /// The controller (document, worker, files).
+    pub session: Session,
+    texture: Option<TextureHandle>,
+    texture_version: Option<u64>,
+    last_poll: f64,
+    placement: Option<ImagePlacement>,
+    diagram: DiagramCache,
+}
+
+impl InspectorApp {
+    /// Wrap a session.
+    #[must_use]
+    pub fn new(session: Session) -> Self {
+        Self {
+            session,
+            texture: None,
+            texture_version: None,
+            last_poll: 0.0,
+            placement: None,
+            diagram: DiagramCache::default(),
+        }
+    }
+
+    /// Screen position of the centre of pixel (x, y) as drawn last frame (for tests).
+    #[must_use]
+    pub fn screen_of_pixel(&self, x: u32, y: u32) -> Option<egui::Pos2> {
+        self.placement.map(|p| p.screen_of(x, y))
+    }
+
+    /// Draw one frame and apply the commands it produced.
+    pub fn show(&mut self, ui: &mut egui::Ui) {
+        let ctx = ui.ctx().clone();
+        self.session.pump();
+        let now = ui.input(|i| i.time);
+        if now - self.last_poll >= POLL_SECONDS {
+            self.last_poll = now;
+            self.session.poll_reload();
+        }
+        if self.session.doc.source.path.is_some() {
+            ctx.request_repaint_after(std::time::Duration::from_secs_f64(POLL_SECONDS));
+        }
+        self.update_texture(&ctx);
+        let doc = &self.session.doc;
+        let mut cmds = Vec::new();
+        egui::Panel::top("title").show(ui, |ui| title_ui(ui, doc));
+        egui::Panel::left("controls")
+            .resizable(true)
+            .default_size(290.0)
+            .show(ui, |ui| {
+                egui::ScrollArea::vertical().show(ui, |ui| {
+                    section(ui, "Scene", |ui| settings::scene_ui(ui, doc, &mut cmds));
+                    section(ui, "Settings", |ui| {
+                        settings::settings_ui(ui, doc, &mut cmds)
+                    });
+                    section(ui, "View", |ui| settings::view_ui(ui, doc, &mut cmds));
+                    section(ui, "Export", |ui| settings::export_ui(ui, doc, &mut cmds));
+                });
+            });
+        egui::Panel::right("tree")
+            .resizable(true)
+            .default_size(470.0)
+            .show(ui, |ui| {
+                ui.heading("Ray tree");
+                tree_ui::tree_ui(ui, doc, &mut cmds);
+                ui.separator();
+                egui::ScrollArea::vertical()
+                    .id_salt("details-scroll")
+                    .show(ui, |ui| {
+                        egui::CollapsingHeader::new("Details")
+                            .default_open(true)
+                            .show(ui, |ui| {
+                                tree_ui::details_ui(ui, doc);
+                            });
+                        egui::CollapsingHeader::new("Contribution breakdown")
+                            .default_open(true)
+                            .show(ui, |ui| {
+                                tree_ui::breakdown_ui(ui, doc, &mut cmds);
+                            });
+                    });
+            });
+        let cache = &mut self.diagram;
+        egui::Panel::bottom("diagram")
+            .resizable(true)
+            .default_size(330.0)
+            .show(ui, |ui| diagram_ui(ui, doc, cache, &mut cmds));
+        let tex = self.texture.as_ref().map(TextureHandle::id);
+        let mut placement = None;
+        egui::CentralPanel::default().show(ui, |ui| {
+            placement = Some(image_ui(ui, doc, tex, &mut cmds));
+        });
+        self.placement = placement;
+        keys_ui(ui, doc, &mut cmds);
+        for c in cmds {
+            self.session.apply(c);
+        }
+    }
+
+    fn update_texture(&mut self, ctx: &egui::Context) {
+        let doc = &self.session.doc;
+        if self.texture_version == Some(doc.image_version) {
+            return;
+        }
+        self.texture_version = Some(doc.image_version);
+        let image = texture_image(doc);
+        match &mut self.texture {
+            Some(t) => t.set(image, TextureOptions::NEAREST),
+            None => {
+                self.texture =
+                    Some(ctx.load_texture("raytree-image", image, TextureOptions::NEAREST))
+            }
+        }
+    }
+}
+
+impl eframe::App for InspectorApp {
+    fn ui(&mut self, ui: &mut egui::Ui, _frame: &mut eframe::Frame) {
+        self.show(ui);
+    }
+}
+
+/// The image or the selected debug view as an sRGB texture.
+fn texture_image(doc: &Document) -> ColorImage {
+    let size = [doc.image.width as usize, doc.image.height as usize];
+    let view = doc.view.debug;
+    if view == DebugView::Off {
+        return ColorImage::from_rgb(size, &doc.image.to_srgb8());
+    }
+    let (_, max) = stats::range(view, &doc.stats);
+    let pixels = doc
+        .stats
+        .iter()
+        .map(|s| {
+            let [r, g, b] = stats::false_colour(view, s, max);
+            Color32::from_rgb(r, g, b)
+        })
+        .collect();
+    ColorImage::new(size, pixels)
+}
+
+fn section(ui: &mut egui::Ui, title: &str, body: impl FnOnce(&mut egui::Ui)) {
+    egui::CollapsingHeader::new(RichText::new(title).strong())
+        .default_open(true)
+        .show(ui, body);
+}
+
+fn title_ui(ui: &mut egui::Ui, doc: &Document) {
+    ui.horizontal(|ui| {
+        ui.label(RichText::new("raytree inspector").strong());
+        ui.separator();
+        ui.label(doc.source.label());
+        ui.separator();
+        let (w, h) = (doc.image.width, doc.image.height);
+        let s = &doc.scene.settings;
+        ui.label(format!("{w}x{h}  depth {}  spp {}", s.max_depth, s.spp));
+        ui.separator();
+        match doc.progress.seconds {
+            Some(secs) if doc.rendered() => {
+                ui.label(format!(
+                    "rendered in {:.0} ms, {} rays",
+                    secs * 1e3,
+                    doc.progress.rays
+                ));
+            }
+            _ => {
+                let frac = doc.progress.rows as f32 / h.max(1) as f32;
+                ui.add(
+                    egui::ProgressBar::new(frac)
+                        .desired_width(160.0)
+                        .text("rendering"),
+                );
+            }
+        }
+        if let Some(e) = &doc.error {
+            ui.separator();
+            ui.colored_label(Color32::from_rgb(255, 110, 110), first_line(e));
+        }
+    });
+}
+
+fn first_line(s: &str) -> &str {
+    s.lines().next().unwrap_or(s)
+}
+
+/// Arrow keys move the selected pixel (unless a text field has focus).
+fn keys_ui(ui: &egui::Ui, doc: &Document, cmds: &mut Vec<Command>) {
+    if doc.selection.is_none() || ui.ctx().memory(|m| m.focused().is_some()) {
+        return;
+    }
+    let moves = [
+        (Key::ArrowLeft, [-1, 0]),
+        (Key::ArrowRight, [1, 0]),
+        (Key::ArrowUp, [0, -1]),
+        (Key::ArrowDown, [0, 1]),
+    ];
+    for (key, d) in moves {
+        if ui.input(|i| i.key_pressed(key)) {
+            cmds.push(Command::MoveSelection(d));
+        }
+    }
+}

@@ -1,0 +1,187 @@
+//! The inspector's state: the scene, the progressive image, the selection and its tree, and the
+//! view options. Plain data; panels read it and emit [`Command`]s.
+
+use super::export::ExportKind;
+use super::stats::{DebugView, PixelStats};
+use crate::math::Rgb;
+use crate::render::Image;
+use crate::scene::{Scene, Settings};
+use crate::tree::{NodeId, RayTree};
+use std::path::PathBuf;
+use std::sync::Arc;
+
+/// Where the scene came from.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct Source {
+    /// The file, or `None` for the built-in classic scene.
+    pub path: Option<PathBuf>,
+    /// Modification time when last read (for reload on change).
+    pub modified: Option<std::time::SystemTime>,
+}
+
+impl Source {
+    /// How to name the scene in the window.
+    #[must_use]
+    pub fn label(&self) -> String {
+        self.path
+            .as_ref()
+            .map_or("<built-in classic>".into(), |p| p.display().to_string())
+    }
+}
+
+/// How the image is shown.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct ViewOptions {
+    /// Screen points per image pixel; `None` fits the image to the panel.
+    pub zoom: Option<f32>,
+    /// Offset of the image centre from the panel centre, in points.
+    pub pan: [f32; 2],
+    /// False-colour view.
+    pub debug: DebugView,
+    /// Draw the selected pixel's ray path on the image.
+    pub overlay: bool,
+    /// The diagram's slicing plane.
+    pub plane: crate::diagram::PlaneSpec,
+    /// Diagram insets magnifying the spawn points (offset epsilon).
+    pub zoom_offsets: bool,
+}
+
+impl Default for ViewOptions {
+    fn default() -> Self {
+        Self {
+            zoom: None,
+            pan: [0.0, 0.0],
+            debug: DebugView::Off,
+            overlay: true,
+            plane: crate::diagram::PlaneSpec::Incidence,
+            zoom_offsets: false,
+        }
+    }
+}
+
+/// The render in progress or finished.
+#[derive(Clone, Debug)]
+pub struct Progress {
+    /// Generation of the render the image shows.
+    pub generation: u64,
+    /// Rows delivered for `generation`.
+    pub rows: u32,
+    /// Seconds of the last finished render.
+    pub seconds: Option<f64>,
+    /// Rays of the last finished render.
+    pub rays: u64,
+}
+
+/// Everything the panels show.
+pub struct Document {
+    /// The scene being traced (with the panel's settings).
+    pub scene: Arc<Scene>,
+    /// Where it came from.
+    pub source: Source,
+    /// Linear image; rows are replaced as bands arrive (old rows stay until then).
+    pub image: Image,
+    /// Debug statistics per pixel, same layout as `image`.
+    pub stats: Vec<PixelStats>,
+    /// Render progress.
+    pub progress: Progress,
+    /// Selected pixel.
+    pub selection: Option<[u32; 2]>,
+    /// The selected pixel's tree (re-traced synchronously on every change).
+    pub tree: Option<RayTree>,
+    /// Selected node of `tree`.
+    pub node: Option<NodeId>,
+    /// Bumped whenever `tree` is re-traced.
+    pub tree_version: u64,
+    /// View options.
+    pub view: ViewOptions,
+    /// The last error (bad scene, failed export); the last good scene stays loaded.
+    pub error: Option<String>,
+    /// The last informational message.
+    pub status: String,
+    /// Text of the "open scene" field.
+    pub path_field: String,
+    /// Text of the export base field (file name without extension).
+    pub export_field: String,
+    /// Bumped whenever the image or debug data changed, so the app re-uploads its texture.
+    pub image_version: u64,
+}
+
+impl Document {
+    /// A document on `scene`, with a black image of the right size.
+    #[must_use]
+    pub fn new(scene: Scene, source: Source) -> Self {
+        let (w, h) = (scene.camera.width, scene.camera.height);
+        let base = source
+            .path
+            .as_ref()
+            .map(|p| p.with_extension("").display().to_string())
+            .unwrap_or_else(|| "classic".into());
+        Self {
+            image: Image {
+                width: w,
+                height: h,
+                pixels: vec![Rgb::ZERO; (w * h) as usize],
+            },
+            stats: vec![PixelStats::default(); (w * h) as usize],
+            progress: Progress {
+                generation: 0,
+                rows: 0,
+                seconds: None,
+                rays: 0,
+            },
+            path_field: source
+                .path
+                .as_ref()
+                .map_or(String::new(), |p| p.display().to_string()),
+            export_field: base,
+            scene: Arc::new(scene),
+            source,
+            selection: None,
+            tree: None,
+            node: None,
+            tree_version: 0,
+            view: ViewOptions::default(),
+            error: None,
+            status: String::new(),
+            image_version: 0,
+        }
+    }
+
+    /// Whether the current render has finished.
+    #[must_use]
+    pub fn rendered(&self) -> bool {
+        self.progress.rows >= self.image.height
+    }
+
+    /// The stats of pixel (x, y).
+    #[must_use]
+    pub fn stats_at(&self, x: u32, y: u32) -> PixelStats {
+        self.stats[(y * self.image.width + x) as usize]
+    }
+}
+
+/// A change requested by a panel, applied after layout by [`super::Session::apply`].
+#[must_use]
+#[derive(Clone, Debug, PartialEq)]
+pub enum Command {
+    /// Select pixel (x, y) and trace its tree.
+    SelectPixel([u32; 2]),
+    /// Move the selection by (dx, dy), clamped to the image.
+    MoveSelection([i32; 2]),
+    /// Select a node of the tree (or none).
+    SelectNode(Option<NodeId>),
+    /// New tracer settings: re-render and re-trace.
+    SetSettings(Settings),
+    /// New view options.
+    SetView(ViewOptions),
+    /// Load a scene file.
+    Open(PathBuf),
+    /// Re-read the current scene file.
+    Reload,
+    /// Write an export next to the export base.
+    Export(ExportKind),
+    /// Edit the "open scene" field.
+    SetPathField(String),
+    /// Edit the export base field.
+    SetExportField(String),
+}

@@ -1,0 +1,276 @@
+//! The controller: a [`Document`] plus the render [`Worker`] and the file hook. Applies
+//! commands, folds worker deliveries into the image, and reloads scenes. No egui here, so tests
+//! and benchmarks can drive it directly.
+
+use super::document::{Command, Document, Source};
+use super::export::{self, ExportKind};
+use super::worker::{Delivery, Repaint, Worker};
+use super::{Adjust, Files};
+use crate::render::Image;
+use crate::scene::Scene;
+use crate::trace_pixel;
+use std::path::{Path, PathBuf};
+use std::sync::Arc;
+
+/// The inspector without its widgets.
+pub struct Session {
+    /// What the panels show.
+    pub doc: Document,
+    worker: Worker,
+    files: Box<dyn Files>,
+    adjust: Adjust,
+}
+
+impl Session {
+    /// Open `path` (or the built-in scene) and start rendering. A bad scene file leaves the
+    /// built-in scene loaded with the error shown.
+    pub fn new(
+        path: Option<PathBuf>,
+        files: Box<dyn Files>,
+        adjust: Adjust,
+        repaint: Repaint,
+    ) -> Self {
+        let mut builtin = Scene::default_scene();
+        let builtin_err = adjust(&mut builtin).err();
+        let doc = Document::new(builtin, Source::default());
+        let mut s = Self {
+            doc,
+            worker: Worker::new(repaint),
+            files,
+            adjust,
+        };
+        s.doc.error = builtin_err;
+        match path {
+            Some(p) => {
+                if s.open(&p).is_err() {
+                    s.rerender();
+                }
+            }
+            None => s.rerender(),
+        }
+        s
+    }
+
+    /// Read, validate and adjust the scene at `path`.
+    fn read(&self, path: &Path) -> Result<(Scene, Source), String> {
+        let label = path.display();
+        let src = self
+            .files
+            .read(path)
+            .map_err(|e| format!("cannot read scene {label}: {e}"))?;
+        let mut scene = Scene::from_json(&src).map_err(|e| format!("{label}:{e}"))?;
+        (self.adjust)(&mut scene).map_err(|e| format!("{label}: {e}"))?;
+        let source = Source {
+            path: Some(path.to_path_buf()),
+            modified: self.files.modified(path),
+        };
+        Ok((scene, source))
+    }
+
+    /// Load `path`; on error keep the current scene and show the error.
+    fn open(&mut self, path: &Path) -> Result<(), ()> {
+        match self.read(path) {
+            Ok((scene, source)) => {
+                let view = self.doc.view;
+                let selection = self.doc.selection;
+                self.doc = Document::new(scene, source);
+                self.doc.view = view;
+                self.doc.status = format!("loaded {}", path.display());
+                self.rerender();
+                if let Some([x, y]) = selection {
+                    self.select([x, y]);
+                }
+                Ok(())
+            }
+            Err(e) => {
+                // Remember the time so a broken file is not re-read every poll.
+                if self.doc.source.path.as_deref() == Some(path) {
+                    self.doc.source.modified = self.files.modified(path);
+                }
+                self.doc.error = Some(e);
+                Err(())
+            }
+        }
+    }
+
+    /// Re-read the scene if its file changed on disk. Returns whether it reloaded.
+    pub fn poll_reload(&mut self) -> bool {
+        let Some(path) = self.doc.source.path.clone() else {
+            return false;
+        };
+        let now = self.files.modified(&path);
+        if now.is_none() || now == self.doc.source.modified {
+            return false;
+        }
+        self.open(&path).is_ok()
+    }
+
+    fn rerender(&mut self) {
+        let (w, h) = (self.doc.scene.camera.width, self.doc.scene.camera.height);
+        if self.doc.image.width != w || self.doc.image.height != h {
+            self.doc.image = Image {
+                width: w,
+                height: h,
+                pixels: vec![crate::math::Rgb::ZERO; (w * h) as usize],
+            };
+            self.doc.stats = vec![Default::default(); (w * h) as usize];
+        }
+        self.doc.progress.generation = self.worker.start(Arc::clone(&self.doc.scene));
+        self.doc.progress.rows = 0;
+        self.doc.progress.seconds = None;
+    }
+
+    fn select(&mut self, [x, y]: [u32; 2]) {
+        let keep = self.doc.node;
+        self.doc.selection = Some([x, y]);
+        self.doc.tree = trace_pixel(&self.doc.scene, x, y);
+        self.doc.tree_version += 1;
+        let n = self.doc.tree.as_ref().map_or(0, |t| t.nodes.len());
+        self.doc.node = keep
+            .filter(|id| id.index() < n)
+            .or(Some(crate::NodeId(0)).filter(|_| n > 0));
+    }
+
+    /// Apply one command.
+    pub fn apply(&mut self, cmd: Command) {
+        match cmd {
+            Command::SelectPixel(p) => {
+                self.doc.node = None;
+                self.select(p);
+            }
+            Command::MoveSelection([dx, dy]) => {
+                let [x, y] = self.doc.selection.unwrap_or([0, 0]);
+                let nx =
+                    (i64::from(x) + i64::from(dx)).clamp(0, i64::from(self.doc.image.width) - 1);
+                let ny =
+                    (i64::from(y) + i64::from(dy)).clamp(0, i64::from(self.doc.image.height) - 1);
+                self.doc.node = None;
+                self.select([nx as u32, ny as u32]);
+            }
+            Command::SelectNode(id) => self.doc.node = id,
+            Command::SetSettings(settings) => {
+                if let Err((path, msg)) = crate::scene::check_settings(&settings) {
+                    self.doc.error = Some(format!("{path}: {msg}"));
+                    return;
+                }
+                let mut scene = (*self.doc.scene).clone();
+                scene.settings = settings;
+                self.doc.scene = Arc::new(scene);
+                self.rerender();
+                if let Some(p) = self.doc.selection {
+                    self.select(p);
+                }
+            }
+            Command::SetView(v) => {
+                if v.debug != self.doc.view.debug {
+                    self.doc.image_version += 1;
+                }
+                self.doc.view = v;
+            }
+            Command::Open(path) => {
+                self.doc.error = None;
+                let _ = self.open(&path);
+            }
+            Command::Reload => {
+                self.doc.error = None;
+                match self.doc.source.path.clone() {
+                    Some(p) => {
+                        let _ = self.open(&p);
+                    }
+                    None => self.rerender(),
+                }
+            }
+            Command::Export(kind) => self.export(kind),
+            Command::SetPathField(s) => self.doc.path_field = s,
+            Command::SetExportField(s) => self.doc.export_field = s,
+        }
+    }
+
+    fn export(&mut self, kind: ExportKind) {
+        let doc = &self.doc;
+        let name = kind.file_name(&doc.export_field, doc.selection);
+        let bytes = match kind {
+            ExportKind::ImagePng if doc.rendered() => export::png(&doc.image),
+            ExportKind::ImageExr if doc.rendered() => export::exr(&doc.image),
+            ExportKind::ImagePng | ExportKind::ImageExr => {
+                Err("the render has not finished".into())
+            }
+            ExportKind::TreeJson => doc
+                .tree
+                .as_ref()
+                .ok_or_else(|| "select a pixel first".to_string())
+                .and_then(export::tree_json),
+            ExportKind::DiagramSvg | ExportKind::DiagramPng => diagram_bytes(doc, kind),
+        };
+        let result = bytes.and_then(|b| {
+            self.files
+                .write(Path::new(&name), &b)
+                .map_err(|e| format!("cannot write {name}: {e}"))
+        });
+        match result {
+            Ok(()) => {
+                self.doc.error = None;
+                self.doc.status = format!("wrote {name}");
+            }
+            Err(e) => self.doc.error = Some(e),
+        }
+    }
+
+    /// Fold every waiting delivery into the image. Returns whether anything changed.
+    pub fn pump(&mut self) -> bool {
+        let mut changed = false;
+        while let Some(d) = self.worker.try_recv() {
+            changed |= self.deliver(d);
+        }
+        changed
+    }
+
+    /// Block until the current render has finished (for tests, benchmarks and exports).
+    pub fn wait_render(&mut self) {
+        while !self.doc.rendered() || self.doc.progress.seconds.is_none() {
+            match self.worker.recv() {
+                Some(d) => {
+                    self.deliver(d);
+                }
+                None => return,
+            }
+        }
+    }
+
+    fn deliver(&mut self, d: Delivery) -> bool {
+        if d.generation() != self.doc.progress.generation {
+            return false;
+        }
+        match d {
+            Delivery::Band {
+                y0, pixels, stats, ..
+            } => {
+                let at = (y0 * self.doc.image.width) as usize;
+                self.doc.image.pixels[at..at + pixels.len()].copy_from_slice(&pixels);
+                self.doc.stats[at..at + stats.len()].copy_from_slice(&stats);
+                self.doc.progress.rows = y0 + (pixels.len() as u32) / self.doc.image.width.max(1);
+                self.doc.progress.seconds = None;
+                self.doc.image_version += 1;
+            }
+            Delivery::Done { seconds, rays, .. } => {
+                self.doc.progress.rows = self.doc.image.height;
+                self.doc.progress.seconds = Some(seconds);
+                self.doc.progress.rays = rays.total();
+            }
+        }
+        true
+    }
+}
+
+/// The selected pixel's diagram at 1280x720 as SVG or PNG, with the panel's plane and selection.
+fn diagram_bytes(doc: &Document, kind: ExportKind) -> Result<Vec<u8>, String> {
+    use crate::diagram::{Diagram, Style, Theme, to_png, to_svg};
+    let tree = doc.tree.as_ref().ok_or("select a pixel first")?;
+    let opts = super::diagram_ui::diagram_options(doc, [1280, 720]);
+    let d = Diagram::build(&doc.scene, tree, &opts).map_err(|e| e.to_string())?;
+    let style = Style::new(Theme::Light);
+    Ok(match kind {
+        ExportKind::DiagramPng => to_png(&d, &style),
+        _ => to_svg(&d, &style).into_bytes(),
+    })
+}

@@ -1,0 +1,148 @@
+//! The left panel: scene file, tracer settings, view options and exports.
+
+use super::document::{Command, Document};
+use super::export::ExportKind;
+use super::stats::DebugView;
+use super::style::{SELECTED, dot, kind_colour};
+use crate::math::FresnelModel;
+use crate::scene::{OffsetStrategy, ShadowMode};
+use crate::tree::RayKind;
+use egui::{Color32, RichText, Slider};
+
+/// Scene file field, open and reload.
+pub fn scene_ui(ui: &mut egui::Ui, doc: &Document, cmds: &mut Vec<Command>) {
+    ui.label(RichText::new(doc.source.label()).strong());
+    let mut path = doc.path_field.clone();
+    let label = ui.label("scene file");
+    let edit = ui.text_edit_singleline(&mut path).labelled_by(label.id);
+    if path != doc.path_field {
+        cmds.push(Command::SetPathField(path.clone()));
+    }
+    let enter = edit.lost_focus() && ui.input(|i| i.key_pressed(egui::Key::Enter));
+    ui.horizontal(|ui| {
+        if (ui.button("Open").clicked() || enter) && !path.trim().is_empty() {
+            cmds.push(Command::Open(path.trim().into()));
+        }
+        if ui.button("Reload").clicked() {
+            cmds.push(Command::Reload);
+        }
+    });
+    if let Some(e) = &doc.error {
+        ui.colored_label(Color32::from_rgb(255, 110, 110), e);
+    }
+}
+
+/// Tracer settings; any change re-renders and re-traces the selected pixel.
+pub fn settings_ui(ui: &mut egui::Ui, doc: &Document, cmds: &mut Vec<Command>) {
+    let old = doc.scene.settings;
+    let mut s = old;
+    ui.add(Slider::new(&mut s.max_depth, 0..=32).text("max depth"));
+    ui.add(
+        Slider::new(&mut s.spp, 1..=64)
+            .logarithmic(true)
+            .text("samples / pixel"),
+    );
+    ui.horizontal(|ui| {
+        ui.label("offset");
+        ui.radio_value(&mut s.offset.strategy, OffsetStrategy::Normal, "P ± εN");
+        ui.radio_value(&mut s.offset.strategy, OffsetStrategy::Ray, "t_min = ε");
+    });
+    ui.add(
+        Slider::new(&mut s.offset.epsilon, 1e-9..=1e-1)
+            .logarithmic(true)
+            .custom_formatter(|v, _| format!("{v:.0e}"))
+            .text("epsilon"),
+    );
+    egui::ComboBox::from_label("Fresnel")
+        .selected_text(format!("{:?}", s.fresnel))
+        .show_ui(ui, |ui| {
+            for m in [
+                FresnelModel::Exact,
+                FresnelModel::Schlick,
+                FresnelModel::None,
+            ] {
+                ui.selectable_value(&mut s.fresnel, m, format!("{m:?}"));
+            }
+        });
+    ui.horizontal(|ui| {
+        ui.label("shadows");
+        ui.radio_value(&mut s.shadows, ShadowMode::Opaque, "opaque");
+        ui.radio_value(&mut s.shadows, ShadowMode::Translucent, "translucent");
+    });
+    ui.add(
+        Slider::new(&mut s.min_weight, 0.0..=1.0)
+            .logarithmic(true)
+            .smallest_positive(1e-6)
+            .text("min weight"),
+    );
+    if s != old {
+        cmds.push(Command::SetSettings(s));
+    }
+}
+
+/// Debug view, overlay and zoom.
+pub fn view_ui(ui: &mut egui::Ui, doc: &Document, cmds: &mut Vec<Command>) {
+    let mut v = doc.view;
+    egui::ComboBox::from_label("show")
+        .selected_text(v.debug.label())
+        .show_ui(ui, |ui| {
+            for d in DebugView::ALL {
+                ui.selectable_value(&mut v.debug, d, d.label());
+            }
+        });
+    ui.checkbox(&mut v.overlay, "ray path overlay");
+    ui.horizontal(|ui| {
+        ui.label("zoom");
+        if ui.button("fit").clicked() {
+            v.zoom = None;
+            v.pan = [0.0, 0.0];
+        }
+        for z in [1.0, 4.0, 16.0] {
+            if ui.button(format!("{z}x")).clicked() {
+                v.zoom = Some(z);
+                v.pan = centre_on_selection(doc, z);
+            }
+        }
+    });
+    ui.horizontal_wrapped(|ui| {
+        for k in RayKind::ALL {
+            dot(ui, kind_colour(k));
+            ui.label(k.name());
+        }
+        dot(ui, SELECTED);
+        ui.label("selected");
+    });
+    if v != doc.view {
+        cmds.push(Command::SetView(v));
+    }
+}
+
+/// Pan that puts the selected pixel at the panel centre at zoom `z`.
+fn centre_on_selection(doc: &Document, z: f32) -> [f32; 2] {
+    let Some([x, y]) = doc.selection else {
+        return [0.0, 0.0];
+    };
+    let dx = (doc.image.width as f32 * 0.5 - (x as f32 + 0.5)) * z;
+    let dy = (doc.image.height as f32 * 0.5 - (y as f32 + 0.5)) * z;
+    [dx, dy]
+}
+
+/// Export base and buttons.
+pub fn export_ui(ui: &mut egui::Ui, doc: &Document, cmds: &mut Vec<Command>) {
+    let mut base = doc.export_field.clone();
+    let label = ui.label("export base (path without extension)");
+    ui.text_edit_singleline(&mut base).labelled_by(label.id);
+    if base != doc.export_field {
+        cmds.push(Command::SetExportField(base));
+    }
+    ui.horizontal_wrapped(|ui| {
+        for k in ExportKind::ALL {
+            if ui.button(k.label()).clicked() {
+                cmds.push(Command::Export(k));
+            }
+        }
+    });
+    if !doc.status.is_empty() {
+        ui.small(&doc.status);
+    }
+}

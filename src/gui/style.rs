@@ -1,0 +1,63 @@
+//! Colours and number formatting shared by the panels.
+
+use crate::math::{Rgb, linear_to_srgb8};
+use crate::tree::RayKind;
+use egui::Color32;
+
+/// The colour of a ray kind, everywhere (tree, overlay, legend); the diagram's dark theme.
+#[must_use]
+pub fn kind_colour(kind: RayKind) -> Color32 {
+    match kind {
+        RayKind::Camera => Color32::from_rgb(235, 235, 235),
+        RayKind::Reflected => Color32::from_rgb(255, 107, 107),
+        RayKind::Refracted => Color32::from_rgb(77, 171, 247),
+        RayKind::Shadow => Color32::from_rgb(255, 212, 59),
+    }
+}
+
+/// Highlight for the selected node and pixel.
+pub const SELECTED: Color32 = Color32::from_rgb(255, 70, 200);
+
+/// `[r, g, b]` with 4 decimals.
+#[must_use]
+pub fn rgb(c: Rgb) -> String {
+    if c.x == c.y && c.y == c.z {
+        return format!("{:.4}", c.x);
+    }
+    format!("[{:.4}, {:.4}, {:.4}]", c.x, c.y, c.z)
+}
+
+/// A linear colour as an sRGB swatch colour.
+#[must_use]
+pub fn swatch(c: Rgb) -> Color32 {
+    let [r, g, b] = c.to_array().map(linear_to_srgb8);
+    Color32::from_rgb(r, g, b)
+}
+
+/// Short number: 4 significant digits, scientific when tiny or huge.
+#[must_use]
+pub fn num(v: f64) -> String {
+    if v == 0.0 || (1e-3..1e5).contains(&v.abs()) {
+        format!("{v:.4}")
+    } else {
+        format!("{v:.3e}")
+    }
+}
+
+/// A vector `(x, y, z)`.
+#[must_use]
+pub fn vec3(v: glam::DVec3) -> String {
+    format!("({}, {}, {})", num(v.x), num(v.y), num(v.z))
+}
+
+/// A small filled circle in `colour` (the default fonts have no bullet glyph).
+pub fn dot(ui: &mut egui::Ui, colour: Color32) {
+    let (rect, _) = ui.allocate_exact_size(egui::vec2(10.0, 10.0), egui::Sense::hover());
+    ui.painter().circle_filled(rect.center(), 4.5, colour);
+}
+
+/// A small colour square.
+pub fn square(ui: &mut egui::Ui, colour: Color32) {
+    let (rect, _) = ui.allocate_exact_size(egui::vec2(14.0, 14.0), egui::Sense::hover());
+    ui.painter().rect_filled(rect, 2.0, colour);
+}
