@@ -52,16 +52,13 @@ pub fn settings_ui(ui: &mut egui::Ui, doc: &Document, cmds: &mut Vec<Command>) {
             .logarithmic(true)
             .text("samples / pixel"),
     );
-    ui.horizontal(|ui| {
-        ui.label("offset");
-        egui::ComboBox::from_id_salt("offset strategy")
-            .selected_text(offset_label(s.offset.strategy))
-            .show_ui(ui, |ui| {
-                for o in OffsetStrategy::ALL {
-                    ui.selectable_value(&mut s.offset.strategy, o, offset_label(o));
-                }
-            });
-    });
+    egui::ComboBox::from_label("offset")
+        .selected_text(offset_label(s.offset.strategy))
+        .show_ui(ui, |ui| {
+            for o in OffsetStrategy::ALL {
+                ui.selectable_value(&mut s.offset.strategy, o, offset_label(o));
+            }
+        });
     ui.add(
         Slider::new(&mut s.offset.epsilon, 1e-9..=1e-1)
             .logarithmic(true)
