@@ -91,7 +91,7 @@ impl Sweep {
                 FresnelModel::Exact,
             ],
             spps: vec![1, 4, 16],
-            offsets: vec![OffsetStrategy::Normal, OffsetStrategy::Ray],
+            offsets: OffsetStrategy::ALL.to_vec(),
             // 1 / (255 * 12.92): the smallest linear step visible in 8-bit sRGB near black.
             min_weights: vec![0.0, 3.0e-4, 1.0e-3, 1.0e-2, 5.0e-2],
             reference_depth: 32,
@@ -145,7 +145,7 @@ impl Sweep {
         for &o in &self.offsets {
             let mut s = *base;
             s.offset.strategy = o;
-            push("offset", format!("{o:?}").to_lowercase(), s);
+            push("offset", o.name().to_string(), s);
         }
         for &w in &self.min_weights {
             push(
@@ -220,17 +220,19 @@ pub struct CostReport {
     pub rows: Vec<CostRow>,
 }
 
-/// The most accurate settings: deep recursion, exact Fresnel, no early termination, the
-/// scene's own offset.
+/// The most accurate settings: deep recursion, exact Fresnel, no early termination and the
+/// robust offset (no self-hits and no leaks at any scale, docs/numerics.md).
 #[must_use]
 pub fn reference_settings(base: &Settings, sweep: &Sweep) -> Settings {
-    Settings {
+    let mut s = Settings {
         max_depth: sweep.reference_depth,
         fresnel: FresnelModel::Exact,
         min_weight: 0.0,
         spp: 1,
         ..*base
-    }
+    };
+    s.offset.strategy = OffsetStrategy::Robust;
+    s
 }
 
 fn median(mut v: Vec<f64>) -> f64 {

@@ -60,10 +60,19 @@ pub fn run(a: &CostArgs) -> Result<()> {
 
 fn markdown(r: &CostReport, label: &str) -> String {
     let mut s = format!(
-        "Cost sweep of {label} at {}x{}. Reference: max depth {}, exact Fresnel, offset {:?} {:e}, no min weight; 1 spp (pixel centres) for every axis but spp, {} spp for the spp axis. Each row changes one setting of the base (depth 16, exact, 1 spp, min weight 0).\n\n",
-        r.size[0], r.size[1], r.reference.max_depth, r.reference.offset.strategy, r.reference.offset.epsilon, r.reference_spp
-    )
-    .to_lowercase();
+        "Cost sweep of {label} at {}x{}. Reference: max depth {}, exact Fresnel, offset {}, no min weight; 1 spp (pixel centres) for every axis but spp, {} spp for the spp axis. Each row changes one setting of the base (depth 16, exact Fresnel, 1 spp, min weight 0, the scene's offset {} {:e}).\n\n",
+        r.size[0],
+        r.size[1],
+        r.reference.max_depth,
+        r.reference.offset.strategy.name(),
+        r.reference_spp,
+        r.rows
+            .first()
+            .map_or("normal", |row| row.settings.offset.strategy.name()),
+        r.rows
+            .first()
+            .map_or(0.0, |row| row.settings.offset.epsilon),
+    );
     s.push_str("| axis | value | median ms | rays | camera | reflected | refracted | shadow | RMSE | max err | pixels off >1/255 | Pareto |\n");
     s.push_str(
         "| --- | --- | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | :---: |\n",

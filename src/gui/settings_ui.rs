@@ -32,6 +32,16 @@ pub fn scene_ui(ui: &mut egui::Ui, doc: &Document, cmds: &mut Vec<Command>) {
     }
 }
 
+/// How each offset strategy places a secondary ray's origin.
+fn offset_label(o: OffsetStrategy) -> &'static str {
+    match o {
+        OffsetStrategy::Normal => "normal: P ± εN",
+        OffsetStrategy::Ray => "ray: t_min = ε",
+        OffsetStrategy::Scaled => "scaled: P ± ε·max(1,|P|)N",
+        OffsetStrategy::Robust => "robust: error bounds",
+    }
+}
+
 /// Tracer settings; any change re-renders and re-traces the selected pixel.
 pub fn settings_ui(ui: &mut egui::Ui, doc: &Document, cmds: &mut Vec<Command>) {
     let old = doc.scene.settings;
@@ -42,11 +52,13 @@ pub fn settings_ui(ui: &mut egui::Ui, doc: &Document, cmds: &mut Vec<Command>) {
             .logarithmic(true)
             .text("samples / pixel"),
     );
-    ui.horizontal(|ui| {
-        ui.label("offset");
-        ui.radio_value(&mut s.offset.strategy, OffsetStrategy::Normal, "P ± εN");
-        ui.radio_value(&mut s.offset.strategy, OffsetStrategy::Ray, "t_min = ε");
-    });
+    egui::ComboBox::from_label("offset")
+        .selected_text(offset_label(s.offset.strategy))
+        .show_ui(ui, |ui| {
+            for o in OffsetStrategy::ALL {
+                ui.selectable_value(&mut s.offset.strategy, o, offset_label(o));
+            }
+        });
     ui.add(
         Slider::new(&mut s.offset.epsilon, 1e-9..=1e-1)
             .logarithmic(true)
