@@ -199,3 +199,41 @@ fn exports_write_next_to_the_export_base() {
     assert!(files.get("scenes/classic.png").is_some());
     assert!(has(&h, "wrote scenes/classic-diagram-150-100.svg"));
 }
+
+#[test]
+fn a_mesh_scene_reads_its_obj_through_the_file_hook() {
+    let files = MemFiles::default();
+    let scene = CLASSIC.replace(
+        "\"objects\": [",
+        r#""objects": [{"type": "mesh", "name": "tri", "file": "meshes/t.obj", "material": "mirror"},"#,
+    );
+    assert_ne!(scene, CLASSIC);
+    files.put("scenes/m.json", &scene);
+    let open = |files: &MemFiles| {
+        let mut s = Session::new(
+            Some("scenes/m.json".into()),
+            Box::new(files.clone()),
+            Box::new(|_| Ok(())),
+            Arc::new(|| {}),
+        );
+        s.wait_render();
+        s
+    };
+    // Missing OBJ: the error names it (relative to the scene's directory), classic stays.
+    let s = open(&files);
+    let err = s.doc.error.clone().unwrap_or_default();
+    assert!(
+        err.contains("objects[0].file") && err.contains("t.obj"),
+        "{err}"
+    );
+    files.put(
+        "scenes/meshes/t.obj",
+        "v -1 0 -1\nv 1 0 -1\nv 0 2 -1\nf 1 2 3\n",
+    );
+    let s = open(&files);
+    assert!(s.doc.error.is_none(), "{:?}", s.doc.error);
+    assert!(matches!(
+        s.doc.scene.objects[0].shape,
+        raytree::geometry::Shape::Mesh(_)
+    ));
+}

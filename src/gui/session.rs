@@ -58,7 +58,21 @@ impl Session {
             .files
             .read(path)
             .map_err(|e| format!("cannot read scene {label}: {e}"))?;
-        let mut scene = Scene::from_json(&src).map_err(|e| format!("{label}:{e}"))?;
+        // Mesh files are read through the same hook, relative to the scene's directory.
+        let dir = path.parent().unwrap_or(Path::new(""));
+        let mut load_mesh = |file: &str| {
+            let p = dir.join(file);
+            let text = self
+                .files
+                .read(&p)
+                .map_err(|e| format!("cannot read {}: {e}", p.display()))?;
+            crate::mesh::parse_obj(&text).map_err(|e| match e.line {
+                0 => format!("{}: {}", p.display(), e.message),
+                line => format!("{}:{line}: {}", p.display(), e.message),
+            })
+        };
+        let mut scene =
+            Scene::from_json_with(&src, &mut load_mesh).map_err(|e| format!("{label}:{e}"))?;
         (self.adjust)(&mut scene).map_err(|e| format!("{label}: {e}"))?;
         let source = Source {
             path: Some(path.to_path_buf()),
