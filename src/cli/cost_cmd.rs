@@ -60,15 +60,12 @@ pub fn run(a: &CostArgs) -> Result<()> {
 
 fn markdown(r: &CostReport, label: &str) -> String {
     let mut s = format!(
-        "Cost sweep of {label} at {}x{}. Reference: max depth {}, exact Fresnel, offset {}, no min weight; 1 spp (pixel centres) for every axis but spp, {} spp for the spp axis. Each row changes one setting of the base (depth 16, exact Fresnel, 1 spp, min weight 0, the scene's offset {} {:e}).\n\n",
+        "Cost sweep of {label} at {}x{}. Reference: max depth {}, exact Fresnel, offset {}, no min weight; 1 spp (pixel centres) for every axis but spp, {} spp for the spp axis. Each row changes one setting of the base (depth 16, exact Fresnel, 1 spp, min weight 0, robust offset); the offset rows use the scene's epsilon {:e}.\n\n",
         r.size[0],
         r.size[1],
         r.reference.max_depth,
         r.reference.offset.strategy.name(),
         r.reference_spp,
-        r.rows
-            .first()
-            .map_or("normal", |row| row.settings.offset.strategy.name()),
         r.rows
             .first()
             .map_or(0.0, |row| row.settings.offset.epsilon),

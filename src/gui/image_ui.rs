@@ -189,7 +189,7 @@ fn hover_readout(painter: &egui::Painter, area: Rect, film: Vec2, doc: &Document
     let s = c.to_array().map(linear_to_srgb8);
     let st = doc.stats_at(x, y);
     let text = format!(
-        "pixel {x}, {y}\nlinear {}\nsRGB {} {} {}\ndepth {}  rays {}  TIR {}  self-hits {}  cut {:.3}",
+        "pixel {x}, {y}\nlinear {}\nsRGB {} {} {}\ndepth {}  rays {}  TIR {}  self-hits {}  leaks {}  cut {:.3}",
         rgb(c),
         s[0],
         s[1],
@@ -198,6 +198,7 @@ fn hover_readout(painter: &egui::Painter, area: Rect, film: Vec2, doc: &Document
         st.rays,
         st.tir,
         st.self_hits,
+        st.leaks,
         st.cut
     );
     let pos = area.left_top() + vec2(8.0, 8.0);

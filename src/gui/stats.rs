@@ -3,11 +3,7 @@
 
 use crate::math::Rgb;
 use crate::trace::Recorder;
-use crate::tree::{EndReason, NodeId, RayKind, RayNode};
-
-/// A hit closer than this many offset epsilons to a secondary ray's spawn point counts as a
-/// self-intersection (until the numerics work records them properly).
-pub const SELF_HIT_EPSILONS: f64 = 4.0;
+use crate::tree::{EndReason, NodeId, RayNode};
 
 /// What the debug views show for one pixel (summed over its samples).
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
@@ -18,8 +14,10 @@ pub struct PixelStats {
     pub rays: u32,
     /// Total internal reflection events.
     pub tir: u32,
-    /// Hits (or shadow blockers) at `t` below [`SELF_HIT_EPSILONS`] x epsilon.
+    /// Spawned rays whose first hit is the surface they left (`RayNode::self_hit`).
     pub self_hits: u32,
+    /// Spawned rays whose offset skipped geometry (`RayNode::leak`).
+    pub leaks: u32,
     /// Path weight cut off by `max_depth`, mean over samples (max channel of throughput x
     /// attenuation x truncated weight).
     pub cut: f32,
@@ -50,8 +48,8 @@ impl Recorder for StatsRecorder {
 
 impl StatsRecorder {
     /// Summarise the rays recorded since the last call and clear the arena.
-    pub fn take(&mut self, epsilon: f64, spp: u32) -> PixelStats {
-        let s = summarize(&self.nodes, epsilon, spp);
+    pub fn take(&mut self, spp: u32) -> PixelStats {
+        let s = summarize(&self.nodes, spp);
         self.nodes.clear();
         s
     }
@@ -59,8 +57,7 @@ impl StatsRecorder {
 
 /// Fold recorded nodes (of one pixel, all samples) into [`PixelStats`].
 #[must_use]
-pub fn summarize(nodes: &[RayNode], epsilon: f64, spp: u32) -> PixelStats {
-    let near = SELF_HIT_EPSILONS * epsilon;
+pub fn summarize(nodes: &[RayNode], spp: u32) -> PixelStats {
     let mut s = PixelStats::default();
     let mut cut = 0.0;
     for n in nodes {
@@ -69,12 +66,8 @@ pub fn summarize(nodes: &[RayNode], epsilon: f64, spp: u32) -> PixelStats {
         if n.interface.as_ref().is_some_and(|i| i.tir) {
             s.tir += 1;
         }
-        if n.kind != RayKind::Camera && n.hit.as_ref().is_some_and(|h| h.t < near) {
-            s.self_hits += 1;
-        }
-        if let Some(sh) = &n.shadow {
-            s.self_hits += sh.blockers.iter().filter(|b| b.t < near).count() as u32;
-        }
+        s.self_hits += u32::from(n.self_hit);
+        s.leaks += u32::from(n.leak.is_some());
         if n.end == EndReason::MaxDepth {
             let atten = n.attenuation.as_ref().map_or(Rgb::ONE, |a| a.factor);
             cut += (n.throughput * atten * n.truncated).max_element();
@@ -96,20 +89,23 @@ pub enum DebugView {
     Rays,
     /// Total internal reflection events.
     Tir,
-    /// Suspected self-intersections.
+    /// Self-intersections (acne).
     SelfHits,
+    /// Offsets that skipped geometry.
+    Leaks,
     /// Path weight cut off by max depth.
     Cut,
 }
 
 impl DebugView {
     /// All views in menu order.
-    pub const ALL: [DebugView; 6] = [
+    pub const ALL: [DebugView; 7] = [
         DebugView::Off,
         DebugView::Depth,
         DebugView::Rays,
         DebugView::Tir,
         DebugView::SelfHits,
+        DebugView::Leaks,
         DebugView::Cut,
     ];
 
@@ -122,6 +118,7 @@ impl DebugView {
             DebugView::Rays => "rays per pixel",
             DebugView::Tir => "TIR events",
             DebugView::SelfHits => "self-intersections",
+            DebugView::Leaks => "offset leaks",
             DebugView::Cut => "weight cut by max depth",
         }
     }
@@ -135,6 +132,7 @@ impl DebugView {
             DebugView::Rays => s.rays as f32,
             DebugView::Tir => s.tir as f32,
             DebugView::SelfHits => s.self_hits as f32,
+            DebugView::Leaks => s.leaks as f32,
             DebugView::Cut => s.cut,
         }
     }
@@ -190,9 +188,8 @@ mod tests {
             let mut counts = RayCounts::default();
             let l = render_pixel(&scene, x, y, &mut rec, &mut counts, |_| {});
             assert_eq!(l, tree.radiance);
-            let eps = scene.settings.offset.epsilon;
-            let s = rec.take(eps, 1);
-            assert_eq!(s, summarize(&tree.nodes, eps, 1));
+            let s = rec.take(1);
+            assert_eq!(s, summarize(&tree.nodes, 1));
             assert_eq!(s.rays as usize, tree.nodes.len());
             assert_eq!(s.depth, tree.nodes.iter().map(|n| n.depth).max().unwrap());
         }
@@ -206,7 +203,7 @@ mod tests {
         let (mut cut_any, mut deep) = (false, 0);
         for x in (0..640).step_by(16) {
             let t = trace_pixel(&scene, x, 180).unwrap();
-            let s = summarize(&t.nodes, 1e-4, 1);
+            let s = summarize(&t.nodes, 1);
             cut_any |= s.cut > 0.0;
             deep = deep.max(s.depth);
         }

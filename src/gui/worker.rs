@@ -140,7 +140,6 @@ impl Drop for Worker {
 fn run_job(job: &Job, current: &AtomicU64, tx: &Sender<Delivery>, repaint: &Repaint) {
     let scene = &*job.scene;
     let (w, h) = (scene.camera.width, scene.camera.height);
-    let eps = scene.settings.offset.epsilon;
     let spp = scene.settings.spp.max(1);
     let start = Instant::now();
     let total = Mutex::new(RayCounts::default());
@@ -160,7 +159,7 @@ fn run_job(job: &Job, current: &AtomicU64, tx: &Sender<Delivery>, repaint: &Repa
                 for x in 0..w {
                     let l = render_pixel(scene, x, y, &mut rec, &mut counts, |_| {});
                     px.push(if l.is_finite() { l } else { Rgb::ZERO });
-                    st.push(rec.take(eps, spp));
+                    st.push(rec.take(spp));
                 }
                 *total.lock().expect("no panics while holding the lock") += counts;
                 (px, st)
