@@ -9,6 +9,7 @@
 pub mod acne;
 pub mod bvh;
 pub mod check;
+pub mod codec;
 pub mod cost;
 pub mod diagram;
 pub mod effects;

@@ -91,46 +91,15 @@ pub fn image_format(path: &Path) -> Result<ImageFormat> {
 
 /// Encode `image` in memory.
 pub fn encode(image: &Image, format: ImageFormat) -> Result<Vec<u8>> {
-    use image::ImageEncoder;
-    let mut bytes = std::io::Cursor::new(Vec::new());
-    match format {
-        ImageFormat::Png => {
-            image::codecs::png::PngEncoder::new(&mut bytes).write_image(
-                &image.to_srgb8(),
-                image.width,
-                image.height,
-                image::ExtendedColorType::Rgb8,
-            )?;
-        }
-        ImageFormat::Exr => {
-            let floats: Vec<f32> = image
-                .pixels
-                .iter()
-                .flat_map(|p| p.as_vec3().to_array())
-                .collect();
-            let raw: Vec<u8> = floats.iter().flat_map(|f| f.to_le_bytes()).collect();
-            image::codecs::openexr::OpenExrEncoder::new(&mut bytes).write_image(
-                &raw,
-                image.width,
-                image.height,
-                image::ExtendedColorType::Rgb32F,
-            )?;
-        }
-    }
-    Ok(bytes.into_inner())
+    Ok(match format {
+        ImageFormat::Png => raytree::codec::png(image)?,
+        ImageFormat::Exr => raytree::codec::exr(image)?,
+    })
 }
 
 /// Encode 8-bit RGB bytes as PNG in memory.
 pub fn encode_rgb8_png(rgb: &[u8], width: u32, height: u32) -> Result<Vec<u8>> {
-    use image::ImageEncoder;
-    let mut bytes = std::io::Cursor::new(Vec::new());
-    image::codecs::png::PngEncoder::new(&mut bytes).write_image(
-        rgb,
-        width,
-        height,
-        image::ExtendedColorType::Rgb8,
-    )?;
-    Ok(bytes.into_inner())
+    Ok(raytree::codec::png_rgb8(rgb, width, height)?)
 }
 
 /// Read a PNG (sRGB, decoded to linear) or EXR (linear) into an [`Image`].

@@ -2,7 +2,6 @@
 
 use crate::render::Image;
 use crate::tree::RayTree;
-use image::ImageEncoder;
 
 /// What can be exported.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -57,36 +56,12 @@ impl ExportKind {
 
 /// 8-bit sRGB PNG bytes.
 pub fn png(image: &Image) -> Result<Vec<u8>, String> {
-    let mut bytes = Vec::new();
-    image::codecs::png::PngEncoder::new(&mut bytes)
-        .write_image(
-            &image.to_srgb8(),
-            image.width,
-            image.height,
-            image::ExtendedColorType::Rgb8,
-        )
-        .map_err(|e| e.to_string())?;
-    Ok(bytes)
+    crate::codec::png(image).map_err(|e| e.to_string())
 }
 
 /// Linear float OpenEXR bytes.
 pub fn exr(image: &Image) -> Result<Vec<u8>, String> {
-    let raw: Vec<u8> = image
-        .pixels
-        .iter()
-        .flat_map(|p| p.as_vec3().to_array())
-        .flat_map(f32::to_le_bytes)
-        .collect();
-    let mut bytes = std::io::Cursor::new(Vec::new());
-    image::codecs::openexr::OpenExrEncoder::new(&mut bytes)
-        .write_image(
-            &raw,
-            image.width,
-            image.height,
-            image::ExtendedColorType::Rgb32F,
-        )
-        .map_err(|e| e.to_string())?;
-    Ok(bytes.into_inner())
+    crate::codec::exr(image).map_err(|e| e.to_string())
 }
 
 /// Pretty JSON of a tree.
