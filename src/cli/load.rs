@@ -46,7 +46,7 @@ pub fn read_obj(dir: &Path, file: &str) -> Result<raytree::mesh::MeshData, Strin
 
 fn enum_value<T: DeserializeOwned>(flag: &str, v: &str) -> Result<T> {
     serde_json::from_value(serde_json::Value::String(v.to_string()))
-        .map_err(|_| anyhow!("--{flag}: unknown value {v:?}"))
+        .map_err(|e| anyhow!("--{flag}: unknown value {v:?} ({e})"))
 }
 
 /// Parse `X,Y` or `WxH`-style pairs.
