@@ -14,7 +14,7 @@ use crate::bvh::TraversalCost;
 use crate::effects::EffectPlan;
 use crate::math::{self, Fresnel, Ray, Rgb, beer, reflect, refract};
 use crate::mesh::shading;
-use crate::scene::{Hit, Material, OffsetStrategy, Scene};
+use crate::scene::{Hit, Light, Material, OffsetStrategy, Scene};
 use crate::tree::{
     Attenuation, EndReason, HitInfo, Interface, NodeId, RayKind, RayNode, ShadowInfo,
 };
@@ -300,11 +300,14 @@ impl<'a> Tracer<'a> {
         let ambient = scene.ambient * albedo;
         let mut local = emitted + ambient;
         if !m.diffuse.is_black() || m.specular != Rgb::ZERO {
-            for light in (0..scene.lights.len()).filter(|i| self.plan.light_on(*i)) {
+            for (i, light) in scene.lights.iter().enumerate() {
+                if !self.plan.light_on(i) {
+                    continue;
+                }
                 let at = ((hit.object, hit.triangle), p);
                 let normals = (n, ns);
                 local += self.direct(
-                    light,
+                    (i, light),
                     at,
                     normals,
                     -d,
@@ -323,6 +326,14 @@ impl<'a> Tracer<'a> {
             node.local = local;
         });
 
+        if !(self.plan.reflection || self.plan.refraction) {
+            // Nothing in the scene reflects or refracts: no secondary rays, no bookkeeping.
+            rec.update(id, |node| {
+                node.end = EndReason::Surface;
+                node.truncated = Rgb::ZERO;
+            });
+            return local;
+        }
         // Dielectric split (only where the material transmits).
         let mut reflect_w = m.reflectivity;
         let mut refraction = None;
@@ -520,7 +531,7 @@ impl<'a> Tracer<'a> {
     #[allow(clippy::too_many_arguments)]
     fn direct<R: Recorder>(
         &self,
-        light: usize,
+        (light, l): (usize, &Light),
         (from, p): ((usize, Option<u32>), DVec3),
         (n, ns): (DVec3, DVec3),
         wo: DVec3,
@@ -531,7 +542,6 @@ impl<'a> Tracer<'a> {
         rec: &mut R,
         counts: &mut RayCounts,
     ) -> Rgb {
-        let l = &self.scene.lights[light];
         let (wi, dist, irradiance) = l.sample(p);
         // Shade with ns; the light is behind if either normal says so (the shadow ray leaves
         // on the geometric side, so a light below the geometric surface cannot be reached).

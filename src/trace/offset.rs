@@ -23,6 +23,7 @@ pub fn scaled_epsilon(eps: f64, p: DVec3) -> f64 {
 /// normal, flipped towards where the ray goes). `shape` gives the surface `p` lies on; only the
 /// robust strategy needs it, so the others never look it up.
 #[must_use]
+#[inline]
 pub fn spawn<'s>(
     offset: OffsetDesc,
     shape: impl FnOnce() -> Cow<'s, Shape>,
