@@ -85,6 +85,13 @@ pub fn sample_position(x: u32, y: u32, s: u32, spp: u32) -> (f64, f64) {
     if spp <= 1 {
         return (f64::from(x) + 0.5, f64::from(y) + 0.5);
     }
+    jittered(x, y, s, spp)
+}
+
+/// The stratified position of [`sample_position`] for `spp > 1`. Out of line, so its square
+/// root and `ceil` are not hoisted into one-sample renders.
+#[inline(never)]
+fn jittered(x: u32, y: u32, s: u32, spp: u32) -> (f64, f64) {
     let cols = f64::from(spp).sqrt().ceil() as u32;
     let rows = spp.div_ceil(cols);
     let seed =

@@ -22,13 +22,7 @@ pub struct MediaStack {
 
 impl Default for MediaStack {
     fn default() -> Self {
-        Self {
-            items: [Medium {
-                object: 0,
-                ior: 1.0,
-            }; CAPACITY],
-            len: 0,
-        }
+        Self::AIR
     }
 }
 
@@ -39,6 +33,16 @@ impl PartialEq for MediaStack {
 }
 
 impl MediaStack {
+    /// The empty stack: the surrounding air (ior 1). A constant, so camera rays borrow it
+    /// instead of building one per ray.
+    pub const AIR: Self = Self {
+        items: [Medium {
+            object: 0,
+            ior: 1.0,
+        }; CAPACITY],
+        len: 0,
+    };
+
     /// The innermost medium, `None` in the surrounding air (ior 1).
     #[must_use]
     pub fn top(&self) -> Option<Medium> {

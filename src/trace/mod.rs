@@ -14,7 +14,7 @@ use crate::bvh::TraversalCost;
 use crate::effects::EffectPlan;
 use crate::math::{self, Fresnel, Ray, Rgb, beer, reflect, refract};
 use crate::mesh::shading;
-use crate::scene::{Hit, Material, OffsetStrategy, Scene};
+use crate::scene::{Hit, Light, Material, OffsetStrategy, Scene};
 use crate::tree::{
     Attenuation, EndReason, HitInfo, Interface, NodeId, RayKind, RayNode, ShadowInfo,
 };
@@ -144,13 +144,14 @@ impl<'a> Tracer<'a> {
         let state = PathState {
             depth: 0,
             throughput: Rgb::ONE,
-            media: &MediaStack::default(),
+            media: &MediaStack::AIR,
         };
         self.trace_ray(ray, spawn, state, rec, counts)
     }
 
     /// Offset a spawn point on `object` (for meshes: on stored `triangle`) by the configured
     /// strategy ([`offset::spawn`]).
+    #[inline]
     fn spawn_ray(
         &self,
         (object, triangle): (usize, Option<u32>),
@@ -158,8 +159,8 @@ impl<'a> Tracer<'a> {
         side: DVec3,
         direction: DVec3,
     ) -> Ray {
-        let shape = self.scene.surface_shape(object, triangle);
-        offset::spawn(self.scene.settings.offset, &shape, point, side, direction)
+        let shape = || self.scene.surface_shape(object, triangle);
+        offset::spawn(self.scene.settings.offset, shape, point, side, direction)
     }
 
     /// Run the diagnostics for a spawned ray, count and record them.
@@ -215,14 +216,15 @@ impl<'a> Tracer<'a> {
             self.diagnose(&ray, spawn.point, from, hit, id, rec, counts);
         }
         // Beer's law on this segment, inside the innermost absorbing medium.
-        let medium = state
-            .media
-            .top()
-            .filter(|_| self.plan.absorption)
-            .map(|m| m.object as usize);
+        // (Checked only when the plan has absorption: no per-ray cost otherwise.)
+        let medium = if self.plan.absorption {
+            state.media.top().map(|m| m.object as usize)
+        } else {
+            None
+        };
         let absorption = medium.map_or(Rgb::ZERO, |o| self.scene.material_of(o).absorption);
         let mut atten = Rgb::ONE;
-        if absorption != Rgb::ZERO {
+        if medium.is_some() && absorption != Rgb::ZERO {
             // Path length from the true spawn point, so the offset does not bias Beer's law.
             let distance = hit.map_or(f64::INFINITY, |h| (ray.at(h.t) - spawn.point).length());
             atten = beer(absorption, distance);
@@ -270,15 +272,14 @@ impl<'a> Tracer<'a> {
         // Geometric normal on the incident side: decides sides and offsets.
         let n = if entering { hit.normal } else { -hit.normal };
         // Shading normal on the incident side: lighting, mirror and Snell (mesh::shading rule).
-        let smooth = scene.shading_normal(hit, p);
-        let mut ns = smooth.map_or(n, |s| shading::shading_normal(d, n, s, entering));
-        if ns != n && self.plan.refraction && m.is_transmissive() {
-            let cos = (-d.dot(ns)).clamp(0.0, 1.0);
-            let (_, t) = self.interface(d, ns, cos, hit.object, m, entering, *state.media);
-            if t.is_some_and(|t| !shading::refraction_consistent(n, t)) {
-                ns = n;
+        let smooth = hit.triangle.and_then(|_| scene.shading_normal(hit, p));
+        let ns = match smooth {
+            None => n,
+            Some(s) => {
+                let ns = shading::shading_normal(d, n, s, entering);
+                self.consistent_shading_normal(d, n, ns, hit.object, m, entering, state.media)
             }
-        }
+        };
         let cos_i = (-d.dot(ns)).clamp(0.0, 1.0);
         rec.update(id, |node| {
             node.hit = Some(HitInfo {
@@ -299,11 +300,14 @@ impl<'a> Tracer<'a> {
         let ambient = scene.ambient * albedo;
         let mut local = emitted + ambient;
         if !m.diffuse.is_black() || m.specular != Rgb::ZERO {
-            for light in (0..scene.lights.len()).filter(|i| self.plan.light_on(*i)) {
+            for (i, light) in scene.lights.iter().enumerate() {
+                if !self.plan.light_on(i) {
+                    continue;
+                }
                 let at = ((hit.object, hit.triangle), p);
                 let normals = (n, ns);
                 local += self.direct(
-                    light,
+                    (i, light),
                     at,
                     normals,
                     -d,
@@ -322,6 +326,14 @@ impl<'a> Tracer<'a> {
             node.local = local;
         });
 
+        if !(self.plan.reflection || self.plan.refraction) {
+            // Nothing in the scene reflects or refracts: no secondary rays, no bookkeeping.
+            rec.update(id, |node| {
+                node.end = EndReason::Surface;
+                node.truncated = Rgb::ZERO;
+            });
+            return local;
+        }
         // Dielectric split (only where the material transmits).
         let mut reflect_w = m.reflectivity;
         let mut refraction = None;
@@ -399,6 +411,29 @@ impl<'a> Tracer<'a> {
             node.truncated = truncated;
         });
         total
+    }
+
+    /// `ns`, or the geometric `n` where refracting with `ns` would cross to the wrong side of
+    /// the surface (mesh::shading rule).
+    #[allow(clippy::too_many_arguments)]
+    fn consistent_shading_normal(
+        &self,
+        d: DVec3,
+        n: DVec3,
+        ns: DVec3,
+        object: usize,
+        m: &Material,
+        entering: bool,
+        media: &MediaStack,
+    ) -> DVec3 {
+        if ns != n && self.plan.refraction && m.is_transmissive() {
+            let cos = (-d.dot(ns)).clamp(0.0, 1.0);
+            let (_, t) = self.interface(d, ns, cos, object, m, entering, *media);
+            if t.is_some_and(|t| !shading::refraction_consistent(n, t)) {
+                return n;
+            }
+        }
+        ns
     }
 
     /// Trace one secondary ray (or record why it was cut) and add its weighted radiance.
@@ -496,7 +531,7 @@ impl<'a> Tracer<'a> {
     #[allow(clippy::too_many_arguments)]
     fn direct<R: Recorder>(
         &self,
-        light: usize,
+        (light, l): (usize, &Light),
         (from, p): ((usize, Option<u32>), DVec3),
         (n, ns): (DVec3, DVec3),
         wo: DVec3,
@@ -507,7 +542,6 @@ impl<'a> Tracer<'a> {
         rec: &mut R,
         counts: &mut RayCounts,
     ) -> Rgb {
-        let l = &self.scene.lights[light];
         let (wi, dist, irradiance) = l.sample(p);
         // Shade with ns; the light is behind if either normal says so (the shadow ray leaves
         // on the geometric side, so a light below the geometric surface cannot be reached).
@@ -563,21 +597,25 @@ impl<'a> Tracer<'a> {
             let first = self.scene.intersect(&ray, seg);
             self.diagnose(&ray, p, from, first, id, rec, counts);
         }
-        let tr = shadow::transmission(
+        // Blockers are collected only when recording (no `Vec` on the render path).
+        let mut blockers = R::RECORDS.then(Vec::new);
+        let mut cost = TraversalCost::default();
+        let transmittance = shadow::transmission(
             self.scene,
             &ray,
             seg,
             self.plan.translucent_shadows,
-            R::RECORDS,
+            blockers.as_mut(),
+            &mut cost,
         );
-        let arriving = irradiance * tr.transmittance;
+        let arriving = irradiance * transmittance;
         rec.update(id, |node| {
-            node.traversal = tr.cost;
+            node.traversal = cost;
             node.weight = weight;
             node.radiance = arriving;
-            node.end = if tr.transmittance == Rgb::ONE {
+            node.end = if transmittance == Rgb::ONE {
                 EndReason::Unblocked
-            } else if tr.transmittance == Rgb::ZERO {
+            } else if transmittance == Rgb::ZERO {
                 EndReason::Blocked
             } else {
                 EndReason::Attenuated
@@ -588,8 +626,8 @@ impl<'a> Tracer<'a> {
                 cos,
                 brdf,
                 irradiance,
-                tr.blockers,
-                tr.transmittance,
+                blockers.unwrap_or_default(),
+                transmittance,
             ));
         });
         weight * arriving

@@ -9,6 +9,7 @@ use crate::geometry::Shape;
 use crate::math::Ray;
 use crate::scene::{OffsetDesc, OffsetStrategy};
 use glam::DVec3;
+use std::borrow::Cow;
 
 /// The effective epsilon of the `scaled` strategy: `eps * max(1, max_i |p_i|)`, i.e. absolute
 /// near the origin and relative to the coordinates' magnitude (and so to their rounding error)
@@ -18,16 +19,24 @@ pub fn scaled_epsilon(eps: f64, p: DVec3) -> f64 {
     eps * p.abs().max_element().max(1.0)
 }
 
-/// The ray from surface point `p` of `shape` along `direction`, on the side of the unit vector
-/// `side` (the normal, flipped towards where the ray goes).
+/// The ray from surface point `p` along `direction`, on the side of the unit vector `side` (the
+/// normal, flipped towards where the ray goes). `shape` gives the surface `p` lies on; only the
+/// robust strategy needs it, so the others never look it up.
 #[must_use]
-pub fn spawn(offset: OffsetDesc, shape: &Shape, p: DVec3, side: DVec3, direction: DVec3) -> Ray {
+#[inline]
+pub fn spawn<'s>(
+    offset: OffsetDesc,
+    shape: impl FnOnce() -> Cow<'s, Shape>,
+    p: DVec3,
+    side: DVec3,
+    direction: DVec3,
+) -> Ray {
     let eps = offset.epsilon;
     match offset.strategy {
         OffsetStrategy::Normal => Ray::new(p + eps * side, direction, 0.0),
         OffsetStrategy::Ray => Ray::new(p, direction, eps),
         OffsetStrategy::Scaled => Ray::new(p + scaled_epsilon(eps, p) * side, direction, 0.0),
-        OffsetStrategy::Robust => Ray::new(robust_origin(shape, p, side), direction, 0.0),
+        OffsetStrategy::Robust => Ray::new(robust_origin(&shape(), p, side), direction, 0.0),
     }
 }
 
