@@ -352,12 +352,9 @@ fn meshes_get_watertight_hits_robust_offsets_diagnostics_and_diagram_slices() {
     // A moved scene moves its mesh (and rebuilds its BVH): the same image.
     let moved = transformed(&scene, 4.0, DVec3::new(8.0, 0.0, -16.0));
     let (b, _) = render(&moved, &|_| {});
-    let worst = translucent
-        .pixels
-        .iter()
-        .zip(&b.pixels)
-        .map(|(x, y)| (*x - *y).abs().max_element())
-        .fold(0.0, f64::max);
+    let worst = raytree::cost::compare(&translucent, &b)
+        .expect("same size")
+        .max;
     assert!(worst < 1e-6, "worst pixel difference {worst}");
 
     // The diagram cuts the mesh into segments (a closed polygon's worth around the sphere).

@@ -78,12 +78,7 @@ mod tests {
         let moved = transformed(&s, 4.0, DVec3::new(8.0, 0.0, -16.0));
         let (a, _) = render(&s, &|_| {});
         let (b, _) = render(&moved, &|_| {});
-        let worst = a
-            .pixels
-            .iter()
-            .zip(&b.pixels)
-            .map(|(x, y)| (*x - *y).abs().max_element())
-            .fold(0.0, f64::max);
+        let worst = crate::cost::compare(&a, &b).expect("same size").max;
         assert!(worst < 1e-6, "worst pixel difference {worst}");
     }
 }
