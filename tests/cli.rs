@@ -1,15 +1,10 @@
 //! The `raytree` binary: the main jobs and every kind of bad input.
 
-use std::path::{Path, PathBuf};
-use std::process::{Command, Output};
+mod common;
+use common::raytree;
 
-fn raytree(args: &[&str], dir: &Path) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_raytree"))
-        .args(args)
-        .current_dir(dir)
-        .output()
-        .expect("runs")
-}
+use std::path::PathBuf;
+use std::process::Output;
 
 fn fixture(name: &str) -> String {
     PathBuf::from(env!("CARGO_MANIFEST_DIR"))

@@ -1,11 +1,13 @@
 //! Cross-section diagrams: the model against the scene and tree, both back-ends, and the CLI.
 
+mod common;
+use common::raytree;
+
 use glam::DVec3;
 use raytree::diagram::model::{Fill, SliceShape};
 use raytree::diagram::{Diagram, DiagramOptions, PlaneSpec, Style, Theme, to_png, to_svg};
 use raytree::{RayKind, RayTree, Scene, trace_pixel};
-use std::path::{Path, PathBuf};
-use std::process::{Command, Output};
+use std::path::PathBuf;
 
 fn fixture_path(name: &str) -> PathBuf {
     PathBuf::from(env!("CARGO_MANIFEST_DIR"))
@@ -304,14 +306,6 @@ fn highlight_and_bad_options() {
         );
         assert!(l.size >= 14.0, "{l:?}");
     }
-}
-
-fn raytree(args: &[&str], dir: &Path) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_raytree"))
-        .args(args)
-        .current_dir(dir)
-        .output()
-        .expect("runs")
 }
 
 #[test]

@@ -1,6 +1,9 @@
 //! Meshes in whole scenes: BVH against a linear scan, trees on glass meshes with bad shading
 //! normals, OBJ errors through the CLI, and the shared reference meshes.
 
+mod common;
+use common::raytree;
+
 use glam::DVec3;
 use raytree::check::tree_violations;
 use raytree::math::Ray;
@@ -10,8 +13,7 @@ use raytree::scene::Hit;
 use raytree::tree::RayKind;
 use raytree::{Scene, render, trace_pixel};
 use std::fmt::Write;
-use std::path::{Path, PathBuf};
-use std::process::Command;
+use std::path::PathBuf;
 
 /// SplitMix64 in [0, 1).
 struct Rng(u64);
@@ -210,14 +212,6 @@ fn glass_mesh_with_bad_shading_normals_keeps_tree_invariants_and_sides() {
         }
     }
     assert!(triangles > 300 && shading > 100, "{triangles} {shading}");
-}
-
-fn raytree(args: &[&str], dir: &Path) -> std::process::Output {
-    Command::new(env!("CARGO_BIN_EXE_raytree"))
-        .args(args)
-        .current_dir(dir)
-        .output()
-        .unwrap()
 }
 
 #[test]

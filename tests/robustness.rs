@@ -1,11 +1,12 @@
 //! Bad input and non-finite output: the scene loader under fuzzing (proptest over mutated
 //! JSON, bounded case count), and the CLI's acne sweep and NaN guard.
 
+mod common;
+use common::raytree;
+
 use proptest::prelude::*;
 use raytree::Scene;
 use serde_json::Value;
-use std::path::Path;
-use std::process::{Command, Output};
 
 const CLASSIC: &str = include_str!("../fixtures/classic.json");
 
@@ -131,14 +132,6 @@ proptest! {
             let _ = Scene::from_json(&src);
         }
     }
-}
-
-fn raytree(args: &[&str], dir: &Path) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_raytree"))
-        .args(args)
-        .current_dir(dir)
-        .output()
-        .expect("runs")
 }
 
 #[test]
