@@ -119,8 +119,14 @@ impl BoxRay {
     #[must_use]
     fn enter(&self, min: [f32; 3], max: [f32; 3], t_max: f64) -> Option<f64> {
         let wide = |v: [f32; 3]| DVec3::new(v[0].into(), v[1].into(), v[2].into());
-        let t1 = (wide(min) - self.origin) * self.inv;
-        let t2 = (wide(max) - self.origin) * self.inv;
+        self.enter_f64(wide(min), wide(max), t_max)
+    }
+
+    /// [`BoxRay::enter`] for an `f64` box.
+    #[inline(always)]
+    fn enter_f64(&self, min: DVec3, max: DVec3, t_max: f64) -> Option<f64> {
+        let t1 = (min - self.origin) * self.inv;
+        let t2 = (max - self.origin) * self.inv;
         let (mut lo, mut hi) = (self.t_min, t_max);
         for a in 0..3 {
             lo = fmin(fmax(t1[a], lo), fmax(t2[a], lo));

@@ -6,8 +6,10 @@
 //! tests together (the mesh keeps one `f32` triangle pack per group). The BVH still knows no
 //! geometry.
 //!
-//! Conservative in `f32`: a query first clips the ray to the root box in `f64` and moves its
-//! origin there (`t0`), so every `f32` quantity is bounded by the root box's magnitude `M`. The
+//! Conservative in `f32`: coordinates are stored relative to the root box's centre `c`, and a
+//! query first clips the ray to the root box in `f64` and moves its origin there (`t0`), so
+//! every `f32` quantity is bounded by the root box's half extent `M` (however far the mesh is
+//! from the world origin). The
 //! rounding of the origin, the direction and the slab arithmetic then moves a computed plane
 //! crossing by at most about `9 u M` (`u = 2^-24`) along each axis; every box is grown by
 //! `32 u M` (plus the binary build's own padding), so a box the `f64` ray passes through is never
@@ -16,6 +18,7 @@
 
 use super::{Bvh, TraversalCost, Visit, down, up};
 use crate::math::Ray;
+use glam::DVec3;
 
 /// Children per node.
 pub const WIDTH: usize = 4;
@@ -54,8 +57,12 @@ pub struct WideBvh {
     nodes: Vec<Node>,
     /// Slot runs in leaf order; leaves refer to ranges of them.
     pub groups: Vec<Group>,
-    /// Largest coordinate magnitude of the root box (`M` above).
+    /// Centre of the root box: every stored `f32` coordinate is relative to it.
+    pub center: DVec3,
+    /// Largest coordinate magnitude of the root box about `center` (`M` above).
     magnitude: f64,
+    /// `f32` cannot represent this tree safely (extreme sizes or offsets): always test in `f64`.
+    exact_only: bool,
     /// Root box as the binary BVH had it (`f32`, rounded outwards).
     root: Option<([f32; 3], [f32; 3])>,
     /// Deepest the traversal stack can get: the most entries pushed along any path.
@@ -67,9 +74,11 @@ pub struct WideBvh {
 pub struct WideRay {
     /// Shift along the ray: `f32` parameters `s` are `t - t0`.
     pub t0: f64,
-    /// Shifted origin `ray.origin + t0 * ray.direction`, `f32`.
+    /// Shifted origin `ray.origin + t0 * ray.direction - center`, `f32`.
     pub origin: [f32; 3],
-    /// Bound on how far the rounding moves a shifted point off the `f64` line (per axis).
+    /// Bound on how far rounding moves a sheared `f32` vertex coordinate from the exact one:
+    /// `16 u (M + |origin|)`, twice the `8 u (M + |origin|)` of the analysis in
+    /// [`crate::mesh`]'s packed filter, plus the `f64` shift's own error.
     pub slack: f32,
     inv: [f32; 3],
     /// Rows of the near and far planes per axis (`axis` or `axis + 3`).
@@ -97,7 +106,10 @@ impl WideBvh {
         let Some(root) = bvh.bounds() else {
             return w;
         };
-        w.magnitude = root.min.abs().max(root.max.abs()).max_element();
+        w.center = root.center();
+        w.magnitude = (root.max - root.min).max_element() * 0.5;
+        w.exact_only = !(w.magnitude < 1e18 && w.magnitude > 1e-18)
+            || 4.0 * f64::EPSILON * w.center.abs().max_element() > U32 * w.magnitude;
         w.root = Some((bvh.nodes[0].min, bvh.nodes[0].max));
         let sizes = subtree_sizes(bvh);
         let pad = 32.0 * U32 * w.magnitude;
@@ -142,8 +154,9 @@ impl WideBvh {
         for (lane, &k) in kids.iter().enumerate() {
             let n = &bvh.nodes[k];
             for a in 0..3 {
-                self.nodes[me].bounds[a][lane] = down(f64::from(n.min[a]) - pad);
-                self.nodes[me].bounds[a + 3][lane] = up(f64::from(n.max[a]) + pad);
+                let c = self.center[a];
+                self.nodes[me].bounds[a][lane] = down(f64::from(n.min[a]) - c - pad);
+                self.nodes[me].bounds[a + 3][lane] = up(f64::from(n.max[a]) - c + pad);
             }
             let (first, count) = sizes[k];
             let child = if n.count > 0 || count <= LEAF_MAX {
@@ -189,15 +202,15 @@ impl WideBvh {
         let lo = box_ray.enter(min, max, t_max)?;
         let t0 = if lo.is_finite() { lo } else { 0.0 };
         let d = ray.direction;
-        let o = ray.origin + t0 * d;
+        let o = ray.origin + t0 * d - self.center;
         let o_mag = o.abs().max_element();
         // How far the f64 shift itself may be off the line, against the build-time padding.
-        let shift_error =
-            4.0 * f64::EPSILON * (ray.origin.abs().max_element() + (t0 * d).abs().max_element());
+        let shift_error = 4.0
+            * f64::EPSILON
+            * (ray.origin.abs() + (t0 * d).abs() + self.center.abs()).max_element();
         // f32 is safe when the magnitudes are well inside its range, the shifted origin lies
         // in the root box (NaN fails this too) and the shift kept its precision.
-        let safe = self.magnitude < 1e18
-            && self.magnitude > 1e-18
+        let safe = !self.exact_only
             && o_mag <= 2.0 * self.magnitude
             && shift_error <= 4.0 * U32 * self.magnitude;
         let exact = !safe;
@@ -206,7 +219,7 @@ impl WideBvh {
         Some(WideRay {
             t0,
             origin: [o.x as f32, o.y as f32, o.z as f32],
-            slack: (32.0 * U32 * (self.magnitude + o_mag) + 16.0 * shift_error) as f32,
+            slack: (16.0 * U32 * (self.magnitude + o_mag) + 16.0 * shift_error) as f32,
             inv: [inv.x as f32, inv.y as f32, inv.z as f32],
             near,
             far: near.map(|r| (r + 3) % 6),
@@ -276,7 +289,7 @@ impl WideBvh {
                 let node = &self.nodes[at as usize];
                 nodes += 1;
                 let (mut hit, dist) = if ray.exact {
-                    enter_f64(node, ray, t_max)
+                    enter_f64(node, ray, t_max, self.center)
                 } else {
                     enter_f32(node, ray, s_max)
                 };
@@ -352,18 +365,23 @@ fn enter_f32(node: &Node, ray: &WideRay, s_max: f32) -> (u32, [f32; WIDTH]) {
     (mask, lo)
 }
 
-/// The same test in `f64` on the original ray (entry distances are then unused: order only).
-fn enter_f64(node: &Node, ray: &WideRay, t_max: f64) -> (u32, [f32; WIDTH]) {
+/// The same test in `f64` on the original ray (entry distances are then only for the order).
+/// Boxes go back to world space in `f64`, widened by that addition's rounding.
+fn enter_f64(node: &Node, ray: &WideRay, t_max: f64, center: DVec3) -> (u32, [f32; WIDTH]) {
     let b = &node.bounds;
+    let slop = 2.0 * f64::EPSILON * center.abs();
     let mut mask = 0;
     let mut dist = [0.0; WIDTH];
     for l in 0..WIDTH {
-        let min = [b[0][l], b[1][l], b[2][l]];
-        let max = [b[3][l], b[4][l], b[5][l]];
-        if min[0] > max[0] {
+        let min = DVec3::new(b[0][l].into(), b[1][l].into(), b[2][l].into());
+        let max = DVec3::new(b[3][l].into(), b[4][l].into(), b[5][l].into());
+        if min.x > max.x {
             continue; // empty slot
         }
-        if let Some(t) = ray.box_ray.enter(min, max, t_max) {
+        if let Some(t) = ray
+            .box_ray
+            .enter_f64(min + center - slop, max + center + slop, t_max)
+        {
             mask |= 1 << l;
             dist[l] = t as f32;
         }

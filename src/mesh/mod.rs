@@ -107,6 +107,7 @@ impl std::fmt::Debug for Mesh {
             .field("triangles", &self.tris.len())
             .field("smooth", &self.corner_normals.is_some())
             .field("bvh_nodes", &self.bvh.node_count())
+            .field("groups", &self.packs.len())
             .finish()
     }
 }
@@ -191,7 +192,10 @@ impl Mesh {
         let packs = wide
             .groups
             .iter()
-            .map(|g| TriPack::new(&tris[g.first as usize..(g.first + g.count) as usize]))
+            .map(|g| {
+                let group = &tris[g.first as usize..(g.first + g.count) as usize];
+                TriPack::new(group, wide.center)
+            })
             .collect();
         Self {
             tris,
@@ -335,5 +339,7 @@ fn smooth_normals(
     }
 }
 
+#[cfg(test)]
+mod filter_tests;
 #[cfg(test)]
 mod tests;

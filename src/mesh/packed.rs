@@ -8,15 +8,18 @@
 //! are provably off by more than their rounding error, so every triangle the `f64` test hits is
 //! kept, including rays exactly through shared edges and vertices (edge functions 0 in `f64`).
 //!
-//! Error bound: with `M` the largest coordinate magnitude (root box and shifted origin) each
-//! sheared `f32` vertex coordinate is within `delta ~ 8 u M` of the exact one (rounding of the
-//! stored vertex, the origin, the shear factor and two operations; `u = 2^-24`); the `f64` test
-//! is within `u64`-sized errors of exact. An edge function `e = cx * by - cy * bx` is then off by
-//! at most `delta (|cx| + |cy| + |bx| + |by| + 2 delta) + 3 u (|cx by| + |cy bx|)`, which is at
-//! most `4 r delta + 2 delta^2 + 6 u r^2` with `r` the largest sheared coordinate of the
-//! triangle: one bound for all three edges. The filter takes `delta = 32 u (M + |origin|)` (at least four times the bound, plus the `f64` shift's
-//! own error, see [`crate::bvh::wide::WideRay::slack`]) and `8 u r^2`. `max` may drop a NaN
-//! coordinate, but a NaN also makes an edge function NaN, which no comparison rejects.
+//! Error bound. Vertices and the (shifted) ray origin are stored relative to the root box's
+//! centre, so with `M` their largest magnitude (`M` = half the root box, `|o|` the origin's)
+//! a translated vertex `p - o` is within `2 u (M + |o|)` of exact (`u = 2^-24`: rounding of the
+//! stored vertex, the origin and the subtraction) and a sheared coordinate `x - sx z` within
+//! `delta = 8 u (M + |o|)` (`|sx| <= 1`; rounding of `sx`, the product and the difference).
+//! The `f64` test's own rounding is `2^-53`-sized. An edge function `cx by - cy bx` is then off
+//! by at most `delta (|cx| + |cy| + |bx| + |by| + 2 delta) + 3 u (|cx by| + |cy bx|)`, which is
+//! at most `4 r delta + 2 delta^2 + 6 u r^2` with `r` the largest sheared coordinate of the
+//! triangle: one bound for all three edges. The filter uses twice that `delta`
+//! ([`crate::bvh::wide::WideRay::slack`], which also covers the `f64` shift of the origin) and
+//! `8 u r^2`. `max` may drop a NaN coordinate, but a NaN also makes an edge function NaN, which
+//! no comparison rejects.
 
 use crate::bvh::wide::{GROUP, WideRay};
 use crate::math::Ray;
@@ -29,13 +32,14 @@ pub(crate) struct TriPack {
 }
 
 impl TriPack {
-    /// Pack up to [`GROUP`] triangles (unused lanes are zero and masked by the caller's count).
-    pub(crate) fn new(tris: &[[DVec3; 3]]) -> Self {
+    /// Pack up to [`GROUP`] triangles relative to `center` (unused lanes are zero and masked by
+    /// the caller's count).
+    pub(crate) fn new(tris: &[[DVec3; 3]], center: DVec3) -> Self {
         let mut v = [[[0.0; GROUP]; 3]; 3];
         for (lane, tri) in tris.iter().take(GROUP).enumerate() {
             for (corner, p) in tri.iter().enumerate() {
                 for (axis, row) in v.iter_mut().enumerate() {
-                    row[corner][lane] = p[axis] as f32;
+                    row[corner][lane] = (p[axis] - center[axis]) as f32;
                 }
             }
         }
