@@ -214,15 +214,15 @@ impl WideBvh {
             && o_mag <= 2.0 * self.magnitude
             && shift_error <= 4.0 * U32 * self.magnitude;
         let exact = !safe;
-        let inv = d.recip();
-        let near = [0, 1, 2].map(|a| if inv[a].is_sign_negative() { a + 3 } else { a });
+        let inv = box_ray.inv;
+        let neg = [0, 1, 2].map(|a| inv[a].is_sign_negative());
         Some(WideRay {
             t0,
             origin: [o.x as f32, o.y as f32, o.z as f32],
             slack: (16.0 * U32 * (self.magnitude + o_mag) + 16.0 * shift_error) as f32,
             inv: [inv.x as f32, inv.y as f32, inv.z as f32],
-            near,
-            far: near.map(|r| (r + 3) % 6),
+            near: [0, 1, 2].map(|a| if neg[a] { a + 3 } else { a }),
+            far: [0, 1, 2].map(|a| if neg[a] { a } else { a + 3 }),
             s_min: down(ray.t_min - t0),
             exact,
             box_ray,

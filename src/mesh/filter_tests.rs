@@ -24,9 +24,10 @@ fn kept(mesh: &Mesh, ray: &Ray) -> Vec<usize> {
     let Some(w) = mesh.bvh.ray(ray, f64::INFINITY) else {
         return Vec::new();
     };
-    let Some(edges) = EdgeRay::new(ray, &w) else {
+    let Some(sheared) = crate::geometry::ShearedRay::new(ray) else {
         return Vec::new();
     };
+    let edges = EdgeRay::new(&sheared, &w);
     let mut out = Vec::new();
     for (g, group) in mesh.bvh.groups.iter().enumerate() {
         let mask = edges.candidates(&mesh.packs[g], group.count);

@@ -22,7 +22,7 @@
 //! no comparison rejects.
 
 use crate::bvh::wide::{GROUP, WideRay};
-use crate::math::Ray;
+use crate::geometry::ShearedRay;
 use glam::DVec3;
 
 /// Four triangles: `v[axis][corner][lane]`.
@@ -64,28 +64,18 @@ pub(crate) struct EdgeRay {
 const U4: f32 = 2.0 * f32::EPSILON;
 
 impl EdgeRay {
-    /// Constants for `ray` prepared as `w`; `None` when the `f64` test rejects every triangle
-    /// (a zero or non-finite direction).
-    pub(crate) fn new(ray: &Ray, w: &WideRay) -> Option<Self> {
-        let d = ray.direction;
-        let kz = d.abs().max_position();
-        let (mut kx, mut ky) = ((kz + 1) % 3, (kz + 2) % 3);
-        if d[kz] < 0.0 {
-            std::mem::swap(&mut kx, &mut ky);
-        }
-        let (sx, sy, sz) = (d[kx] / d[kz], d[ky] / d[kz], 1.0 / d[kz]);
-        if !(sx.is_finite() && sy.is_finite() && sz.is_finite()) {
-            return None;
-        }
+    /// Constants for the exact test's `sheared` ray, prepared for the BVH as `w`.
+    pub(crate) fn new(sheared: &ShearedRay, w: &WideRay) -> Self {
+        let [kx, ky, kz] = sheared.k;
         let delta = w.slack;
-        Some(Self {
-            k: [kx, ky, kz],
-            sx: sx as f32,
-            sy: sy as f32,
+        Self {
+            k: sheared.k,
+            sx: sheared.s[0] as f32,
+            sy: sheared.s[1] as f32,
             o: [kx, ky, kz].map(|a| w.origin[a]),
             delta,
             all: w.exact() || !delta.is_finite(),
-        })
+        }
     }
 
     /// Bit `l` set for every lane `l < count` the `f64` test might hit.

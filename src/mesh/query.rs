@@ -1,32 +1,34 @@
 //! Ray queries on a mesh: closest hit, any hit, all crossings of a line, chords. The 4-wide BVH
 //! and the `f32` packs ([`super::packed`]) find candidate triangles; the `f64` watertight test
-//! ([`triangle_t`]) on the stored vertices decides, so every answer is exactly what a loop over
+//! ([`crate::geometry::triangle_t`]) on the stored vertices decides, so every answer is exactly what a loop over
 //! all triangles with `triangle_t` gives.
 
 use super::Mesh;
 use super::packed::EdgeRay;
 use crate::bvh::{TraversalCost, Visit};
-use crate::geometry::triangle_t;
+use crate::geometry::ShearedRay;
 use crate::math::Ray;
 
 impl Mesh {
     /// Visit every candidate triangle (stored index) of the leaves the ray reaches within
-    /// `(ray.t_min, t_max)`, nearest leaves first; `test(slot, t_max)` as in
+    /// `(ray.t_min, t_max)`, nearest leaves first; `test(sheared, slot, t_max)` (with `sheared`
+    /// the ray prepared for `triangle_t`, see [`ShearedRay::t`]) as in
     /// [`crate::bvh::wide::WideBvh::traverse`]. Counts BVH nodes and triangles filtered.
     fn candidates(
         &self,
         ray: &Ray,
         t_max: f64,
         cost: &mut TraversalCost,
-        mut test: impl FnMut(usize, f64) -> Visit,
+        mut test: impl FnMut(&ShearedRay, usize, f64) -> Visit,
     ) {
         cost.nodes += 1; // the root box
         let Some(wide_ray) = self.bvh.ray(ray, t_max) else {
             return;
         };
-        let Some(edges) = EdgeRay::new(ray, &wide_ray) else {
-            return;
+        let Some(sheared) = ShearedRay::new(ray) else {
+            return; // triangle_t hits nothing
         };
+        let edges = EdgeRay::new(&sheared, &wide_ray);
         let mut prims = 0;
         self.bvh.traverse(&wide_ray, t_max, cost, |g, mut t_max| {
             let group = self.bvh.groups[g];
@@ -35,7 +37,7 @@ impl Mesh {
             while mask != 0 {
                 let slot = group.first as usize + mask.trailing_zeros() as usize;
                 mask &= mask - 1;
-                match test(slot, t_max) {
+                match test(&sheared, slot, t_max) {
                     Visit::Continue(t) => t_max = t,
                     Visit::Stop => return Visit::Stop,
                 }
@@ -54,8 +56,8 @@ impl Mesh {
         cost: &mut TraversalCost,
     ) -> Option<(f64, usize)> {
         let mut best = None;
-        self.candidates(ray, t_max, cost, |slot, t_max| {
-            match triangle_t(&self.tris[slot], ray) {
+        self.candidates(ray, t_max, cost, |sheared, slot, t_max| {
+            match sheared.t(&self.tris[slot]) {
                 Some(t) if t > ray.t_min && t < t_max => {
                     best = Some((t, slot));
                     Visit::Continue(t)
@@ -70,8 +72,8 @@ impl Mesh {
     #[must_use]
     pub fn occludes(&self, ray: &Ray, t_max: f64, cost: &mut TraversalCost) -> bool {
         let mut hit = false;
-        self.candidates(ray, t_max, cost, |slot, t_max| {
-            match triangle_t(&self.tris[slot], ray) {
+        self.candidates(ray, t_max, cost, |sheared, slot, t_max| {
+            match sheared.t(&self.tris[slot]) {
                 Some(t) if t > ray.t_min && t < t_max => {
                     hit = true;
                     Visit::Stop
@@ -89,8 +91,8 @@ impl Mesh {
     pub fn crossings(&self, ray: &Ray, cost: &mut TraversalCost) -> Vec<f64> {
         let line = Ray::new(ray.origin, ray.direction, f64::NEG_INFINITY);
         let mut ts = Vec::new();
-        self.candidates(&line, f64::INFINITY, cost, |slot, t_max| {
-            ts.extend(triangle_t(&self.tris[slot], &line));
+        self.candidates(&line, f64::INFINITY, cost, |sheared, slot, t_max| {
+            ts.extend(sheared.t(&self.tris[slot]));
             Visit::Continue(t_max)
         });
         ts.sort_by(f64::total_cmp);
