@@ -232,8 +232,9 @@ impl ShearedRay {
     #[inline]
     pub(crate) fn t(&self, v: &[DVec3; 3]) -> Option<f64> {
         let ([kx, ky, kz], [sx, sy, sz]) = (self.k, self.s);
-        let [a, b, c] = v.map(|p| p - self.origin);
-        let shear = |p: DVec3| (p[kx] - sx * p[kz], p[ky] - sy * p[kz]);
+        // Arrays, not `DVec3` indexing (a `match` per component); the same values.
+        let [a, b, c] = v.map(|p| (p - self.origin).to_array());
+        let shear = |p: [f64; 3]| (p[kx] - sx * p[kz], p[ky] - sy * p[kz]);
         let ((ax, ay), (bx, by), (cx, cy)) = (shear(a), shear(b), shear(c));
         let u = cx * by - cy * bx;
         let w_ = ax * cy - ay * cx;

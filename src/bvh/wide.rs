@@ -27,7 +27,7 @@ pub const GROUP: usize = 4;
 /// Binary subtrees with at most this many primitives become one leaf.
 const LEAF_MAX: u32 = 8;
 /// Traversal stack on the call stack when the tree needs no more (see [`WideBvh::stack`]).
-const STACK: usize = 48;
+const STACK: usize = 32;
 /// Leaf flag in a child reference; the other bits hold `first_group << 4 | group_count`.
 const LEAF: u32 = 1 << 31;
 /// An unused child slot.
@@ -66,7 +66,7 @@ pub struct WideBvh {
     /// Root box as the binary BVH had it (`f32`, rounded outwards).
     root: Option<([f32; 3], [f32; 3])>,
     /// Deepest the traversal stack can get: the most entries pushed along any path.
-    stack: usize,
+    pub(crate) stack: usize,
 }
 
 /// A ray prepared for one query (see the module notes).
@@ -196,6 +196,7 @@ impl WideBvh {
 
     /// Prepare `ray` for a query over `(ray.t_min, t_max)`; `None` when it misses the root box.
     #[must_use]
+    #[inline]
     pub fn ray(&self, ray: &Ray, t_max: f64) -> Option<WideRay> {
         let (min, max) = self.root?;
         let box_ray = super::BoxRay::new(ray);

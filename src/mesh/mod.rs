@@ -108,6 +108,7 @@ impl std::fmt::Debug for Mesh {
             .field("smooth", &self.corner_normals.is_some())
             .field("bvh_nodes", &self.bvh.node_count())
             .field("groups", &self.packs.len())
+            .field("stack", &self.bvh.stack)
             .finish()
     }
 }
