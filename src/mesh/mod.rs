@@ -9,12 +9,15 @@
 
 pub mod generate;
 pub mod obj;
+mod packed;
+mod query;
 pub mod shading;
 
-use crate::bvh::{Aabb, BoxRay, Bvh, TraversalCost, Visit};
-use crate::geometry::{Shape, triangle_t};
-use crate::math::Ray;
+use crate::bvh::wide::WideBvh;
+use crate::bvh::{Aabb, Bvh};
+use crate::geometry::Shape;
 use glam::{DAffine3, DMat3, DVec3};
+use packed::TriPack;
 use serde::{Deserialize, Serialize};
 
 pub use obj::{ObjError, parse_obj};
@@ -86,13 +89,16 @@ impl Transform {
     }
 }
 
-/// A world-space triangle mesh with its BVH. Triangles are stored in BVH leaf order.
+/// A world-space triangle mesh with its BVH. Triangles are stored in BVH leaf order, in `f64`
+/// (exact tests, hit points) and as `f32` packs, one per BVH group (the fast filter).
 #[derive(Clone, PartialEq)]
 pub struct Mesh {
     tris: Vec<[DVec3; 3]>,
     corner_normals: Option<Vec<[DVec3; 3]>>,
     source: Vec<u32>,
-    bvh: Bvh,
+    bounds: Aabb,
+    bvh: WideBvh,
+    packs: Vec<TriPack>,
 }
 
 impl std::fmt::Debug for Mesh {
@@ -101,6 +107,8 @@ impl std::fmt::Debug for Mesh {
             .field("triangles", &self.tris.len())
             .field("smooth", &self.corner_normals.is_some())
             .field("bvh_nodes", &self.bvh.node_count())
+            .field("groups", &self.packs.len())
+            .field("stack", &self.bvh.stack)
             .finish()
     }
 }
@@ -180,11 +188,23 @@ impl Mesh {
             .collect();
         let bvh = Bvh::build(&boxes);
         let reorder = |v: &[[DVec3; 3]]| bvh.order.iter().map(|&i| v[i as usize]).collect();
+        let tris: Vec<[DVec3; 3]> = reorder(tris);
+        let wide = WideBvh::from_binary(&bvh);
+        let packs = wide
+            .groups
+            .iter()
+            .map(|g| {
+                let group = &tris[g.first as usize..(g.first + g.count) as usize];
+                TriPack::new(group, wide.center)
+            })
+            .collect();
         Self {
-            tris: reorder(tris),
+            tris,
             corner_normals: corners.map(reorder),
             source: bvh.order.iter().map(|&i| source[i as usize]).collect(),
-            bvh,
+            bounds: bvh.bounds().expect("a mesh has triangles"),
+            bvh: wide,
+            packs,
         }
     }
 
@@ -237,95 +257,7 @@ impl Mesh {
     /// World-space bounds.
     #[must_use]
     pub fn bounds(&self) -> Aabb {
-        self.bvh.bounds().expect("a mesh has triangles")
-    }
-
-    /// The closest hit in `(ray.t_min, t_max)`: distance and stored triangle index.
-    #[must_use]
-    pub fn intersect(
-        &self,
-        ray: &Ray,
-        t_max: f64,
-        cost: &mut TraversalCost,
-    ) -> Option<(f64, usize)> {
-        let mut best = None;
-        self.bvh.traverse(
-            &BoxRay::new(ray),
-            t_max,
-            cost,
-            |slot, t_max| match triangle_t(&self.tris[slot], ray) {
-                Some(t) if t > ray.t_min && t < t_max => {
-                    best = Some((t, slot));
-                    Visit::Continue(t)
-                }
-                _ => Visit::Continue(t_max),
-            },
-        );
-        best
-    }
-
-    /// Whether any triangle is hit in `(ray.t_min, t_max)` (stops at the first found).
-    #[must_use]
-    pub fn occludes(&self, ray: &Ray, t_max: f64, cost: &mut TraversalCost) -> bool {
-        let mut hit = false;
-        self.bvh.traverse(
-            &BoxRay::new(ray),
-            t_max,
-            cost,
-            |slot, t_max| match triangle_t(&self.tris[slot], ray) {
-                Some(t) if t > ray.t_min && t < t_max => {
-                    hit = true;
-                    Visit::Stop
-                }
-                _ => Visit::Continue(t_max),
-            },
-        );
-        hit
-    }
-
-    /// Every crossing of the whole line `origin + t direction` (any `t`), sorted. A line
-    /// through a shared edge or vertex hits every triangle there: hits closer than a relative
-    /// 1e-9 are merged into one crossing.
-    #[must_use]
-    pub fn crossings(&self, ray: &Ray, cost: &mut TraversalCost) -> Vec<f64> {
-        let line = Ray::new(ray.origin, ray.direction, f64::NEG_INFINITY);
-        let mut ts = Vec::new();
-        self.bvh
-            .traverse(&BoxRay::new(&line), f64::INFINITY, cost, |slot, t_max| {
-                ts.extend(triangle_t(&self.tris[slot], &line));
-                Visit::Continue(t_max)
-            });
-        ts.sort_by(f64::total_cmp);
-        ts.dedup_by(|b, a| (*b - *a) <= 1e-9 * a.abs().max(b.abs()).max(1.0));
-        ts
-    }
-
-    /// The part of the segment `(ray.t_min, t_max)` inside the mesh: the first crossing or
-    /// entry `t` and the chord length. A line with an even number of crossings is inside
-    /// between crossings 0-1, 2-3, ...; with an odd number (an open mesh) every crossing is a
-    /// thin sheet with chord 0. `None` when the segment neither crosses nor lies inside.
-    #[must_use]
-    pub fn segment_inside(
-        &self,
-        ray: &Ray,
-        t_max: f64,
-        cost: &mut TraversalCost,
-    ) -> Option<(f64, f64)> {
-        let ts = self.crossings(ray, cost);
-        let (lo, hi) = (ray.t_min, t_max);
-        if !ts.len().is_multiple_of(2) {
-            return ts.into_iter().find(|&t| t > lo && t < hi).map(|t| (t, 0.0));
-        }
-        let mut first = None;
-        let mut chord = 0.0;
-        for pair in ts.chunks_exact(2) {
-            let (a, b) = (pair[0].max(lo), pair[1].min(hi));
-            if a < b {
-                first.get_or_insert(a);
-                chord += b - a;
-            }
-        }
-        first.map(|t| (t, chord))
+        self.bounds
     }
 
     /// Unit outward geometric normal of stored triangle `i`.
@@ -408,5 +340,7 @@ fn smooth_normals(
     }
 }
 
+#[cfg(test)]
+mod filter_tests;
 #[cfg(test)]
 mod tests;

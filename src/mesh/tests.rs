@@ -2,6 +2,9 @@
 
 use super::generate::icosphere;
 use super::*;
+use crate::bvh::TraversalCost;
+use crate::geometry::triangle_t;
+use crate::math::Ray;
 
 /// A tiny seeded generator (SplitMix64), so the tests need no dependency.
 pub(crate) struct Rng(pub u64);

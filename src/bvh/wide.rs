@@ -1,0 +1,415 @@
+//! A 4-wide BVH collapsed from the binary one, with `f32` boxes stored as structure of arrays so
+//! that the four slab tests of a node run as one set of SSE instructions (LLVM vectorises the
+//! four-lane loops; SSE2 is baseline on x86_64, no `target-cpu` needed).
+//!
+//! Leaves are short runs of *groups*: up to [`GROUP`] consecutive primitive slots that a caller
+//! tests together (the mesh keeps one `f32` triangle pack per group). The BVH still knows no
+//! geometry.
+//!
+//! Conservative in `f32`: coordinates are stored relative to the root box's centre `c`, and a
+//! query first clips the ray to the root box in `f64` and moves its origin there (`t0`), so
+//! every `f32` quantity is bounded by the root box's half extent `M` (however far the mesh is
+//! from the world origin). The
+//! rounding of the origin, the direction and the slab arithmetic then moves a computed plane
+//! crossing by at most about `9 u M` (`u = 2^-24`) along each axis; every box is grown by
+//! `32 u M` (plus the binary build's own padding), so a box the `f64` ray passes through is never
+//! culled. Rays whose origin is so far away that the shift itself loses that precision, and
+//! meshes beyond the safe `f32` range, use an `f64` slab test on the same nodes.
+
+use super::{Bvh, TraversalCost, Visit, down, up};
+use crate::math::Ray;
+use glam::DVec3;
+
+/// Children per node.
+pub const WIDTH: usize = 4;
+/// Primitive slots per group (one SIMD batch of the caller).
+pub const GROUP: usize = 4;
+/// Binary subtrees with at most this many primitives become one leaf.
+const LEAF_MAX: u32 = 8;
+/// Traversal stack on the call stack when the tree needs no more (see [`WideBvh::stack`]).
+const STACK: usize = 32;
+/// Leaf flag in a child reference; the other bits hold `first_group << 4 | group_count`.
+const LEAF: u32 = 1 << 31;
+/// An unused child slot.
+const EMPTY: u32 = u32::MAX;
+/// `f32` unit roundoff.
+const U32: f64 = f32::EPSILON as f64 * 0.5;
+
+/// Four child boxes (rows `min x, min y, min z, max x, max y, max z`) and their references.
+#[derive(Clone, Copy, Debug, PartialEq)]
+struct Node {
+    bounds: [[f32; WIDTH]; 6],
+    child: [u32; WIDTH],
+}
+
+/// A run of consecutive primitive slots tested together.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Group {
+    /// First slot (index into the binary BVH's leaf order).
+    pub first: u32,
+    /// Number of slots, `1..=GROUP`.
+    pub count: u32,
+}
+
+/// The 4-wide hierarchy.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct WideBvh {
+    nodes: Vec<Node>,
+    /// Slot runs in leaf order; leaves refer to ranges of them.
+    pub groups: Vec<Group>,
+    /// Centre of the root box: every stored `f32` coordinate is relative to it.
+    pub center: DVec3,
+    /// Largest coordinate magnitude of the root box about `center` (`M` above).
+    magnitude: f64,
+    /// `f32` cannot represent this tree safely (extreme sizes or offsets): always test in `f64`.
+    exact_only: bool,
+    /// Root box as the binary BVH had it (`f32`, rounded outwards).
+    root: Option<([f32; 3], [f32; 3])>,
+    /// Deepest the traversal stack can get: the most entries pushed along any path.
+    pub(crate) stack: usize,
+}
+
+/// A ray prepared for one query (see the module notes).
+#[derive(Clone, Copy, Debug)]
+pub struct WideRay {
+    /// Shift along the ray: `f32` parameters `s` are `t - t0`.
+    pub t0: f64,
+    /// Shifted origin `ray.origin + t0 * ray.direction - center`, `f32`.
+    pub origin: [f32; 3],
+    /// Bound on how far rounding moves a sheared `f32` vertex coordinate from the exact one:
+    /// `16 u (M + |origin|)`, twice the `8 u (M + |origin|)` of the analysis in
+    /// [`crate::mesh`]'s packed filter, plus the `f64` shift's own error.
+    pub slack: f32,
+    inv: [f32; 3],
+    /// Rows of the near and far planes per axis (`axis` or `axis + 3`).
+    near: [usize; 3],
+    far: [usize; 3],
+    s_min: f32,
+    /// Test boxes in `f64` (origin too far for the `f32` shift, or mesh out of `f32` range).
+    exact: bool,
+    box_ray: super::BoxRay,
+}
+
+impl WideRay {
+    /// Whether this query tests boxes in `f64` (then `f32` filters must keep everything).
+    #[must_use]
+    pub fn exact(&self) -> bool {
+        self.exact
+    }
+}
+
+impl WideBvh {
+    /// Collapse `bvh` (whose slots number `bvh.order.len()`).
+    #[must_use]
+    pub fn from_binary(bvh: &Bvh) -> Self {
+        let mut w = WideBvh::default();
+        let Some(root) = bvh.bounds() else {
+            return w;
+        };
+        w.center = root.center();
+        w.magnitude = (root.max - root.min).max_element() * 0.5;
+        w.exact_only = !(w.magnitude < 1e18 && w.magnitude > 1e-18)
+            || 4.0 * f64::EPSILON * w.center.abs().max_element() > U32 * w.magnitude;
+        w.root = Some((bvh.nodes[0].min, bvh.nodes[0].max));
+        let sizes = subtree_sizes(bvh);
+        let pad = 32.0 * U32 * w.magnitude;
+        w.stack = w.build(bvh, &sizes, 0, pad).1 + 1;
+        w
+    }
+
+    /// Build the wide node for binary node `at` (inner, or the root); returns its index and
+    /// the most stack entries a traversal below it pushes.
+    fn build(&mut self, bvh: &Bvh, sizes: &[(u32, u32)], at: usize, pad: f64) -> (u32, usize) {
+        let mut kids = vec![at];
+        loop {
+            // Open the largest expandable child until there are WIDTH of them.
+            let open = kids
+                .iter()
+                .enumerate()
+                .filter(|&(_, &k)| bvh.nodes[k].count == 0 && sizes[k].1 > LEAF_MAX)
+                .max_by(|a, b| area(&bvh.nodes[*a.1]).total_cmp(&area(&bvh.nodes[*b.1])));
+            match open {
+                Some((i, &k)) if kids.len() < WIDTH => {
+                    kids.swap_remove(i);
+                    kids.push(k + 1);
+                    kids.push(bvh.nodes[k].index as usize);
+                }
+                _ => break,
+            }
+        }
+        let me = self.nodes.len();
+        self.nodes.push(Node {
+            // Empty slots: min above max, so no ray enters them.
+            bounds: [
+                [f32::INFINITY; WIDTH],
+                [f32::INFINITY; WIDTH],
+                [f32::INFINITY; WIDTH],
+                [f32::NEG_INFINITY; WIDTH],
+                [f32::NEG_INFINITY; WIDTH],
+                [f32::NEG_INFINITY; WIDTH],
+            ],
+            child: [EMPTY; WIDTH],
+        });
+        let mut deepest = 0;
+        for (lane, &k) in kids.iter().enumerate() {
+            let n = &bvh.nodes[k];
+            for a in 0..3 {
+                let c = self.center[a];
+                self.nodes[me].bounds[a][lane] = down(f64::from(n.min[a]) - c - pad);
+                self.nodes[me].bounds[a + 3][lane] = up(f64::from(n.max[a]) - c + pad);
+            }
+            let (first, count) = sizes[k];
+            let child = if n.count > 0 || count <= LEAF_MAX {
+                self.leaf(first, count)
+            } else {
+                let (child, need) = self.build(bvh, sizes, k, pad);
+                deepest = deepest.max(need);
+                child
+            };
+            self.nodes[me].child[lane] = child;
+        }
+        (me as u32, kids.len() - 1 + deepest)
+    }
+
+    /// Groups for slots `first..first + count`; returns the leaf reference.
+    fn leaf(&mut self, first: u32, count: u32) -> u32 {
+        let start = self.groups.len() as u32;
+        let mut slot = first;
+        while slot < first + count {
+            let n = (first + count - slot).min(GROUP as u32);
+            self.groups.push(Group {
+                first: slot,
+                count: n,
+            });
+            slot += n;
+        }
+        let groups = self.groups.len() as u32 - start;
+        assert!(start < 1 << 27 && groups < 16, "leaf of at most 15 groups");
+        LEAF | start << 4 | groups
+    }
+
+    /// Number of nodes.
+    #[must_use]
+    pub fn node_count(&self) -> usize {
+        self.nodes.len()
+    }
+
+    /// Prepare `ray` for a query over `(ray.t_min, t_max)`; `None` when it misses the root box.
+    #[must_use]
+    #[inline]
+    pub fn ray(&self, ray: &Ray, t_max: f64) -> Option<WideRay> {
+        let (min, max) = self.root?;
+        let box_ray = super::BoxRay::new(ray);
+        let lo = box_ray.enter(min, max, t_max)?;
+        let t0 = if lo.is_finite() { lo } else { 0.0 };
+        let d = ray.direction;
+        let o = ray.origin + t0 * d - self.center;
+        let o_mag = o.abs().max_element();
+        // How far the f64 shift itself may be off the line, against the build-time padding.
+        let shift_error = 4.0
+            * f64::EPSILON
+            * (ray.origin.abs() + (t0 * d).abs() + self.center.abs()).max_element();
+        // f32 is safe when the magnitudes are well inside its range, the shifted origin lies
+        // in the root box (NaN fails this too) and the shift kept its precision.
+        let safe = !self.exact_only
+            && o_mag <= 2.0 * self.magnitude
+            && shift_error <= 4.0 * U32 * self.magnitude;
+        let exact = !safe;
+        let inv = box_ray.inv;
+        let neg = [0, 1, 2].map(|a| inv[a].is_sign_negative());
+        Some(WideRay {
+            t0,
+            origin: [o.x as f32, o.y as f32, o.z as f32],
+            slack: (16.0 * U32 * (self.magnitude + o_mag) + 16.0 * shift_error) as f32,
+            inv: [inv.x as f32, inv.y as f32, inv.z as f32],
+            near: [0, 1, 2].map(|a| if neg[a] { a + 3 } else { a }),
+            far: [0, 1, 2].map(|a| if neg[a] { a } else { a + 3 }),
+            s_min: down(ray.t_min - t0),
+            exact,
+            box_ray,
+        })
+    }
+
+    /// Visit the groups of every leaf whose box the prepared ray enters within
+    /// `(ray.t_min, t_max)`, nearest child first. `test(group, t_max)` returns the new `t_max`
+    /// (in the caller's `t`, not shifted) or asks to stop. Counts one node per wide node
+    /// visited (its four boxes are tested together).
+    pub fn traverse(
+        &self,
+        ray: &WideRay,
+        t_max: f64,
+        cost: &mut TraversalCost,
+        test: impl FnMut(usize, f64) -> Visit,
+    ) {
+        if self.nodes.is_empty() {
+            return;
+        }
+        let mut small = [0u64; STACK];
+        let mut large = Vec::new();
+        let stack: &mut [u64] = if self.stack <= STACK {
+            &mut small
+        } else {
+            large.resize(self.stack, 0);
+            &mut large
+        };
+        self.walk(ray, t_max, cost, test, stack);
+    }
+
+    /// [`WideBvh::traverse`] with a stack of at least [`WideBvh::stack`] entries, each
+    /// `entry distance bits << 32 | child reference`.
+    #[inline(always)]
+    fn walk(
+        &self,
+        ray: &WideRay,
+        mut t_max: f64,
+        cost: &mut TraversalCost,
+        mut test: impl FnMut(usize, f64) -> Visit,
+        stack: &mut [u64],
+    ) {
+        let mut s_max = up(t_max - ray.t0);
+        let mut top = 0;
+        let mut at = 0u32;
+        let mut nodes = 0;
+        loop {
+            if at & LEAF != 0 {
+                let first = ((at & !LEAF) >> 4) as usize;
+                for g in first..first + (at & 15) as usize {
+                    match test(g, t_max) {
+                        Visit::Continue(t) if t < t_max => {
+                            t_max = t;
+                            s_max = up(t_max - ray.t0);
+                        }
+                        Visit::Continue(_) => {}
+                        Visit::Stop => {
+                            cost.nodes += nodes;
+                            return;
+                        }
+                    }
+                }
+            } else {
+                let node = &self.nodes[at as usize];
+                nodes += 1;
+                let (mut hit, dist) = if ray.exact {
+                    enter_f64(node, ray, t_max, self.center)
+                } else {
+                    enter_f32(node, ray, s_max)
+                };
+                if hit != 0 {
+                    // Continue with the nearest child; push the others, farthest first.
+                    let mut near = hit.trailing_zeros() as usize;
+                    hit &= hit - 1;
+                    if hit != 0 {
+                        // At most three others: insertion sort, farthest first.
+                        let mut order = [(0f32, 0u32); WIDTH - 1];
+                        let mut n = 0;
+                        while hit != 0 {
+                            let mut lane = hit.trailing_zeros() as usize;
+                            hit &= hit - 1;
+                            if dist[lane] < dist[near] {
+                                std::mem::swap(&mut near, &mut lane);
+                            }
+                            let mut j = n;
+                            while j > 0 && order[j - 1].0 < dist[lane] {
+                                order[j] = order[j - 1];
+                                j -= 1;
+                            }
+                            order[j] = (dist[lane], node.child[lane]);
+                            n += 1;
+                        }
+                        for &(d, c) in &order[..n] {
+                            stack[top] = u64::from(d.to_bits()) << 32 | u64::from(c);
+                            top += 1;
+                        }
+                    }
+                    at = node.child[near];
+                    continue;
+                }
+            }
+            // Pop until an entry the ray still reaches within the narrowed t_max.
+            loop {
+                if top == 0 {
+                    cost.nodes += nodes;
+                    return;
+                }
+                top -= 1;
+                let e = stack[top];
+                if ray.exact || f32::from_bits((e >> 32) as u32) <= s_max {
+                    at = e as u32;
+                    break;
+                }
+            }
+        }
+    }
+}
+
+/// Entry test of a node's four boxes in `f32`: hit mask and entry parameters `s`. Barnes'
+/// NaN-safe order: a ray in a slab's boundary plane counts as inside.
+#[inline(always)]
+fn enter_f32(node: &Node, ray: &WideRay, s_max: f32) -> (u32, [f32; WIDTH]) {
+    let b = &node.bounds;
+    let (o, inv) = (ray.origin, ray.inv);
+    let mut lo = [ray.s_min; WIDTH];
+    let mut hi = [s_max; WIDTH];
+    for a in 0..3 {
+        let (near, far) = (&b[ray.near[a]], &b[ray.far[a]]);
+        for l in 0..WIDTH {
+            let tn = (near[l] - o[a]) * inv[a];
+            let tf = (far[l] - o[a]) * inv[a];
+            lo[l] = if tn > lo[l] { tn } else { lo[l] };
+            hi[l] = if tf < hi[l] { tf } else { hi[l] };
+        }
+    }
+    let mut mask = 0;
+    for l in 0..WIDTH {
+        mask |= u32::from(lo[l] <= hi[l]) << l;
+    }
+    (mask, lo)
+}
+
+/// The same test in `f64` on the original ray (entry distances are then only for the order).
+/// Boxes go back to world space in `f64`, widened by that addition's rounding.
+fn enter_f64(node: &Node, ray: &WideRay, t_max: f64, center: DVec3) -> (u32, [f32; WIDTH]) {
+    let b = &node.bounds;
+    let slop = 2.0 * f64::EPSILON * center.abs();
+    let mut mask = 0;
+    let mut dist = [0.0; WIDTH];
+    for l in 0..WIDTH {
+        let min = DVec3::new(b[0][l].into(), b[1][l].into(), b[2][l].into());
+        let max = DVec3::new(b[3][l].into(), b[4][l].into(), b[5][l].into());
+        if min.x > max.x {
+            continue; // empty slot
+        }
+        if let Some(t) = ray
+            .box_ray
+            .enter_f64(min + center - slop, max + center + slop, t_max)
+        {
+            mask |= 1 << l;
+            dist[l] = t as f32;
+        }
+    }
+    (mask, dist)
+}
+
+fn area(n: &super::Node) -> f32 {
+    let e = [0, 1, 2].map(|a| n.max[a] - n.min[a]);
+    e[0] * e[1] + e[1] * e[2] + e[2] * e[0]
+}
+
+/// `(first slot, primitive count)` of every binary node's subtree.
+fn subtree_sizes(bvh: &Bvh) -> Vec<(u32, u32)> {
+    let mut sizes = vec![(0, 0); bvh.nodes.len()];
+    // Depth-first layout: children follow their parent, so a reverse sweep sees them first.
+    for i in (0..bvh.nodes.len()).rev() {
+        let n = &bvh.nodes[i];
+        sizes[i] = if n.count > 0 {
+            (n.index, n.count)
+        } else {
+            let (l, r) = (sizes[i + 1], sizes[n.index as usize]);
+            (l.0.min(r.0), l.1 + r.1)
+        };
+    }
+    sizes
+}
+
+#[cfg(test)]
+mod tests;

@@ -1,0 +1,114 @@
+//! Wide BVH unit tests: the collapse keeps every slot once, and the `f32` traversal never culls
+//! a box the `f64` slab test enters (random rays, axis-parallel rays, rays in face planes, far
+//! origins, large and small coordinates).
+
+use super::*;
+use crate::bvh::{Aabb, BoxRay};
+use glam::DVec3;
+
+/// SplitMix64 in [0, 1).
+fn rng(state: &mut u64) -> f64 {
+    *state = state.wrapping_add(0x9E37_79B9_7F4A_7C15);
+    let mut z = *state;
+    z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
+    z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
+    ((z ^ (z >> 31)) >> 11) as f64 / (1u64 << 53) as f64
+}
+
+/// `n` small random boxes in `centre +- scale`, some flat (zero extent on one axis).
+fn boxes(n: usize, centre: DVec3, scale: f64, seed: u64) -> Vec<Aabb> {
+    let mut s = seed;
+    (0..n)
+        .map(|i| {
+            let p = centre + scale * DVec3::new(rng(&mut s), rng(&mut s), rng(&mut s)) * 2.0
+                - DVec3::splat(scale);
+            let mut e = 0.05 * scale * DVec3::new(rng(&mut s), rng(&mut s), rng(&mut s));
+            e[i % 4 % 3] *= f64::from(u8::from(i % 4 != 0));
+            Aabb { min: p, max: p + e }
+        })
+        .collect()
+}
+
+fn visited(wide: &WideBvh, ray: &Ray, t_max: f64) -> Vec<u32> {
+    let mut out = Vec::new();
+    if let Some(r) = wide.ray(ray, t_max) {
+        wide.traverse(&r, t_max, &mut TraversalCost::default(), |g, t| {
+            let grp = wide.groups[g];
+            out.extend(grp.first..grp.first + grp.count);
+            Visit::Continue(t)
+        });
+    }
+    out
+}
+
+#[test]
+fn groups_cover_every_slot_once() {
+    for n in [1, 2, 5, 9, 100, 3000] {
+        let bvh = Bvh::build(&boxes(n, DVec3::ZERO, 1.0, n as u64));
+        let wide = WideBvh::from_binary(&bvh);
+        let mut slots: Vec<u32> = wide
+            .groups
+            .iter()
+            .inspect(|g| assert!((1..=GROUP as u32).contains(&g.count)))
+            .flat_map(|g| g.first..g.first + g.count)
+            .collect();
+        slots.sort_unstable();
+        assert_eq!(slots, (0..n as u32).collect::<Vec<_>>());
+        assert!(wide.stack >= 1 && wide.node_count() * WIDTH >= n.div_ceil(LEAF_MAX as usize));
+    }
+    assert!(
+        WideBvh::from_binary(&Bvh::build(&[]))
+            .ray(&Ray::new(DVec3::ZERO, DVec3::X, 0.0), 1.0)
+            .is_none()
+    );
+}
+
+#[test]
+fn f32_traversal_never_culls_a_box_the_f64_test_enters() {
+    let mut s = 99;
+    // (centre, scale, origin distance): ordinary, far from the origin, tiny, huge, and a ray
+    // origin so far away that the query falls back to f64 boxes.
+    let cases = [
+        (DVec3::ZERO, 1.0, 3.0),
+        (DVec3::new(1e4, -2e4, 5e3), 10.0, 40.0),
+        (DVec3::splat(1e-6), 1e-7, 1e-6),
+        (DVec3::ZERO, 1e15, 1e16),
+        (DVec3::ZERO, 1.0, 1e12),
+        (DVec3::ZERO, 1e20, 1e21),
+    ];
+    for (k, &(centre, scale, dist)) in cases.iter().enumerate() {
+        let b = boxes(2000, centre, scale, k as u64);
+        let bvh = Bvh::build(&b);
+        let wide = WideBvh::from_binary(&bvh);
+        let mut exact_queries = 0;
+        for i in 0..600 {
+            // Aim at a box corner or face centre (grazing), or at a random point.
+            let target = match i % 3 {
+                0 => b[i % b.len()].min,
+                1 => b[i % b.len()].center(),
+                _ => centre + scale * DVec3::new(rng(&mut s), rng(&mut s), rng(&mut s)),
+            };
+            let mut dir =
+                DVec3::new(rng(&mut s) - 0.5, rng(&mut s) - 0.5, rng(&mut s) - 0.5).normalize();
+            if i % 7 == 0 {
+                dir = DVec3::Z; // axis-parallel: zero components, infinite reciprocals
+            }
+            let origin = target - dist * dir;
+            let t_max = if i % 2 == 0 { f64::INFINITY } else { dist };
+            let t_min = if i % 5 == 0 { f64::NEG_INFINITY } else { 0.0 };
+            let ray = Ray::new(origin, dir, t_min);
+            exact_queries += usize::from(wide.ray(&ray, t_max).is_some_and(|r| r.exact()));
+            let got = visited(&wide, &ray, t_max);
+            let box_ray = BoxRay::new(&ray);
+            for (slot, &prim) in bvh.order.iter().enumerate() {
+                let bb = b[prim as usize];
+                let (lo, hi) = (bb.min.to_array().map(down), bb.max.to_array().map(up));
+                if box_ray.enter(lo, hi, t_max).is_some() {
+                    assert!(got.contains(&(slot as u32)), "case {k}, ray {i}: {ray:?}");
+                }
+            }
+        }
+        // The far origin and the huge boxes take the f64 path; the others stay in f32.
+        assert_eq!(exact_queries > 0, k >= 4, "case {k}: {exact_queries}");
+    }
+}
