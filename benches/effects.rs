@@ -4,6 +4,7 @@
 //! Run: `cargo bench --bench effects`. Figures are in docs/cost.md.
 
 use criterion::{Criterion, criterion_group, criterion_main};
+use raytree::bvh::TraversalCost;
 use raytree::math::Rgb;
 use raytree::{NoopRecorder, RayCounts, Scene, Tracer, render_pixel_with};
 use std::hint::black_box;
@@ -46,7 +47,8 @@ fn ray_cast(scene: &Scene, x: u32, y: u32) -> Rgb {
         let cos = n.dot(wi);
         if cos > 0.0 {
             let shadow = raytree::math::Ray::new(p + eps * n, wi, 0.0);
-            if scene.intersect(&shadow, dist - eps).is_none() {
+            // Any-hit, the query the tracer's opaque shadow rays use.
+            if !scene.occluded(&shadow, dist - eps, &mut TraversalCost::default()) {
                 color += albedo * std::f64::consts::FRAC_1_PI * cos * e;
             }
         }

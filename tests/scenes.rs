@@ -248,6 +248,7 @@ fn effect_plan_of_each_fixture() {
     let expect = [
         ("absorption", true, true, true, true, true),
         ("classic", true, true, true, false, false),
+        ("diffuse", false, false, false, false, false),
         ("mirrors", true, false, false, false, false),
         ("nested", true, true, true, true, true),
         ("slab", true, true, true, false, true),
@@ -272,5 +273,66 @@ fn effect_plan_of_each_fixture() {
         );
         assert_eq!(p.fresnel, refr, "{name}");
         assert!(p.light_on(0), "{name}");
+    }
+}
+
+/// The direct-only render path (a plan without secondary rays, unrecorded) against the general
+/// recursive tracer (the everything-on plan) and the recorded tree: the same bits on every
+/// pixel, for each offset strategy, with a smooth mesh, a highlight, an emitter, a checker
+/// texture, a directional light, and a light below the floor (behind every upward surface).
+#[test]
+fn direct_only_path_equals_the_recursive_tracer_bit_for_bit() {
+    use raytree::effects::EffectPlan;
+    use raytree::mesh::{MeshData, generate::icosphere};
+    use raytree::scene::OffsetStrategy;
+    use raytree::{Tracer, render_with};
+    let diffuse = fixtures().into_iter().find(|f| f.0 == "diffuse").unwrap().1;
+    let json = std::fs::read_to_string(
+        PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("fixtures/diffuse.json"),
+    )
+    .unwrap()
+    .replace(
+        r#"{"type": "box", "name": "pillar""#,
+        r#"{"type": "mesh", "name": "smooth ball", "file": "ico", "normals": "smooth",
+            "translate": [0.2, 0.5, 1.8], "scale": 0.5, "material": "red"},
+           {"type": "box", "name": "pillar""#,
+    );
+    let mesh = Scene::from_json_with(&json, &mut |_| Ok::<MeshData, String>(icosphere(2))).unwrap();
+    for (name, scene) in [("diffuse", diffuse), ("diffuse + smooth mesh", mesh)] {
+        let planned = EffectPlan::for_scene(&scene);
+        assert!(
+            !planned.reflection && !planned.refraction,
+            "{name}: {planned:?}"
+        );
+        for strategy in [
+            OffsetStrategy::Normal,
+            OffsetStrategy::Ray,
+            OffsetStrategy::Scaled,
+            OffsetStrategy::Robust,
+        ] {
+            let mut scene = small(scene.clone(), 64, 36, 1);
+            scene.settings.offset.strategy = strategy;
+            let (fast, stats) = render_with(&Tracer::with_plan(&scene, planned), &|_| {});
+            let all = EffectPlan::everything(&scene);
+            let (general, general_stats) = render_with(&Tracer::with_plan(&scene, all), &|_| {});
+            assert!(
+                fast == general,
+                "{name} {strategy:?}: direct-only != recursive"
+            );
+            assert_eq!(
+                stats.rays, general_stats.rays,
+                "{name} {strategy:?}: ray counts"
+            );
+            assert!(stats.rays.shadow > 0, "{name}");
+            let mut lit = 0;
+            for y in (0..36).step_by(5) {
+                for x in (0..64).step_by(3) {
+                    let tree = trace_pixel(&scene, x, y).unwrap();
+                    assert_eq!(tree.radiance, fast.get(x, y), "{name} {strategy:?} {x},{y}");
+                    lit += usize::from(tree.radiance != scene.background);
+                }
+            }
+            assert!(lit > 100, "{name}: the view shows the objects");
+        }
     }
 }

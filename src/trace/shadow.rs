@@ -20,7 +20,7 @@ pub(crate) fn transmission(
     ray: &Ray,
     dist: f64,
     translucent: bool,
-    mut blockers: Option<&mut Vec<Blocker>>,
+    blockers: Option<&mut Vec<Blocker>>,
     cost: &mut TraversalCost,
 ) -> Rgb {
     if !translucent {
@@ -38,6 +38,19 @@ pub(crate) fn transmission(
             None => Rgb::ONE,
         };
     }
+    translucent_transmission(scene, ray, dist, blockers, cost)
+}
+
+/// The translucent mode of [`transmission`], out of line so the opaque any-hit test inlines
+/// into the shading loop.
+#[inline(never)]
+fn translucent_transmission(
+    scene: &Scene,
+    ray: &Ray,
+    dist: f64,
+    mut blockers: Option<&mut Vec<Blocker>>,
+    cost: &mut TraversalCost,
+) -> Rgb {
     let mut transmittance = Rgb::ONE;
     // Objects in object order (BVH-culled), so the product is the same as a full scan.
     for i in scene.objects_near(ray, dist, cost) {

@@ -1,0 +1,313 @@
+//! Local shading at a hit, shared by the recursive tracer and the direct-only path: the
+//! surface frame (geometric and shading normal) and the lecture's local term, emitted + ambient
+//! + the direct light of every light through its shadow ray.
+
+use super::{RayCounts, Recorder, Tracer, offset, shadow};
+use crate::bvh::TraversalCost;
+use crate::math::{Ray, Rgb};
+use crate::mesh::shading;
+use crate::scene::{Hit, Light, Material, OffsetStrategy};
+use crate::trace::MediaStack;
+use crate::tree::EndReason;
+use crate::tree::{NodeId, RayKind, RayNode, ShadowInfo};
+use glam::DVec3;
+
+/// A hit as shading sees it.
+#[derive(Clone, Copy, Debug)]
+pub(super) struct Surface {
+    /// The hit point.
+    pub p: DVec3,
+    /// The ray arrives on the outward side of the surface.
+    pub entering: bool,
+    /// Geometric normal on the incident side: decides sides and offsets.
+    pub n: DVec3,
+    /// Shading normal on the incident side: lighting, mirror and Snell (mesh::shading rule).
+    pub ns: DVec3,
+    /// The interpolated normal of a smooth mesh, as stored (`None` for flat surfaces).
+    pub smooth: Option<DVec3>,
+    /// Cosine of the incidence angle against `ns`.
+    pub cos_i: f64,
+}
+
+/// The local term at a hit and its parts.
+#[derive(Clone, Copy, Debug)]
+pub(super) struct Local {
+    /// Emission (seen from outside only).
+    pub emitted: Rgb,
+    /// Ambient term.
+    pub ambient: Rgb,
+    /// Emitted + ambient + every light's direct contribution.
+    pub total: Rgb,
+}
+
+impl Tracer<'_> {
+    /// The surface frame of `hit` for `ray` arriving through `media`.
+    #[inline(always)]
+    pub(super) fn surface(
+        &self,
+        ray: &Ray,
+        hit: &Hit,
+        m: &Material,
+        media: &MediaStack,
+    ) -> Surface {
+        let d = ray.direction;
+        let p = ray.at(hit.t);
+        let entering = d.dot(hit.normal) < 0.0;
+        let n = if entering { hit.normal } else { -hit.normal };
+        let smooth = hit.triangle.and_then(|_| self.scene.shading_normal(hit, p));
+        let ns = match smooth {
+            None => n,
+            Some(s) => {
+                let ns = shading::shading_normal(d, n, s, entering);
+                self.consistent_shading_normal(d, n, ns, hit.object, m, entering, media)
+            }
+        };
+        let cos_i = (-d.dot(ns)).clamp(0.0, 1.0);
+        Surface {
+            p,
+            entering,
+            n,
+            ns,
+            smooth,
+            cos_i,
+        }
+    }
+
+    /// Emitted + ambient + the direct light of every light that can light something, with one
+    /// shadow ray per light in front of the surface (recorded as children of `id`).
+    #[allow(clippy::too_many_arguments)]
+    #[inline(always)]
+    pub(super) fn local<R: Recorder>(
+        &self,
+        (hit, s): (&Hit, &Surface),
+        wo: DVec3,
+        m: &Material,
+        id: Option<NodeId>,
+        depth: u32,
+        rec: &mut R,
+        counts: &mut RayCounts,
+    ) -> Local {
+        let scene = self.scene;
+        let albedo = m.diffuse.at(s.p);
+        let emitted = if s.entering { m.emission } else { Rgb::ZERO };
+        let ambient = scene.ambient * albedo;
+        let mut total = emitted + ambient;
+        if !m.diffuse.is_black() || m.specular != Rgb::ZERO {
+            for (i, light) in scene.lights.iter().enumerate() {
+                if !self.plan.light_on(i) {
+                    continue;
+                }
+                let at = ((hit.object, hit.triangle), s.p);
+                total += self.direct(
+                    (i, light),
+                    at,
+                    (s.n, s.ns),
+                    wo,
+                    albedo,
+                    m,
+                    id,
+                    depth,
+                    rec,
+                    counts,
+                );
+            }
+        }
+        Local {
+            emitted,
+            ambient,
+            total,
+        }
+    }
+
+    /// One light's contribution at `p`: (diffuse/pi + Blinn-Phong) x irradiance x cos x shadow.
+    #[allow(clippy::too_many_arguments)]
+    #[inline(always)]
+    pub(super) fn direct<R: Recorder>(
+        &self,
+        (light, l): (usize, &Light),
+        (from, p): ((usize, Option<u32>), DVec3),
+        (n, ns): (DVec3, DVec3),
+        wo: DVec3,
+        albedo: Rgb,
+        m: &Material,
+        parent: Option<NodeId>,
+        depth: u32,
+        rec: &mut R,
+        counts: &mut RayCounts,
+    ) -> Rgb {
+        let (wi, dist, irradiance) = l.sample(p);
+        let cos = cos_to_light(n, ns, wi);
+        let (ray, seg) = self.shadow_ray(self.scene.settings.offset.strategy, from, p, n, wi, dist);
+        let id = rec.push(parent, || {
+            let mut node = RayNode::new(RayKind::Shadow, depth, p, ray.origin, ray.direction);
+            node.t_min = ray.t_min;
+            node
+        });
+        let (brdf, weight) = Self::light_weight(self.plan.specular, m, albedo, ns, (wi, wo), cos);
+        if cos <= 0.0 {
+            rec.update(id, |node| {
+                node.weight = weight;
+                node.end = EndReason::LightBehind;
+                node.shadow = Some(self.shadow_info(
+                    light,
+                    dist,
+                    cos,
+                    brdf,
+                    irradiance,
+                    Vec::new(),
+                    Rgb::ZERO,
+                ));
+            });
+            return Rgb::ZERO;
+        }
+        counts.add_kind(RayKind::Shadow);
+        if R::DIAGNOSE {
+            let first = self.scene.intersect(&ray, seg);
+            self.diagnose(&ray, p, from, first, id, rec, counts);
+        }
+        // Blockers are collected only when recording (no `Vec` on the render path).
+        let mut blockers = R::RECORDS.then(Vec::new);
+        let mut cost = TraversalCost::default();
+        let transmittance = shadow::transmission(
+            self.scene,
+            &ray,
+            seg,
+            self.plan.translucent_shadows,
+            blockers.as_mut(),
+            &mut cost,
+        );
+        let arriving = irradiance * transmittance;
+        rec.update(id, |node| {
+            node.traversal = cost;
+            node.weight = weight;
+            node.radiance = arriving;
+            node.end = if transmittance == Rgb::ONE {
+                EndReason::Unblocked
+            } else if transmittance == Rgb::ZERO {
+                EndReason::Blocked
+            } else {
+                EndReason::Attenuated
+            };
+            node.shadow = Some(self.shadow_info(
+                light,
+                dist,
+                cos,
+                brdf,
+                irradiance,
+                blockers.unwrap_or_default(),
+                transmittance,
+            ));
+        });
+        // A blocked light adds exactly nothing (not `0 * inf` for a light on the surface), as in
+        // the direct-only path, which does not evaluate blocked lights at all.
+        if transmittance == Rgb::ZERO {
+            Rgb::ZERO
+        } else {
+            weight * arriving
+        }
+    }
+
+    /// The BRDF (Lambert `albedo / pi` plus the Blinn-Phong highlight when the plan has one)
+    /// and the weight `brdf * max(cos, 0)` of a light at cosine `cos` (both zero behind).
+    /// `specular` is the plan's (constant in the direct-only path's loops).
+    #[inline(always)]
+    pub(super) fn light_weight(
+        specular: bool,
+        m: &Material,
+        albedo: Rgb,
+        ns: DVec3,
+        (wi, wo): (DVec3, DVec3),
+        cos: f64,
+    ) -> (Rgb, Rgb) {
+        let brdf = if cos > 0.0 {
+            let highlight = if specular {
+                blinn_phong(m, ns, wi, wo)
+            } else {
+                Rgb::ZERO
+            };
+            albedo * std::f64::consts::FRAC_1_PI + highlight
+        } else {
+            Rgb::ZERO
+        };
+        (brdf, brdf * cos.max(0.0))
+    }
+
+    /// The shadow ray from `p` (on `from`, geometric normal `n` towards the light) to a light
+    /// at `dist` along `wi`, offset by `strategy`, and how far it may go: the light's distance
+    /// less the offset, so the offset origin does not reach past the light (no square root
+    /// except for `robust`). The direct-only path passes a constant `strategy`, so each of its
+    /// loops holds one arm.
+    #[allow(clippy::too_many_arguments)]
+    #[inline(always)]
+    pub(super) fn shadow_ray(
+        &self,
+        strategy: OffsetStrategy,
+        from: (usize, Option<u32>),
+        p: DVec3,
+        n: DVec3,
+        wi: DVec3,
+        dist: f64,
+    ) -> (Ray, f64) {
+        let eps = self.scene.settings.offset.epsilon;
+        match strategy {
+            OffsetStrategy::Normal => (Ray::new(p + eps * n, wi, 0.0), (dist - eps).max(0.0)),
+            OffsetStrategy::Ray => (Ray::new(p, wi, eps), dist),
+            OffsetStrategy::Scaled => {
+                let e = offset::scaled_epsilon(eps, p);
+                (Ray::new(p + e * n, wi, 0.0), (dist - e).max(0.0))
+            }
+            OffsetStrategy::Robust => {
+                let shape = || self.scene.surface_shape(from.0, from.1);
+                let origin = offset::robust_origin(&shape(), p, n);
+                let ray = Ray::new(origin, wi, 0.0);
+                (ray, (dist - (origin - p).length()).max(0.0))
+            }
+        }
+    }
+
+    #[allow(clippy::too_many_arguments)]
+    fn shadow_info(
+        &self,
+        light: usize,
+        distance: f64,
+        cos_theta: f64,
+        brdf: Rgb,
+        irradiance: Rgb,
+        blockers: Vec<crate::tree::Blocker>,
+        transmittance: Rgb,
+    ) -> ShadowInfo {
+        ShadowInfo {
+            light,
+            light_name: self.scene.lights[light].name.clone(),
+            distance,
+            cos_theta,
+            brdf,
+            irradiance,
+            blockers,
+            transmittance,
+        }
+    }
+}
+
+/// The cosine at which a light in direction `wi` is seen: against the shading normal `ns`,
+/// unless the light is behind the geometric normal `n` (the shadow ray leaves on the geometric
+/// side, so a light below the geometric surface cannot be reached).
+#[inline(always)]
+pub(super) fn cos_to_light(n: DVec3, ns: DVec3, wi: DVec3) -> f64 {
+    if n.dot(wi) > 0.0 {
+        ns.dot(wi)
+    } else {
+        n.dot(wi)
+    }
+}
+
+/// Blinn-Phong highlight `specular * (N.H)^shininess` (zero without a specular colour).
+fn blinn_phong(m: &Material, n: DVec3, wi: DVec3, wo: DVec3) -> Rgb {
+    if m.specular == Rgb::ZERO {
+        return Rgb::ZERO;
+    }
+    let Some(h) = (wi + wo).try_normalize() else {
+        return Rgb::ZERO;
+    };
+    m.specular * n.dot(h).max(0.0).powf(m.shininess)
+}

@@ -1,0 +1,331 @@
+//! The recursion of the lecture's `trace(ray, objects, lights)`: closest hit, Beer's law on the
+//! segment, local shading, and the reflected and refracted rays of each hit.
+
+use super::local::{Local, Surface};
+use super::{MediaStack, PathState, RayCounts, Recorder, Secondary, Spawn, Tracer};
+use crate::bvh::TraversalCost;
+use crate::math::{self, Fresnel, Ray, Rgb, beer, reflect, refract};
+use crate::mesh::shading;
+use crate::scene::{Hit, Material};
+use crate::tree::{Attenuation, EndReason, HitInfo, Interface, NodeId, RayKind, RayNode};
+use glam::DVec3;
+
+impl Tracer<'_> {
+    pub(super) fn trace_ray<R: Recorder>(
+        &self,
+        ray: Ray,
+        spawn: Spawn,
+        state: PathState,
+        rec: &mut R,
+        counts: &mut RayCounts,
+    ) -> (Rgb, Option<NodeId>) {
+        counts.add_kind(spawn.kind);
+        let id = rec.push(spawn.parent, || {
+            let mut n = RayNode::new(
+                spawn.kind,
+                state.depth,
+                spawn.point,
+                ray.origin,
+                ray.direction,
+            );
+            n.t_min = ray.t_min;
+            n.weight = spawn.weight;
+            n.throughput = state.throughput;
+            n
+        });
+        let mut cost = TraversalCost::default();
+        let hit = self.scene.intersect_counted(&ray, f64::INFINITY, &mut cost);
+        rec.update(id, |n| n.traversal = cost);
+        if R::DIAGNOSE
+            && let Some(object) = spawn.object
+        {
+            let from = (object, spawn.triangle);
+            self.diagnose(&ray, spawn.point, from, hit, id, rec, counts);
+        }
+        // Beer's law on this segment, inside the innermost absorbing medium.
+        // (Checked only when the plan has absorption: no per-ray cost otherwise.)
+        let medium = if self.plan.absorption {
+            state.media.top().map(|m| m.object as usize)
+        } else {
+            None
+        };
+        let absorption = medium.map_or(Rgb::ZERO, |o| self.scene.material_of(o).absorption);
+        let mut atten = Rgb::ONE;
+        if medium.is_some() && absorption != Rgb::ZERO {
+            // Path length from the true spawn point, so the offset does not bias Beer's law.
+            let distance = hit.map_or(f64::INFINITY, |h| (ray.at(h.t) - spawn.point).length());
+            atten = beer(absorption, distance);
+            rec.update(id, |n| {
+                n.attenuation = Some(Attenuation {
+                    medium: medium.unwrap_or(0),
+                    distance,
+                    absorption,
+                    factor: atten,
+                });
+            });
+        }
+        let Some(hit) = hit else {
+            let radiance = atten * self.scene.background;
+            rec.update(id, |n| {
+                n.radiance = radiance;
+                n.end = EndReason::Miss;
+            });
+            return (radiance, id);
+        };
+        let inner = self.shade(&ray, &hit, id, state.throughput * atten, state, rec, counts);
+        let radiance = atten * inner;
+        rec.update(id, |n| n.radiance = radiance);
+        (radiance, id)
+    }
+
+    /// Everything at a hit: local shading plus the weighted secondary rays (before the segment's
+    /// attenuation).
+    #[allow(clippy::too_many_arguments)]
+    fn shade<R: Recorder>(
+        &self,
+        ray: &Ray,
+        hit: &Hit,
+        id: Option<NodeId>,
+        throughput: Rgb,
+        state: PathState,
+        rec: &mut R,
+        counts: &mut RayCounts,
+    ) -> Rgb {
+        let scene = self.scene;
+        let m = scene.material_of(hit.object);
+        let d = ray.direction;
+        let s = self.surface(ray, hit, m, state.media);
+        let Surface {
+            p,
+            entering,
+            n,
+            ns,
+            smooth,
+            cos_i,
+        } = s;
+        rec.update(id, |node| {
+            node.hit = Some(HitInfo {
+                t: hit.t,
+                point: p,
+                normal: hit.normal,
+                object: hit.object,
+                object_name: scene.objects[hit.object].name.clone(),
+                material: m.name.clone(),
+                entering,
+                cos_i,
+                triangle: scene.source_triangle(hit),
+                shading_normal: smooth.map(|_| if entering { ns } else { -ns }),
+            });
+        });
+        let Local {
+            emitted,
+            ambient,
+            total: local,
+        } = self.local((hit, &s), -d, m, id, state.depth, rec, counts);
+        rec.update(id, |node| {
+            node.emitted = emitted;
+            node.ambient = ambient;
+            node.local = local;
+        });
+
+        if !(self.plan.reflection || self.plan.refraction) {
+            // Nothing in the scene reflects or refracts: no secondary rays, no bookkeeping.
+            rec.update(id, |node| {
+                node.end = EndReason::Surface;
+                node.truncated = Rgb::ZERO;
+            });
+            return local;
+        }
+        // Dielectric split (only where the material transmits).
+        let mut reflect_w = m.reflectivity;
+        let mut refraction = None;
+        if self.plan.refraction && m.is_transmissive() {
+            let (event, dir) = self.interface(d, ns, cos_i, hit.object, m, entering, *state.media);
+            let f = event.fresnel;
+            reflect_w += m.transmissivity * f.r;
+            if let Some(dir) = dir {
+                refraction = Some((dir, m.transmissivity * f.t));
+            }
+            rec.update(id, |node| node.interface = Some(event));
+        }
+        let at = Spawn {
+            kind: RayKind::Reflected,
+            parent: id,
+            point: p,
+            object: Some(hit.object),
+            triangle: hit.triangle,
+            weight: Rgb::ZERO,
+        };
+        let mut acc = Secondary {
+            total: local,
+            end: EndReason::Surface,
+            truncated: Rgb::ZERO,
+        };
+        if reflect_w.max_element() > 0.0 {
+            let spawn = Spawn {
+                weight: reflect_w,
+                ..at
+            };
+            self.secondary(
+                &mut acc,
+                spawn,
+                reflect(d, ns),
+                n,
+                throughput,
+                state.depth,
+                state.media,
+                rec,
+                counts,
+            );
+        }
+        if let Some((dir, weight)) = refraction.filter(|r| r.1.max_element() > 0.0) {
+            let media = if entering {
+                state
+                    .media
+                    .entered(hit.object, m.ior.unwrap_or(state.media.ior()))
+            } else {
+                state.media.left(hit.object)
+            };
+            let spawn = Spawn {
+                kind: RayKind::Refracted,
+                weight,
+                ..at
+            };
+            self.secondary(
+                &mut acc,
+                spawn,
+                dir,
+                -n,
+                throughput,
+                state.depth,
+                &media,
+                rec,
+                counts,
+            );
+        }
+        let Secondary {
+            total,
+            end,
+            truncated,
+        } = acc;
+        rec.update(id, |node| {
+            node.end = end;
+            node.truncated = truncated;
+        });
+        total
+    }
+
+    /// `ns`, or the geometric `n` where refracting with `ns` would cross to the wrong side of
+    /// the surface (mesh::shading rule).
+    #[allow(clippy::too_many_arguments)]
+    pub(super) fn consistent_shading_normal(
+        &self,
+        d: DVec3,
+        n: DVec3,
+        ns: DVec3,
+        object: usize,
+        m: &Material,
+        entering: bool,
+        media: &MediaStack,
+    ) -> DVec3 {
+        if ns != n && self.plan.refraction && m.is_transmissive() {
+            let cos = (-d.dot(ns)).clamp(0.0, 1.0);
+            let (_, t) = self.interface(d, ns, cos, object, m, entering, *media);
+            if t.is_some_and(|t| !shading::refraction_consistent(n, t)) {
+                return n;
+            }
+        }
+        ns
+    }
+
+    /// Trace one secondary ray (or record why it was cut) and add its weighted radiance.
+    #[allow(clippy::too_many_arguments)]
+    fn secondary<R: Recorder>(
+        &self,
+        acc: &mut Secondary,
+        spawn: Spawn,
+        dir: DVec3,
+        side: DVec3,
+        throughput: Rgb,
+        depth: u32,
+        media: &MediaStack,
+        rec: &mut R,
+        counts: &mut RayCounts,
+    ) {
+        let settings = &self.scene.settings;
+        let child_throughput = throughput * spawn.weight;
+        let cut = if depth >= settings.max_depth {
+            Some(EndReason::MaxDepth)
+        } else if child_throughput.max_element() < settings.min_weight {
+            Some(EndReason::MinWeight)
+        } else {
+            None
+        };
+        if let Some(reason) = cut {
+            acc.truncated += spawn.weight;
+            if acc.end != EndReason::MaxDepth {
+                acc.end = reason;
+            }
+            return;
+        }
+        if acc.end == EndReason::Surface {
+            acc.end = EndReason::Continued;
+        }
+        let object = spawn.object.expect("secondary rays leave a surface");
+        let ray = self.spawn_ray((object, spawn.triangle), spawn.point, side, dir);
+        let state = PathState {
+            depth: depth + 1,
+            throughput: child_throughput,
+            media,
+        };
+        let (l, _) = self.trace_ray(ray, spawn, state, rec, counts);
+        acc.total += spawn.weight * l;
+    }
+
+    /// n1, n2, Snell and Fresnel at a transmissive hit; the refracted direction unless TIR.
+    #[allow(clippy::too_many_arguments)]
+    fn interface(
+        &self,
+        d: DVec3,
+        n: DVec3,
+        cos_i: f64,
+        object: usize,
+        m: &Material,
+        entering: bool,
+        media: MediaStack,
+    ) -> (Interface, Option<DVec3>) {
+        let (n1, n2) = if entering {
+            let n1 = media.ior();
+            (n1, m.ior.unwrap_or(n1))
+        } else {
+            let n2 = media.left(object).ior();
+            (m.ior.unwrap_or(n2), n2)
+        };
+        let model = self.scene.settings.fresnel;
+        match refract(d, n, n1 / n2) {
+            Some(t) => {
+                let fresnel: Fresnel = math::fresnel(model, n1, n2, cos_i, t.cos_t);
+                let event = Interface {
+                    n1,
+                    n2,
+                    cos_i,
+                    cos_t: Some(t.cos_t),
+                    fresnel,
+                    tir: false,
+                };
+                (event, Some(t.direction))
+            }
+            None => {
+                let event = Interface {
+                    n1,
+                    n2,
+                    cos_i,
+                    cos_t: None,
+                    fresnel: math::fresnel_tir(model),
+                    tir: true,
+                };
+                (event, None)
+            }
+        }
+    }
+}
