@@ -103,6 +103,14 @@ impl EffectPlan {
         }
     }
 
+    /// No secondary rays and nothing along a camera ray's segment: the radiance of a camera
+    /// ray is the local term at its first hit, which the tracer computes on its direct-only
+    /// path.
+    #[must_use]
+    pub fn direct_only(&self) -> bool {
+        !(self.reflection || self.refraction || self.absorption || self.translucent_shadows)
+    }
+
     /// Whether light `i` is traced.
     #[must_use]
     pub fn light_on(&self, i: usize) -> bool {
@@ -192,7 +200,15 @@ impl EffectPlan {
             line(
                 "recursion",
                 self.recursion,
-                format!("max_depth {}", s.max_depth),
+                if self.direct_only() {
+                    format!(
+                        "max_depth {}, but nothing reflects or refracts: each camera ray ends at \
+                         its first hit (direct-only render path, lights only)",
+                        s.max_depth
+                    )
+                } else {
+                    format!("max_depth {}", s.max_depth)
+                },
             ),
             line(
                 "supersampling",

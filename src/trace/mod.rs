@@ -114,8 +114,7 @@ impl<'a> Tracer<'a> {
     /// A tracer with an explicit plan (e.g. [`EffectPlan::everything`] for comparisons).
     #[must_use]
     pub fn with_plan(scene: &'a Scene, plan: EffectPlan) -> Self {
-        let direct_only =
-            !(plan.reflection || plan.refraction || plan.absorption || plan.translucent_shadows);
+        let direct_only = plan.direct_only();
         Self {
             scene,
             plan,
