@@ -1,5 +1,5 @@
 //! Mesh and BVH performance: primary-ray throughput on a 1.3M-triangle icosphere (1 and 2
-//! threads), time per ray from 1K to 1.3M triangles, and the classic scene with the Stanford
+//! threads; single rays and 8x8 packets), time per ray from 1K to 1.3M triangles, and the classic scene with the Stanford
 //! bunny in glass (skipped when `../shared/data/meshes/` is absent).
 //!
 //! Run: `cargo bench --bench mesh`. Figures and the comparison with Embree: docs/mesh.md.
@@ -7,6 +7,7 @@
 use criterion::{Criterion, Throughput, criterion_group, criterion_main};
 use rayon::prelude::*;
 use raytree::Scene;
+use raytree::bvh::TraversalCost;
 use raytree::mesh::generate::icosphere;
 use raytree::mesh::{MeshData, parse_obj};
 use std::hint::black_box;
@@ -39,11 +40,40 @@ fn cast_rows(scene: &Scene, rows: std::ops::Range<u32>) -> u64 {
     hits
 }
 
-fn cast_parallel(scene: &Scene) -> u64 {
-    (0..scene.camera.height)
-        .into_par_iter()
-        .map(|y| cast_rows(scene, y..y + 1))
-        .sum()
+/// [`cast_rows`] for rows `y0..y0 + 8` as packets of 8x8 rays (`Scene::intersect_packet`,
+/// the render's path for scenes with meshes).
+fn cast_band(scene: &Scene, y0: u32) -> u64 {
+    let cam = &scene.camera;
+    let y1 = (y0 + 8).min(cam.height);
+    let mut hits = 0;
+    let mut rays = Vec::with_capacity(64);
+    let mut found = [None; 64];
+    let mut cost = [TraversalCost::default(); 64];
+    for x0 in (0..cam.width).step_by(8) {
+        rays.clear();
+        for y in y0..y1 {
+            for x in x0..(x0 + 8).min(cam.width) {
+                rays.push(cam.ray(f64::from(x) + 0.5, f64::from(y) + 0.5));
+            }
+        }
+        scene.intersect_packet(&rays, &mut found, &mut cost);
+        hits += found[..rays.len()].iter().filter(|h| h.is_some()).count() as u64;
+    }
+    hits
+}
+
+fn cast_parallel(scene: &Scene, packets: bool) -> u64 {
+    if packets {
+        (0..scene.camera.height.div_ceil(8))
+            .into_par_iter()
+            .map(|b| cast_band(scene, b * 8))
+            .sum()
+    } else {
+        (0..scene.camera.height)
+            .into_par_iter()
+            .map(|y| cast_rows(scene, y..y + 1))
+            .sum()
+    }
 }
 
 fn primary_1m(c: &mut Criterion) {
@@ -55,10 +85,9 @@ fn primary_1m(c: &mut Criterion) {
         start.elapsed().as_secs_f64()
     );
     let rays = u64::from(scene.camera.width * scene.camera.height);
-    eprintln!(
-        "hit fraction {:.3}",
-        cast_rows(&scene, 0..512) as f64 / rays as f64
-    );
+    let hits = cast_rows(&scene, 0..512);
+    eprintln!("hit fraction {:.3}", hits as f64 / rays as f64);
+    assert_eq!(cast_parallel(&scene, true), hits);
     let mut g = c.benchmark_group("primary_icosphere_1.3M_512x512");
     g.sample_size(10).measurement_time(Duration::from_secs(4));
     g.throughput(Throughput::Elements(rays));
@@ -67,9 +96,11 @@ fn primary_1m(c: &mut Criterion) {
             .num_threads(threads)
             .build()
             .unwrap();
-        g.bench_function(format!("threads{threads}"), |b| {
-            b.iter(|| pool.install(|| cast_parallel(black_box(&scene))))
-        });
+        for (name, packets) in [("", false), ("_packets8x8", true)] {
+            g.bench_function(format!("threads{threads}{name}"), |b| {
+                b.iter(|| pool.install(|| cast_parallel(black_box(&scene), packets)))
+            });
+        }
     }
     g.finish();
 }
@@ -83,6 +114,14 @@ fn scaling(c: &mut Criterion) {
         let tris = 20 * 4u64.pow(level);
         g.bench_function(format!("{tris}_triangles"), |b| {
             b.iter(|| cast_rows(black_box(&scene), 0..256))
+        });
+        g.bench_function(format!("{tris}_triangles_packets8x8"), |b| {
+            b.iter(|| {
+                (0..256)
+                    .step_by(8)
+                    .map(|y| cast_band(black_box(&scene), y))
+                    .sum::<u64>()
+            })
         });
     }
     g.finish();

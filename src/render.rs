@@ -4,6 +4,9 @@
 //! [`NoopRecorder`], the tree [`TreeRecorder`], so a recorded pixel equals the rendered one bit
 //! for bit.
 
+use crate::bvh::TraversalCost;
+use crate::bvh::wide::PACKET;
+use crate::geometry::Shape;
 use crate::math::Rgb;
 use crate::scene::Scene;
 use crate::trace::{DiagnosticRecorder, NoopRecorder, RayCounts, Recorder, Tracer, TreeRecorder};
@@ -194,28 +197,61 @@ fn render_recorded<R: Recorder + Default>(
     let scene = tracer.scene();
     let (w, h) = (scene.camera.width, scene.camera.height);
     let done = std::sync::atomic::AtomicU32::new(0);
-    let rows: Vec<Row> = (0..h)
-        .into_par_iter()
-        .map(|y| {
-            let mut counts = RayCounts::default();
-            let mut diag = Vec::new();
-            let mut rec = R::default();
-            let row = (0..w)
-                .map(|x| {
-                    let before = counts;
-                    let l = render_pixel_with(tracer, x, y, &mut rec, &mut counts, |_| {});
-                    if R::DIAGNOSE {
-                        let self_hits = counts.self_hits - before.self_hits;
-                        let leaks = counts.leaks - before.leaks;
-                        diag.push((self_hits as u32, leaks as u32));
-                    }
-                    l
-                })
-                .collect();
-            progress(done.fetch_add(1, std::sync::atomic::Ordering::Relaxed) + 1);
-            (row, diag, counts)
-        })
-        .collect();
+    let packets = !R::RECORDS
+        && !R::DIAGNOSE
+        && w > 0
+        && scene
+            .objects
+            .iter()
+            .any(|o| matches!(o.shape, Shape::Mesh(_)));
+    let rows: Vec<Row> = if packets {
+        (0..h.div_ceil(TILE))
+            .into_par_iter()
+            .map(|band| {
+                let y0 = band * TILE;
+                let n = TILE.min(h - y0);
+                let result = render_band::<R>(tracer, y0, n);
+                progress(done.fetch_add(n, std::sync::atomic::Ordering::Relaxed) + n);
+                result
+            })
+            .collect::<Vec<_>>()
+            .into_iter()
+            .flat_map(|(band, counts)| {
+                let rows: Vec<Row> = band
+                    .chunks(w as usize)
+                    .enumerate()
+                    .map(|(i, row)| {
+                        let counts = if i == 0 { counts } else { RayCounts::default() };
+                        (row.to_vec(), Vec::new(), counts)
+                    })
+                    .collect();
+                rows
+            })
+            .collect()
+    } else {
+        (0..h)
+            .into_par_iter()
+            .map(|y| {
+                let mut counts = RayCounts::default();
+                let mut diag = Vec::new();
+                let mut rec = R::default();
+                let row = (0..w)
+                    .map(|x| {
+                        let before = counts;
+                        let l = render_pixel_with(tracer, x, y, &mut rec, &mut counts, |_| {});
+                        if R::DIAGNOSE {
+                            let self_hits = counts.self_hits - before.self_hits;
+                            let leaks = counts.leaks - before.leaks;
+                            diag.push((self_hits as u32, leaks as u32));
+                        }
+                        l
+                    })
+                    .collect();
+                progress(done.fetch_add(1, std::sync::atomic::Ordering::Relaxed) + 1);
+                (row, diag, counts)
+            })
+            .collect()
+    };
     let mut stats = RenderStats::default();
     let mut pixels = Vec::with_capacity((w * h) as usize);
     let mut map = DiagnosticMap {
@@ -247,6 +283,54 @@ fn render_recorded<R: Recorder + Default>(
         pixels,
     };
     (image, stats, map)
+}
+
+/// Rows per band and columns per tile of the packet path: a packet is the camera rays of one
+/// sample of an 8x8 tile.
+const TILE: u32 = 8;
+
+/// Rows `y0..y0 + rows` (at most [`TILE`]) without recording, a tile of camera rays at a time
+/// through [`Scene::intersect_packet`]: the pixels (row-major) and the ray counts. Each pixel
+/// sums its samples in the same order as [`render_pixel_with`], and each ray's hit is its single
+/// ray's, so the pixels are [`render_pixel_with`]'s bit for bit.
+fn render_band<R: Recorder + Default>(
+    tracer: &Tracer,
+    y0: u32,
+    rows: u32,
+) -> (Vec<Rgb>, RayCounts) {
+    let scene = tracer.scene();
+    let w = scene.camera.width;
+    let spp = scene.settings.spp.max(1);
+    let mut counts = RayCounts::default();
+    let mut rec = R::default();
+    let mut band = vec![Rgb::ZERO; (w * rows) as usize];
+    let mut rays = Vec::with_capacity(PACKET);
+    let mut hits = [None; PACKET];
+    let mut cost = [TraversalCost::default(); PACKET];
+    for x0 in (0..w).step_by(TILE as usize) {
+        let cols = TILE.min(w - x0);
+        for s in 0..spp {
+            rays.clear();
+            for dy in 0..rows {
+                for dx in 0..cols {
+                    let (fx, fy) = sample_position(x0 + dx, y0 + dy, s, spp);
+                    rays.push(scene.camera.ray(fx, fy));
+                }
+            }
+            cost.fill(TraversalCost::default());
+            scene.intersect_packet(&rays, &mut hits, &mut cost);
+            for (i, ray) in rays.iter().enumerate() {
+                let (dx, dy) = (i as u32 % cols, i as u32 / cols);
+                let found = (hits[i], cost[i]);
+                let (l, _) = tracer.trace_camera_found(*ray, found, &mut rec, &mut counts);
+                band[(dy * w + x0 + dx) as usize] += l;
+            }
+        }
+    }
+    for p in &mut band {
+        *p /= f64::from(spp);
+    }
+    (band, counts)
 }
 
 #[cfg(test)]

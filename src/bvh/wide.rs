@@ -16,6 +16,9 @@
 //! culled. Rays whose origin is so far away that the shift itself loses that precision, and
 //! meshes beyond the safe `f32` range, use an `f64` slab test on the same nodes.
 
+mod packet;
+pub use packet::PACKET;
+
 use super::{Bvh, TraversalCost, Visit, down, up};
 use crate::math::Ray;
 use glam::DVec3;

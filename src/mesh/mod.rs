@@ -10,6 +10,7 @@
 pub mod generate;
 pub mod obj;
 mod packed;
+mod packet;
 mod query;
 pub mod shading;
 
@@ -342,5 +343,7 @@ fn smooth_normals(
 
 #[cfg(test)]
 mod filter_tests;
+#[cfg(test)]
+mod packet_tests;
 #[cfg(test)]
 mod tests;

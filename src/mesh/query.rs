@@ -47,7 +47,9 @@ impl Mesh {
         cost.prims += prims;
     }
 
-    /// The closest hit in `(ray.t_min, t_max)`: distance and stored triangle index.
+    /// The closest hit in `(ray.t_min, t_max)`: distance and stored triangle index (the lowest
+    /// index among triangles hit at the same distance, so the answer does not depend on the
+    /// traversal order; [`Mesh::intersect_packet`] gives the same).
     #[must_use]
     pub fn intersect(
         &self,
@@ -57,13 +59,14 @@ impl Mesh {
     ) -> Option<(f64, usize)> {
         let mut best = None;
         self.candidates(ray, t_max, cost, |sheared, slot, t_max| {
-            match sheared.t(&self.tris[slot]) {
-                Some(t) if t > ray.t_min && t < t_max => {
-                    best = Some((t, slot));
-                    Visit::Continue(t)
-                }
-                _ => Visit::Continue(t_max),
-            }
+            Visit::Continue(closer(
+                sheared,
+                &self.tris[slot],
+                slot,
+                ray.t_min,
+                t_max,
+                &mut best,
+            ))
         });
         best
     }
@@ -126,5 +129,28 @@ impl Mesh {
             }
         }
         first.map(|t| (t, chord))
+    }
+}
+
+/// Test `slot` (vertices `tri`) for the closest-hit queries: when it is hit in `(t_min, t_max)`,
+/// or exactly at the best distance so far with a lower index, it becomes `best`. Returns the
+/// new `t_max` (`t_max` equals the best distance once there is one).
+#[inline(always)]
+pub(super) fn closer(
+    sheared: &ShearedRay,
+    tri: &[glam::DVec3; 3],
+    slot: usize,
+    t_min: f64,
+    t_max: f64,
+    best: &mut Option<(f64, usize)>,
+) -> f64 {
+    match sheared.t(tri) {
+        Some(t)
+            if t > t_min && (t < t_max || (t == t_max && best.is_some_and(|(_, s)| slot < s))) =>
+        {
+            *best = Some((t, slot));
+            t
+        }
+        _ => t_max,
     }
 }

@@ -56,7 +56,7 @@ impl Accel {
 }
 
 /// Hit on object `i`: its distance, outward normal and (meshes) stored triangle.
-fn object_hit(
+pub(super) fn object_hit(
     o: &Object,
     i: usize,
     ray: &Ray,

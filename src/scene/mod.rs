@@ -4,6 +4,7 @@ mod accel;
 pub mod desc;
 mod locate;
 mod mesh_object;
+mod packet;
 mod transform;
 mod validate;
 

@@ -40,13 +40,22 @@ struct At<'h> {
 }
 
 impl Tracer<'_> {
-    /// Radiance along an unrecorded camera ray when the plan spawns no secondary rays: the sum
-    /// of emitted, ambient and every light through an opaque shadow ray (any-hit), as
-    /// [`Tracer::local`] computes it.
-    pub(super) fn trace_direct_only(&self, ray: &Ray, counts: &mut RayCounts) -> Rgb {
+    /// Radiance along an unrecorded camera ray (closest hit `found`, or found here) when the plan spawns no
+    /// secondary rays: the sum of emitted, ambient and every light through an opaque shadow ray
+    /// (any-hit), as [`Tracer::local`] computes it.
+    pub(super) fn trace_direct_only(
+        &self,
+        ray: &Ray,
+        found: Option<Option<Hit>>,
+        counts: &mut RayCounts,
+    ) -> Rgb {
         counts.camera += 1;
         let scene = self.scene;
-        let Some(hit) = scene.intersect(ray, f64::INFINITY) else {
+        let hit = match found {
+            Some(hit) => hit,
+            None => scene.intersect(ray, f64::INFINITY),
+        };
+        let Some(hit) = hit else {
             return scene.background;
         };
         let m = scene.material_of(hit.object);

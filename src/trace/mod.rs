@@ -13,6 +13,7 @@ mod shadow;
 pub use media::{MediaStack, Medium};
 pub use recorder::{DiagnosticRecorder, NoopRecorder, Recorder, TreeRecorder};
 
+use crate::bvh::TraversalCost;
 use crate::effects::EffectPlan;
 use crate::math::{Ray, Rgb};
 use crate::scene::{Hit, Scene};
@@ -142,8 +143,35 @@ impl<'a> Tracer<'a> {
         counts: &mut RayCounts,
     ) -> (Rgb, Option<NodeId>) {
         if self.direct_only && !R::RECORDS && !R::DIAGNOSE {
-            return (self.trace_direct_only(&ray, counts), None);
+            return (self.trace_direct_only(&ray, None, counts), None);
         }
+        self.trace_camera_general(ray, None, rec, counts)
+    }
+
+    /// [`Tracer::trace_camera`] for a camera ray whose closest hit is already known: `found` is
+    /// what [`Scene::intersect_counted`] returns for it over `(ray.t_min, infinity)` and the work
+    /// that took, e.g. from [`Scene::intersect_packet`] over a tile of camera rays. The result
+    /// is the same as tracing the ray from scratch (the hit is the same bit for bit).
+    pub fn trace_camera_found<R: Recorder>(
+        &self,
+        ray: Ray,
+        found: (Option<Hit>, TraversalCost),
+        rec: &mut R,
+        counts: &mut RayCounts,
+    ) -> (Rgb, Option<NodeId>) {
+        if self.direct_only && !R::RECORDS && !R::DIAGNOSE {
+            return (self.trace_direct_only(&ray, Some(found.0), counts), None);
+        }
+        self.trace_camera_general(ray, Some(found), rec, counts)
+    }
+
+    fn trace_camera_general<R: Recorder>(
+        &self,
+        ray: Ray,
+        found: Option<(Option<Hit>, TraversalCost)>,
+        rec: &mut R,
+        counts: &mut RayCounts,
+    ) -> (Rgb, Option<NodeId>) {
         let spawn = Spawn {
             kind: RayKind::Camera,
             parent: None,
@@ -157,7 +185,7 @@ impl<'a> Tracer<'a> {
             throughput: Rgb::ONE,
             media: &MediaStack::AIR,
         };
-        self.trace_ray(ray, spawn, state, rec, counts)
+        self.trace_ray(ray, found, spawn, state, rec, counts)
     }
 
     /// Offset a spawn point on `object` (for meshes: on stored `triangle`) by the configured

@@ -11,9 +11,12 @@ use crate::tree::{Attenuation, EndReason, HitInfo, Interface, NodeId, RayKind, R
 use glam::DVec3;
 
 impl Tracer<'_> {
+    /// One ray of the tree; `found` is its closest hit and the traversal work when the caller
+    /// already has them (camera rays traced by packet), otherwise they are computed here.
     pub(super) fn trace_ray<R: Recorder>(
         &self,
         ray: Ray,
+        found: Option<(Option<Hit>, TraversalCost)>,
         spawn: Spawn,
         state: PathState,
         rec: &mut R,
@@ -33,8 +36,13 @@ impl Tracer<'_> {
             n.throughput = state.throughput;
             n
         });
-        let mut cost = TraversalCost::default();
-        let hit = self.scene.intersect_counted(&ray, f64::INFINITY, &mut cost);
+        let (hit, cost) = found.unwrap_or_else(|| {
+            let mut cost = TraversalCost::default();
+            (
+                self.scene.intersect_counted(&ray, f64::INFINITY, &mut cost),
+                cost,
+            )
+        });
         rec.update(id, |n| n.traversal = cost);
         if R::DIAGNOSE
             && let Some(object) = spawn.object
@@ -278,7 +286,7 @@ impl Tracer<'_> {
             throughput: child_throughput,
             media,
         };
-        let (l, _) = self.trace_ray(ray, spawn, state, rec, counts);
+        let (l, _) = self.trace_ray(ray, None, spawn, state, rec, counts);
         acc.total += spawn.weight * l;
     }
 

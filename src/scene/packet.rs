@@ -1,0 +1,63 @@
+//! Closest hits of a packet of camera rays: meshes are walked once for the whole packet
+//! ([`crate::mesh::Mesh::intersect_packet`]), other objects ray by ray.
+
+use super::accel::object_hit;
+use super::{Hit, Scene};
+use crate::bvh::TraversalCost;
+use crate::bvh::wide::PACKET;
+use crate::geometry::Shape;
+use crate::math::Ray;
+
+impl Scene {
+    /// [`Scene::intersect_counted`] over `(ray.t_min, infinity)` for each of `rays` (at most
+    /// [`PACKET`]), into `hits`; adds each ray's work to `cost`. The hits are the single rays'
+    /// bit for bit (the closest, lowest object index among equal distances, and in a mesh the
+    /// lowest triangle index). Scenes large enough for the object BVH take their rays one by
+    /// one; the others (a few objects, typically one big mesh) share each mesh walk.
+    ///
+    /// # Panics
+    /// If there are more than [`PACKET`] rays or a slice is shorter than `rays`.
+    pub fn intersect_packet(
+        &self,
+        rays: &[Ray],
+        hits: &mut [Option<Hit>],
+        cost: &mut [TraversalCost],
+    ) {
+        assert!(rays.len() <= PACKET && hits.len() >= rays.len() && cost.len() >= rays.len());
+        if self.accel.is_for(self.objects.len()) {
+            for (i, ray) in rays.iter().enumerate() {
+                hits[i] = self.intersect_counted(ray, f64::INFINITY, &mut cost[i]);
+            }
+            return;
+        }
+        // The linear scan of `intersect_counted`, object by object for the whole packet.
+        let n = rays.len();
+        hits[..n].fill(None);
+        let mut limit = [f64::INFINITY; PACKET];
+        let mut found = [None; PACKET];
+        for (object, o) in self.objects.iter().enumerate() {
+            if let Shape::Mesh(m) = &o.shape {
+                m.intersect_packet(rays, &limit[..n], &mut found[..n], cost);
+                for i in 0..n {
+                    cost[i].prims += 1;
+                    if let Some((t, tri)) = found[i] {
+                        limit[i] = t;
+                        hits[i] = Some(Hit {
+                            t,
+                            normal: m.geometric_normal(tri),
+                            object,
+                            triangle: Some(tri as u32),
+                        });
+                    }
+                }
+            } else {
+                for (i, ray) in rays.iter().enumerate() {
+                    if let Some(h) = object_hit(o, object, ray, limit[i], &mut cost[i]) {
+                        limit[i] = h.t;
+                        hits[i] = Some(h);
+                    }
+                }
+            }
+        }
+    }
+}
