@@ -53,8 +53,14 @@ fn packet_hits_equal_single_ray_hits() {
     ] {
         let mesh = placed(4, scale, translate);
         let n = mesh.triangle_count();
-        let eye = translate + DVec3::new(0.2, 0.1, 3.0) * scale;
         for round in 0..40 {
+            // Every other round from off the axes, so that a whole tile shares its direction
+            // signs and the packet takes the interval test at the upper levels.
+            let eye = if round % 2 == 0 {
+                translate + DVec3::new(0.2, 0.1, 3.0) * scale
+            } else {
+                translate + DVec3::new(2.5, 1.5, 3.0) * scale
+            };
             let len = [PACKET, 1, 7, 33][round % 4];
             let mut rays = Vec::new();
             let mut t_max = Vec::new();
