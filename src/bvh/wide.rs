@@ -349,6 +349,18 @@ impl WideBvh {
 /// NaN-safe order: a ray in a slab's boundary plane counts as inside.
 #[inline(always)]
 fn enter_f32(node: &Node, ray: &WideRay, s_max: f32) -> (u32, [f32; WIDTH]) {
+    let (lo, hi) = slabs_f32(node, ray, s_max);
+    let mut mask = 0;
+    for l in 0..WIDTH {
+        mask |= u32::from(lo[l] <= hi[l]) << l;
+    }
+    (mask, lo)
+}
+
+/// The parameter interval `[lo, hi]` of the ray inside each of the four boxes, clipped to
+/// `[s_min, s_max]` (empty when `lo > hi`; NaNs never narrow it).
+#[inline(always)]
+fn slabs_f32(node: &Node, ray: &WideRay, s_max: f32) -> ([f32; WIDTH], [f32; WIDTH]) {
     let b = &node.bounds;
     let (o, inv) = (ray.origin, ray.inv);
     let mut lo = [ray.s_min; WIDTH];
@@ -362,11 +374,7 @@ fn enter_f32(node: &Node, ray: &WideRay, s_max: f32) -> (u32, [f32; WIDTH]) {
             hi[l] = if tf < hi[l] { tf } else { hi[l] };
         }
     }
-    let mut mask = 0;
-    for l in 0..WIDTH {
-        mask |= u32::from(lo[l] <= hi[l]) << l;
-    }
-    (mask, lo)
+    (lo, hi)
 }
 
 /// The same test in `f64` on the original ray (entry distances are then only for the order).

@@ -29,7 +29,9 @@
 //! whose answer does not depend on the order (ties broken by a key) gets the single ray's
 //! answer for each ray.
 
-use super::{EMPTY, LEAF, Node, STACK, WIDTH, WideBvh, WideRay, enter_f32, enter_f64};
+#[cfg(test)]
+use super::enter_f32;
+use super::{EMPTY, LEAF, Node, STACK, WIDTH, WideBvh, WideRay, enter_f64, slabs_f32};
 use crate::bvh::{TraversalCost, up};
 
 /// Most rays in one packet (one bit each in a `u64` mask).
@@ -90,7 +92,10 @@ impl WideBvh {
             } else {
                 let node = &self.nodes[at as usize];
                 visits.add(mask);
-                let leaf_child = node.child.iter().any(|&c| c & LEAF != 0 && c != EMPTY);
+                let mut leaf_child = false;
+                for c in node.child {
+                    leaf_child |= c & LEAF != 0 && c != EMPTY;
+                }
                 let mut children = None;
                 if let Some(i) = &interval
                     && coherent
@@ -98,7 +103,8 @@ impl WideBvh {
                     && mask & (mask - 1) != 0
                 {
                     let c = i.enter(node, mask);
-                    if c.iter().filter(|e| e.1 != 0).count() <= 2 {
+                    let entered: u32 = c.iter().map(|e| u32::from(e.1 != 0)).sum();
+                    if entered <= 2 {
                         children = Some(c);
                     } else {
                         // The packet spreads over several children: test its rays one by one
@@ -187,28 +193,62 @@ fn enter_each(
     bvh: &WideBvh,
 ) -> [(f32, u64); WIDTH] {
     let mut key = [f32::INFINITY; WIDTH];
-    let mut enter = [0u64; WIDTH];
+    // Ray r's four hit bits at bits 4 (r % 16).. of word r / 16: two operations per ray;
+    // the per-lane masks are gathered once per node below.
+    let mut nibbles = [0u64; PACKET / 16];
     let mut m = mask;
     while m != 0 {
         let r = m.trailing_zeros() as usize;
         m &= m - 1;
         let ray = &rays[r];
-        let (hit, dist) = if ray.exact {
+        let (hit, entry) = if ray.exact {
             // Entry distances of the f64 test order children but bound nothing.
             let (hit, _) = enter_f64(node, ray, t_max[r], bvh.center);
-            (hit, [f32::NEG_INFINITY; WIDTH])
+            let entry = [0, 1, 2, 3].map(|l| {
+                if hit >> l & 1 != 0 {
+                    f32::NEG_INFINITY
+                } else {
+                    f32::INFINITY
+                }
+            });
+            (hit, entry)
         } else {
-            enter_f32(node, ray, s_max[r])
-        };
-        for l in 0..WIDTH {
-            let h = (hit >> l) & 1;
-            enter[l] |= u64::from(h) << r;
-            if h != 0 && dist[l] < key[l] {
-                key[l] = dist[l];
+            let (lo, hi) = slabs_f32(node, ray, s_max[r]);
+            let mut hit = 0;
+            for l in 0..WIDTH {
+                hit |= u32::from(lo[l] <= hi[l]) << l;
             }
+            // Entry where the box is entered, infinity where not (the least over rays is
+            // then one `min` per lane).
+            (
+                hit,
+                [0, 1, 2, 3].map(|l| if lo[l] <= hi[l] { lo[l] } else { f32::INFINITY }),
+            )
+        };
+        nibbles[r / 16] |= u64::from(hit) << (4 * (r % 16));
+        for l in 0..WIDTH {
+            key[l] = min(key[l], entry[l]);
         }
     }
-    [0, 1, 2, 3].map(|l| (key[l], enter[l]))
+    [0, 1, 2, 3].map(|l| {
+        let mut enter = 0;
+        for (w, &n) in nibbles.iter().enumerate() {
+            if n != 0 {
+                enter |= gather_every_fourth(n >> l) << (16 * w);
+            }
+        }
+        (key[l], enter)
+    })
+}
+
+/// Bits 0, 4, 8, ..., 60 of `x`, packed into bits 0..16.
+#[inline(always)]
+fn gather_every_fourth(x: u64) -> u64 {
+    let mut x = x & 0x1111_1111_1111_1111;
+    x = (x | x >> 3) & 0x0303_0303_0303_0303;
+    x = (x | x >> 6) & 0x000F_000F_000F_000F;
+    x = (x | x >> 12) & 0x0000_00FF_0000_00FF;
+    (x | x >> 24) & 0xFFFF
 }
 
 /// The packet's shifted origins and inverse directions as per-axis intervals (see the module
