@@ -1,10 +1,10 @@
 //! Annotations at hits and on segments: normals, angle arcs, n1/n2, R/T, TIR, Beer factors.
 
 use super::DiagramOptions;
-use super::build::Seg3;
 use super::layout::Pending;
 use super::model::{Anchor, AngleArc, HitMark, LabelRole, Point, RayEnd, RaySegment};
 use super::plane::PlaneFrame;
+use super::segments::Seg3;
 use crate::math::Rgb;
 use crate::tree::{EndReason, RayKind, RayTree};
 use glam::DVec2;

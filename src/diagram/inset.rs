@@ -1,10 +1,10 @@
 //! `--zoom-offsets`: insets magnifying spawn points so that the offset epsilon is visible, for
 //! debugging self-intersection.
 
-use super::build::{Seg3, exit_param};
 use super::layout::Pending;
 use super::model::{Anchor, Inset, LabelRole, Rect};
 use super::plane::PlaneFrame;
+use super::segments::{Seg3, exit_param};
 use crate::scene::Scene;
 use crate::tree::{RayKind, RayTree};
 use glam::{DVec2, DVec3};

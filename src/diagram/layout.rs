@@ -5,10 +5,10 @@
 //! already placed label, the legend or an inset is dropped. This keeps deep trees readable.
 
 use super::DiagramOptions;
-use super::build::{Seg3, is_off};
 use super::font::text_width;
 use super::model::{Anchor, Label, LabelRole, LegendEntry, LegendKey, Point, Rect};
 use super::plane::PlaneFrame;
+use super::segments::{Seg3, is_off};
 use crate::tree::{NodeId, RayKind};
 use glam::DVec2;
 

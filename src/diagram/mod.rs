@@ -9,11 +9,13 @@ mod build;
 pub mod font;
 mod inset;
 mod layout;
+mod marks;
 pub mod model;
 mod objects;
 pub mod paint;
 pub mod plane;
 mod raster;
+mod segments;
 pub mod slice;
 mod svg;
 

@@ -1,8 +1,9 @@
 //! Validating a `mesh` object: its transform, and its file through the caller's loader.
 
 use super::SceneError;
+use super::check::Check;
 use super::desc::{ObjectDesc, ScaleDesc};
-use super::validate::{Check, MeshLoader};
+use super::validate::MeshLoader;
 use crate::geometry::Shape;
 use crate::mesh::{Mesh, Transform};
 use glam::DVec3;

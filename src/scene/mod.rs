@@ -1,7 +1,9 @@
 //! The validated scene: camera, materials, objects, lights and settings.
 
 mod accel;
+mod check;
 pub mod desc;
+mod error;
 mod locate;
 mod mesh_object;
 mod packet;
@@ -17,9 +19,10 @@ use std::borrow::Cow;
 
 pub use accel::{Accel, traversal_cost_image};
 pub use desc::{OffsetDesc, OffsetStrategy, SceneDesc, Settings, ShadowMode};
+pub use error::SceneError;
 pub use locate::locate;
 pub use transform::transformed;
-pub use validate::{SceneError, check_settings};
+pub use validate::check_settings;
 
 /// The built-in default scene: the lecture's classic (mirror ball, glass ball, checkered floor,
 /// one light). Same file as `fixtures/classic.json`.

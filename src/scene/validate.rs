@@ -1,128 +1,17 @@
 //! `SceneDesc` (serde) to `Scene` (validated): every rejection names its JSON path.
 
+use super::check::Check;
 use super::desc::{
-    CameraDesc, LightDesc, MaterialDesc, ObjectDesc, SceneDesc, Settings, TextureDesc, Triple,
+    CameraDesc, LightDesc, MaterialDesc, ObjectDesc, SceneDesc, Settings, TextureDesc,
 };
-use super::{Accel, Camera, Light, LightKind, Material, Object, Scene, Texture};
+use super::error::{bare_message, with_missing_field};
+use super::{Accel, Camera, Light, LightKind, Material, Object, Scene, SceneError, Texture};
 use crate::geometry::Shape;
 use crate::mesh::MeshData;
 use glam::DVec3;
-use std::fmt;
-
-/// A scene that failed to parse or validate.
-#[derive(Clone, Debug, PartialEq, Eq, thiserror::Error)]
-pub struct SceneError {
-    /// JSON path of the offending value (`objects[3].radius`), empty for the document itself.
-    pub path: String,
-    /// 1-based line, where known.
-    pub line: Option<usize>,
-    /// 1-based column, where known.
-    pub column: Option<usize>,
-    /// What is wrong.
-    pub message: String,
-}
-
-impl fmt::Display for SceneError {
-    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        if let (Some(l), Some(c)) = (self.line, self.column) {
-            write!(f, "{l}:{c}: ")?;
-        }
-        if !self.path.is_empty() {
-            write!(f, "{}: ", self.path)?;
-        }
-        f.write_str(&self.message)
-    }
-}
 
 /// The caller's mesh-file reader (see [`Scene::from_json_with`]).
 pub(super) type MeshLoader<'a> = &'a mut dyn FnMut(&str) -> Result<MeshData, String>;
-
-/// Collects the first validation error with its path.
-pub(super) struct Check<'a> {
-    src: &'a str,
-}
-
-impl Check<'_> {
-    pub(super) fn fail<T>(
-        &self,
-        path: impl Into<String>,
-        message: impl Into<String>,
-    ) -> Result<T, SceneError> {
-        let path = path.into();
-        let pos = super::locate(self.src, &path);
-        Err(SceneError {
-            line: pos.map(|p| p.0),
-            column: pos.map(|p| p.1),
-            path,
-            message: message.into(),
-        })
-    }
-
-    pub(super) fn finite(&self, path: &str, v: f64) -> Result<f64, SceneError> {
-        if v.is_finite() {
-            Ok(v)
-        } else {
-            self.fail(path, format!("must be a finite number, got {v}"))
-        }
-    }
-
-    pub(super) fn vec(&self, path: &str, v: Triple) -> Result<DVec3, SceneError> {
-        for (i, c) in v.iter().enumerate() {
-            self.finite(&format!("{path}[{i}]"), *c)?;
-        }
-        Ok(DVec3::from(v))
-    }
-
-    fn direction(&self, path: &str, v: Triple) -> Result<DVec3, SceneError> {
-        let d = self.vec(path, v)?;
-        match d.try_normalize() {
-            Some(n) => Ok(n),
-            None => self.fail(path, "must be a non-zero direction"),
-        }
-    }
-
-    fn color(&self, path: &str, v: Triple) -> Result<DVec3, SceneError> {
-        let c = self.vec(path, v)?;
-        if c.min_element() < 0.0 {
-            return self.fail(path, format!("must not be negative, got {v:?}"));
-        }
-        Ok(c)
-    }
-
-    fn positive(&self, path: &str, v: f64) -> Result<f64, SceneError> {
-        if self.finite(path, v)? > 0.0 {
-            Ok(v)
-        } else {
-            self.fail(path, format!("must be positive, got {v}"))
-        }
-    }
-}
-
-/// Strip serde_json's " at line L column C" suffix (the position is reported separately).
-fn bare_message(e: &serde_json::Error) -> String {
-    let s = e.to_string();
-    match s.rfind(" at line ") {
-        Some(i) => s[..i].to_string(),
-        None => s,
-    }
-}
-
-/// serde reports a missing field at the path of the object that lacks it (empty for the
-/// document); name the field itself, so that every rejection has a path (`camera`,
-/// `objects[0].radius`).
-fn with_missing_field(path: String, message: &str) -> String {
-    let Some(field) = message
-        .strip_prefix("missing field `")
-        .and_then(|r| r.split('`').next())
-    else {
-        return path;
-    };
-    if path.is_empty() {
-        field.to_string()
-    } else {
-        format!("{path}.{field}")
-    }
-}
 
 pub(super) fn from_json(src: &str, load_mesh: MeshLoader) -> Result<Scene, SceneError> {
     let mut de = serde_json::Deserializer::from_str(src);
