@@ -4,6 +4,7 @@
 use egui::accesskit::Role;
 use egui_kittest::Harness;
 use egui_kittest::kittest::Queryable;
+use raytree::gui::stats::DebugView;
 use raytree::gui::{Files, InspectorApp, Session};
 use raytree::math::Rgb;
 use std::collections::HashMap;
@@ -236,4 +237,25 @@ fn a_mesh_scene_reads_its_obj_through_the_file_hook() {
         s.doc.scene.objects[0].shape,
         raytree::geometry::Shape::Mesh(_)
     ));
+    // The traversal heat map: picked in the view menu, the mesh's pixels cost BVH work.
+    let mut h = Harness::builder()
+        .with_size([1500.0, 950.0])
+        .build_ui_state(
+            |ui, app: &mut InspectorApp| app.show(ui),
+            InspectorApp::new(s),
+        );
+    settle(&mut h);
+    h.get_by_label("show").click();
+    h.run();
+    h.get_by_label("BVH traversal cost").click();
+    settle(&mut h);
+    let doc = &h.state().session.doc;
+    assert_eq!(doc.view.debug, DebugView::Traversal);
+    // Each pixel's value is the BVH work of every ray in its recorded tree.
+    for (x, y) in [(100, 100), (320, 180), (500, 300), (10, 10)] {
+        let tree = raytree::trace_pixel(&doc.scene, x, y).unwrap();
+        let work: u32 = tree.nodes.iter().map(|n| n.traversal.total()).sum();
+        assert!(work > 0);
+        assert_eq!(DebugView::Traversal.value(&doc.stats_at(x, y)), work as f32);
+    }
 }

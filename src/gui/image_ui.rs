@@ -189,7 +189,7 @@ fn hover_readout(painter: &egui::Painter, area: Rect, film: Vec2, doc: &Document
     let s = c.to_array().map(linear_to_srgb8);
     let st = doc.stats_at(x, y);
     let text = format!(
-        "pixel {x}, {y}\nlinear {}\nsRGB {} {} {}\ndepth {}  rays {}  TIR {}  self-hits {}  leaks {}  cut {:.3}",
+        "pixel {x}, {y}\nlinear {}\nsRGB {} {} {}\ndepth {}  rays {}  TIR {}  self-hits {}  leaks {}  cut {:.3}\nBVH nodes + primitive tests {}",
         rgb(c),
         s[0],
         s[1],
@@ -199,7 +199,8 @@ fn hover_readout(painter: &egui::Painter, area: Rect, film: Vec2, doc: &Document
         st.tir,
         st.self_hits,
         st.leaks,
-        st.cut
+        st.cut,
+        st.traversal
     );
     let pos = area.left_top() + vec2(8.0, 8.0);
     let galley = painter.layout_no_wrap(text, FontId::monospace(12.0), Color32::WHITE);
@@ -242,7 +243,11 @@ fn legend(painter: &egui::Painter, area: Rect, doc: &Document) {
     painter.text(
         bar.right_bottom() + vec2(0.0, 3.0),
         Align2::RIGHT_TOP,
-        format!("{max:.3}"),
+        if view.clips() {
+            format!("{max:.0} and above (99th percentile)")
+        } else {
+            format!("{max:.3}")
+        },
         font,
         Color32::WHITE,
     );

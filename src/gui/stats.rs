@@ -21,6 +21,9 @@ pub struct PixelStats {
     /// Path weight cut off by `max_depth`, mean over samples (max channel of throughput x
     /// attenuation x truncated weight).
     pub cut: f32,
+    /// Acceleration-structure work of every ray: BVH nodes plus primitive tests
+    /// ([`crate::bvh::TraversalCost::total`]), the traversal heat map.
+    pub traversal: u32,
 }
 
 /// A [`Recorder`] that keeps a small scratch arena for one pixel and folds it into
@@ -68,6 +71,7 @@ pub fn summarize(nodes: &[RayNode], spp: u32) -> PixelStats {
         }
         s.self_hits += u32::from(n.self_hit);
         s.leaks += u32::from(n.leak.is_some());
+        s.traversal = s.traversal.saturating_add(n.traversal.total());
         if n.end == EndReason::MaxDepth {
             let atten = n.attenuation.as_ref().map_or(Rgb::ONE, |a| a.factor);
             cut += (n.throughput * atten * n.truncated).max_element();
@@ -95,11 +99,13 @@ pub enum DebugView {
     Leaks,
     /// Path weight cut off by max depth.
     Cut,
+    /// BVH nodes and primitive tests of all the pixel's rays.
+    Traversal,
 }
 
 impl DebugView {
     /// All views in menu order.
-    pub const ALL: [DebugView; 7] = [
+    pub const ALL: [DebugView; 8] = [
         DebugView::Off,
         DebugView::Depth,
         DebugView::Rays,
@@ -107,6 +113,7 @@ impl DebugView {
         DebugView::SelfHits,
         DebugView::Leaks,
         DebugView::Cut,
+        DebugView::Traversal,
     ];
 
     /// Menu label.
@@ -120,7 +127,14 @@ impl DebugView {
             DebugView::SelfHits => "self-intersections",
             DebugView::Leaks => "offset leaks",
             DebugView::Cut => "weight cut by max depth",
+            DebugView::Traversal => "BVH traversal cost",
         }
+    }
+
+    /// Whether the colour range ends at the 99th percentile rather than the maximum.
+    #[must_use]
+    pub fn clips(self) -> bool {
+        self == DebugView::Traversal
     }
 
     /// The scalar this view maps to colour.
@@ -134,14 +148,24 @@ impl DebugView {
             DebugView::SelfHits => s.self_hits as f32,
             DebugView::Leaks => s.leaks as f32,
             DebugView::Cut => s.cut,
+            DebugView::Traversal => s.traversal as f32,
         }
     }
 }
 
-/// The range of a view over the image: `(0, max)`, at least `(0, 1)`.
+/// The range of a view over the image: `(0, max)`, at least `(0, 1)`. For the traversal cost,
+/// whose tail is long (a few pixels behind many glass bounces cost 10x the median), `max` is
+/// the 99th percentile and the pixels above it show as the top of the ramp
+/// ([`DebugView::clips`]).
 #[must_use]
 pub fn range(view: DebugView, stats: &[PixelStats]) -> (f32, f32) {
-    let max = stats.iter().map(|s| view.value(s)).fold(0.0f32, f32::max);
+    let max = if view.clips() && !stats.is_empty() {
+        let mut v: Vec<f32> = stats.iter().map(|s| view.value(s)).collect();
+        let k = (v.len() - 1) * 99 / 100;
+        *v.select_nth_unstable_by(k, f32::total_cmp).1
+    } else {
+        stats.iter().map(|s| view.value(s)).fold(0.0f32, f32::max)
+    };
     (0.0, if max > 0.0 { max } else { 1.0 })
 }
 
@@ -212,9 +236,47 @@ mod tests {
     }
 
     #[test]
+    fn traversal_view_sums_every_rays_bvh_work_and_finds_the_mesh() {
+        let json = r#"{"camera": {"position": [0, 0, 3], "look_at": [0, 0, 0], "fov_y": 40,
+            "width": 40, "height": 40},
+            "materials": {"m": {"diffuse": [0.8, 0.8, 0.8]}},
+            "objects": [{"type": "mesh", "file": "ico", "material": "m"}],
+            "lights": [{"type": "point", "position": [2, 2, 4], "intensity": [20, 20, 20]}]}"#;
+        let data = crate::mesh::generate::icosphere(4);
+        let scene = Scene::from_json_with(json, &mut |_| {
+            Ok::<crate::mesh::MeshData, String>(data.clone())
+        })
+        .unwrap();
+        let at = |x, y| {
+            let tree = trace_pixel(&scene, x, y).unwrap();
+            let s = summarize(&tree.nodes, 1);
+            let sum: u32 = tree.nodes.iter().map(|n| n.traversal.total()).sum();
+            assert_eq!(s.traversal, sum);
+            s
+        };
+        // The centre hits the sphere (camera and shadow ray walk its BVH); a corner misses it.
+        let (centre, corner) = (at(20, 20), at(0, 0));
+        assert!(
+            centre.traversal > 3 * corner.traversal.max(1),
+            "{centre:?} {corner:?}"
+        );
+        assert_eq!(DebugView::Traversal.value(&centre), centre.traversal as f32);
+        assert!(DebugView::ALL.contains(&DebugView::Traversal));
+    }
+
+    #[test]
     fn ramp_is_black_at_zero_and_red_at_one() {
         assert_eq!(ramp(0.0), [0, 0, 0]);
         assert!(ramp(1.0)[0] > 200 && ramp(1.0)[2] < 50);
         assert_eq!(range(DebugView::Tir, &[PixelStats::default()]), (0.0, 1.0));
+        // The traversal view ends at the 99th percentile: one outlier does not wash it out.
+        let costs: Vec<PixelStats> = (1..=200)
+            .map(|i| PixelStats {
+                traversal: if i == 200 { 100_000 } else { i },
+                ..PixelStats::default()
+            })
+            .collect();
+        assert_eq!(range(DebugView::Traversal, &costs), (0.0, 198.0));
+        assert_eq!(range(DebugView::Rays, &costs), (0.0, 1.0));
     }
 }
