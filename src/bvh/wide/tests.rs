@@ -2,8 +2,9 @@
 //! a box the `f64` slab test enters (random rays, axis-parallel rays, rays in face planes, far
 //! origins, large and small coordinates).
 
+use super::build::LEAF_MAX;
 use super::*;
-use crate::bvh::{Aabb, BoxRay};
+use crate::bvh::{Aabb, BoxRay, Bvh};
 use glam::DVec3;
 
 /// SplitMix64 in [0, 1).
