@@ -83,9 +83,8 @@ pub struct WideRay {
     /// [`crate::mesh`]'s packed filter, plus the `f64` shift's own error.
     pub slack: f32,
     inv: [f32; 3],
-    /// Rows of the near and far planes per axis (`axis` or `axis + 3`).
-    near: [usize; 3],
-    far: [usize; 3],
+    /// Per axis, whether the direction is negative (the max plane is then the near one).
+    neg: [bool; 3],
     s_min: f32,
     /// Test boxes in `f64` (origin too far for the `f32` shift, or mesh out of `f32` range).
     exact: bool,
@@ -135,8 +134,7 @@ impl WideBvh {
             origin: [o.x as f32, o.y as f32, o.z as f32],
             slack: (16.0 * U32 * (self.magnitude + o_mag) + 16.0 * shift_error) as f32,
             inv: [inv.x as f32, inv.y as f32, inv.z as f32],
-            near: [0, 1, 2].map(|a| if neg[a] { a + 3 } else { a }),
-            far: [0, 1, 2].map(|a| if neg[a] { a } else { a + 3 }),
+            neg,
             s_min: down(ray.t_min - t0),
             exact,
             box_ray,
@@ -276,7 +274,7 @@ fn slabs_f32(node: &Node, ray: &WideRay, s_max: f32) -> ([f32; WIDTH], [f32; WID
     let mut lo = [ray.s_min; WIDTH];
     let mut hi = [s_max; WIDTH];
     for a in 0..3 {
-        let (near, far) = (&b[ray.near[a]], &b[ray.far[a]]);
+        let (near, far) = rows(b, a, ray.neg[a]);
         for l in 0..WIDTH {
             let tn = (near[l] - o[a]) * inv[a];
             let tf = (far[l] - o[a]) * inv[a];
@@ -285,6 +283,18 @@ fn slabs_f32(node: &Node, ray: &WideRay, s_max: f32) -> ([f32; WIDTH], [f32; WID
         }
     }
     (lo, hi)
+}
+
+/// The near and far plane rows of axis `a` (`0..3`) for a direction of sign `neg`: constant
+/// indices and a select, no bounds check in the slab loop.
+#[inline(always)]
+fn rows(b: &[[f32; WIDTH]; 6], a: usize, neg: bool) -> (&[f32; WIDTH], &[f32; WIDTH]) {
+    let (min, max) = match a {
+        0 => (&b[0], &b[3]),
+        1 => (&b[1], &b[4]),
+        _ => (&b[2], &b[5]),
+    };
+    if neg { (max, min) } else { (min, max) }
 }
 
 /// The same test in `f64` on the original ray (entry distances are then only for the order).

@@ -31,7 +31,7 @@
 
 #[cfg(test)]
 use super::enter_f32;
-use super::{EMPTY, LEAF, Node, STACK, WIDTH, WideBvh, WideRay, enter_f64, slabs_f32};
+use super::{EMPTY, LEAF, Node, STACK, WIDTH, WideBvh, WideRay, enter_f64, rows, slabs_f32};
 use crate::bvh::{TraversalCost, up};
 
 /// Most rays in one packet (one bit each in a `u64` mask).
@@ -259,8 +259,7 @@ struct Interval {
     omax: [f32; 3],
     imin: [f32; 3],
     imax: [f32; 3],
-    near: [usize; 3],
-    far: [usize; 3],
+    neg: [bool; 3],
 }
 
 impl Interval {
@@ -271,11 +270,10 @@ impl Interval {
             omax: first.origin,
             imin: first.inv,
             imax: first.inv,
-            near: first.near,
-            far: first.far,
+            neg: first.neg,
         };
         for ray in rays {
-            if ray.exact || ray.near != i.near || !ray.inv.iter().all(|v| v.is_finite()) {
+            if ray.exact || ray.neg != i.neg || !ray.inv.iter().all(|v| v.is_finite()) {
                 return None;
             }
             for a in 0..3 {
@@ -296,7 +294,7 @@ impl Interval {
         let mut lo = [f32::NEG_INFINITY; WIDTH];
         let mut hi = [f32::INFINITY; WIDTH];
         for a in 0..3 {
-            let (near, far) = (&b[self.near[a]], &b[self.far[a]]);
+            let (near, far) = rows(b, a, self.neg[a]);
             let (o0, o1, i0, i1) = (self.omin[a], self.omax[a], self.imin[a], self.imax[a]);
             for l in 0..WIDTH {
                 let (n0, n1) = (near[l] - o1, near[l] - o0);
