@@ -10,7 +10,8 @@ use crate::bvh::{BoxRay, TraversalCost, Visit};
 use crate::geometry::triangle_t;
 use crate::math::Ray;
 
-fn placed(level: u32, scale: f64, translate: DVec3) -> Mesh {
+/// An icosphere of `level` subdivisions, rotated, squashed, scaled and moved.
+pub(super) fn placed(level: u32, scale: f64, translate: DVec3) -> Mesh {
     let t = Transform {
         translate,
         rotate_deg: DVec3::new(10.0, 20.0, 30.0),

@@ -2,21 +2,12 @@
 //! through shared vertices and edges (ties), per-ray limits and `t_min`, packets of every size,
 //! and rays that take the `f64` box test mixed with `f32` ones.
 
-use super::generate::icosphere;
+use super::filter_tests::placed;
 use super::tests::Rng;
 use super::*;
 use crate::bvh::TraversalCost;
 use crate::bvh::wide::PACKET;
 use crate::math::Ray;
-
-fn placed(level: u32, scale: f64, translate: DVec3) -> Mesh {
-    let t = Transform {
-        translate,
-        rotate_deg: DVec3::new(10.0, 20.0, 30.0),
-        scale: DVec3::new(1.0, 0.7, 1.3) * scale,
-    };
-    Mesh::new(&icosphere(level), &t.world_from_object(), MeshNormals::Flat).unwrap()
-}
 
 /// The packet's answers against one `Mesh::intersect` per ray; returns the hits.
 fn check(mesh: &Mesh, rays: &[Ray], t_max: &[f64]) -> usize {
