@@ -169,7 +169,8 @@ pub fn trace_pixel(scene: &Scene, x: u32, y: u32) -> Option<RayTree> {
 /// Render the whole image in parallel (rows over rayon's pool; for scenes with meshes, bands of
 /// 8 rows whose camera rays are traced as 8x8 packets, the same pixels bit for bit). `progress`
 /// is called with the number of rows finished so far, from worker threads. Non-finite pixels
-/// are written black and counted; [`RenderStats::first_nonfinite`] names the first so its tree can be inspected.
+/// are written black and counted; [`RenderStats::first_nonfinite`] names the first so its tree
+/// can be inspected.
 pub fn render(scene: &Scene, progress: &(dyn Fn(u32) + Sync)) -> (Image, RenderStats) {
     render_with(&Tracer::new(scene), progress)
 }

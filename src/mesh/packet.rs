@@ -21,9 +21,9 @@ struct Prepared {
 
 impl Mesh {
     /// [`Mesh::intersect`] of every ray in `rays` (at most [`PACKET`]) below its own limit
-    /// `t_max[i]`, into `out[i]`; adds each ray's work to `cost[i]` (nodes: those whose boxes
-    /// the ray was tested against, which can differ from the single ray's count as the packet
-    /// visits children in its own order).
+    /// `t_max[i]`, into `out[i]`; adds each ray's work to `cost[i]` (nodes: the wide nodes the
+    /// packet visited with that ray in it, which can differ from the single ray's count: the
+    /// packet visits children in its own order and tests upper levels for the whole packet).
     ///
     /// # Panics
     /// If there are more than [`PACKET`] rays or a slice is shorter than `rays`.

@@ -40,9 +40,9 @@ struct At<'h> {
 }
 
 impl Tracer<'_> {
-    /// Radiance along an unrecorded camera ray (closest hit `found`, or found here) when the plan spawns no
-    /// secondary rays: the sum of emitted, ambient and every light through an opaque shadow ray
-    /// (any-hit), as [`Tracer::local`] computes it.
+    /// Radiance along an unrecorded camera ray (closest hit `found`, or found here) when the
+    /// plan spawns no secondary rays: the sum of emitted, ambient and every light through an
+    /// opaque shadow ray (any-hit), as [`Tracer::local`] computes it.
     pub(super) fn trace_direct_only(
         &self,
         ray: &Ray,

@@ -6,9 +6,9 @@
 //!
 //! - **Interval test** (upper levels): one slab test of the whole packet in interval arithmetic
 //!   (the packet culling of Wald, Boulos and Shirley, "Ray Tracing Deformable Scenes using
-//!   Dynamic Bounding Volume Hierarchies", ACM TOG 2007): the shifted origins lie in `[omin, omax]` and the inverse directions in
-//!   `[imin, imax]` per axis, all of one sign, so the `f32` entry parameter of every ray on an
-//!   axis, `fl(fl(plane - o) * inv)`, lies between the least and the largest of that formula at
+//!   Dynamic Bounding Volume Hierarchies", ACM TOG 2007): the shifted origins lie in
+//!   `[omin, omax]` and the inverse directions in `[imin, imax]` per axis, all of one sign, so
+//!   the `f32` entry parameter of every ray on an axis, `fl(fl(plane - o) * inv)`, lies between the least and the largest of that formula at
 //!   the four corners (rounding is monotone, so the `f32` value is monotone in each argument).
 //!   When the largest lower bound of entry exceeds the least upper bound of exit, no ray's own
 //!   `f32` test could enter the box; otherwise the whole packet goes in. Used when every ray
@@ -16,7 +16,7 @@
 //!   while it sends the packet into at most two of a node's children: once the packet spreads
 //!   wider, the rest of that subtree uses per-ray tests (a loose interval would drag every ray
 //!   into boxes few of them enter; measured on the icosphere benchmark, where always using it
-//!   was up to 2x slower on a 1.3M-triangle mesh and this rule is 3-7% faster than none).
+//!   was up to 2x slower on a 1.3M-triangle mesh, and this rule is 3-7% faster than none).
 //! - **Per-ray test** (nodes with a leaf child, single rays, and packets the interval test
 //!   cannot take): each ray exactly as [`WideBvh::traverse`] tests it (same `f32` or `f64` slab
 //!   test, with the ray's own narrowed `t_max`).
