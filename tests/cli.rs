@@ -215,11 +215,15 @@ fn bad_arguments_and_outputs_exit_2_without_files() {
         d,
     ));
     assert!(err.contains("--fresnel"), "{err}");
-    let err = fails(&raytree(
-        &["render", "good.json", "-o", "x.png", "--epsilon=-1"],
-        d,
-    ));
-    assert!(err.contains("--epsilon"), "{err}");
+    for eps in [["--epsilon=-1", ""], ["--epsilon", "-1"]] {
+        let mut args = vec!["render", "good.json", "-o", "x.png"];
+        args.extend(eps.iter().filter(|a| !a.is_empty()));
+        let err = fails(&raytree(&args, d));
+        assert!(
+            err.contains("--epsilon: must be a finite number >= 0"),
+            "{err}"
+        );
+    }
     let err = fails(&raytree(
         &["render", "good.json", "-o", "x.png", "--spp", "0"],
         d,

@@ -47,7 +47,7 @@ pub struct Overrides {
     #[arg(long)]
     pub max_depth: Option<u32>,
     /// Offset epsilon in world units.
-    #[arg(long)]
+    #[arg(long, allow_negative_numbers = true)]
     pub epsilon: Option<f64>,
     /// Offset strategy: normal (P +/- eps N), ray (t_min = eps), scaled (eps relative to |P|)
     /// or robust (floating-point error bounds, ignores --epsilon).
@@ -60,7 +60,7 @@ pub struct Overrides {
     #[arg(long, value_name = "opaque|translucent")]
     pub shadows: Option<String>,
     /// Stop rays whose throughput falls below this (0 = off).
-    #[arg(long)]
+    #[arg(long, allow_negative_numbers = true)]
     pub min_weight: Option<f64>,
 }
 

@@ -4,7 +4,7 @@ use super::check::Check;
 use super::desc::{
     CameraDesc, LightDesc, MaterialDesc, ObjectDesc, SceneDesc, Settings, TextureDesc,
 };
-use super::error::{bare_message, with_missing_field};
+use super::error::{bare_message, field_of_tagged, with_missing_field};
 use super::{Accel, Camera, Light, LightKind, Material, Object, Scene, SceneError, Texture};
 use crate::geometry::Shape;
 use crate::mesh::MeshData;
@@ -20,17 +20,20 @@ pub(super) fn from_json(src: &str, load_mesh: MeshLoader) -> Result<Scene, Scene
         let inner = e.inner();
         let message = bare_message(inner);
         let path = if path == "." { String::new() } else { path };
+        // serde_json counts columns from 0 before the first character of a line.
+        let at = (inner.line(), inner.column().max(1));
+        let (path, at) = field_of_tagged(src, with_missing_field(path, &message), &message, at);
         SceneError {
-            path: with_missing_field(path, &message),
-            line: Some(inner.line()),
-            column: Some(inner.column()),
+            path,
+            line: Some(at.0),
+            column: Some(at.1),
             message,
         }
     })?;
     de.end().map_err(|e| SceneError {
         path: String::new(),
         line: Some(e.line()),
-        column: Some(e.column()),
+        column: Some(e.column().max(1)),
         message: bare_message(&e),
     })?;
     validate(&desc, src, load_mesh)
@@ -317,6 +320,43 @@ mod tests {
         assert_eq!(e.line, Some(2));
         let e = err(&format!("{BASE} x"));
         assert_eq!(e.line, Some(7));
+    }
+
+    #[test]
+    fn type_errors_inside_objects_and_lights_name_the_member() {
+        // serde stops its path at an internally tagged element; the member is found again.
+        let e = err(&BASE.replace("\"radius\": 1", "\"radius\": \"big\""));
+        assert_eq!(e.path, "objects[0].radius", "{e}");
+        assert_eq!((e.line, e.column), (Some(5), Some(53)));
+        assert!(e.message.contains("expected f64"), "{e}");
+        let e = err(&BASE.replace("\"center\": [0,0,0]", "\"center\": [0,0]"));
+        assert_eq!(e.path, "objects[0].center", "{e}");
+        let lights = BASE.replace(
+            "\n  ]\n}",
+            "\n  ],\n  \"lights\": [{\"type\": \"point\", \"position\": [1,2,3], \"intensity\": [1,1]}]\n}",
+        );
+        let e = err(&lights);
+        assert_eq!(e.path, "lights[0].intensity", "{e}");
+        assert_eq!(e.line, Some(7));
+        let e = err(&BASE.replace("\"sphere\"", "\"cone\""));
+        assert_eq!(
+            (e.path.as_str(), e.line),
+            ("objects[0].type", Some(5)),
+            "{e}"
+        );
+        // A missing member is still named as such.
+        let e = err(&BASE.replace("\"radius\": 1, ", ""));
+        assert_eq!(e.path, "objects[0].radius", "{e}");
+        assert!(e.message.contains("missing field"), "{e}");
+    }
+
+    #[test]
+    fn empty_documents_and_syntax_errors_get_columns_from_1_and_no_unknown_segment() {
+        let e = err("");
+        assert_eq!((e.line, e.column), (Some(1), Some(1)), "{e}");
+        let e = err(r#"{"camera": {"position": [0,0,5],, }}"#);
+        assert_eq!(e.path, "camera", "{e}");
+        assert!(!e.to_string().contains('?'), "{e}");
     }
 
     #[test]
