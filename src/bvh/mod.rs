@@ -11,7 +11,8 @@ use crate::math::Ray;
 use glam::DVec3;
 use serde::{Deserialize, Serialize};
 
-/// Traversal stack size: `SAH_DEPTH` plus a median split per remaining bit of a `u32` count.
+/// Traversal stack size: `build::SAH_DEPTH` plus a median split per remaining bit of a `u32`
+/// count.
 const STACK: usize = 100;
 
 /// What one ray cost: BVH nodes visited and primitives tested, over all levels.
