@@ -76,7 +76,8 @@ pub fn refract(d: DVec3, n: DVec3, eta: f64) -> Option<Refraction> {
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
 #[serde(rename_all = "lowercase")]
 pub enum FresnelModel {
-    /// The unpolarized mean of the exact `Rs` and `Rp` (lecture slide "Reflection vs Transmission").
+    /// The unpolarized mean of the exact `Rs` and `Rp` (lecture slide "Reflection vs
+    /// Transmission").
     #[default]
     Exact,
     /// Schlick's approximation, with the cosine taken on the less dense side.

@@ -40,7 +40,8 @@ impl ExportKind {
         }
     }
 
-    /// File-name suffix appended to the export base (`scene` -> `scene.png`, `scene-tree-x-y.json`).
+    /// File-name suffix appended to the export base (`scene` -> `scene.png`,
+    /// `scene-tree-x-y.json`).
     #[must_use]
     pub fn file_name(self, base: &str, pixel: Option<[u32; 2]>) -> String {
         let p = pixel.map_or(String::new(), |[x, y]| format!("-{x}-{y}"));

@@ -1,7 +1,7 @@
 //! Ray queries on a mesh: closest hit, any hit, all crossings of a line, chords. The 4-wide BVH
 //! and the `f32` packs ([`super::packed`]) find candidate triangles; the `f64` watertight test
-//! ([`crate::geometry::triangle_t`]) on the stored vertices decides, so every answer is exactly what a loop over
-//! all triangles with `triangle_t` gives.
+//! ([`crate::geometry::triangle_t`]) on the stored vertices decides, so every answer is exactly
+//! what a loop over all triangles with `triangle_t` gives.
 
 use super::Mesh;
 use super::packed::EdgeRay;

@@ -8,10 +8,11 @@ use std::sync::Arc;
 
 /// The scene under `x -> scale * x + translation` (`scale > 0`), looking the same.
 ///
-/// Camera, shapes (meshes too, with their BVHs rebuilt) and point lights move; point-light intensities are multiplied by `scale^2`
-/// and absorption coefficients divided by `scale`, so irradiance and Beer's factors (and so
-/// the image) are unchanged; checker cells scale with the scene (their pattern is fixed in
-/// world space, so a translation that is not a whole number of cells shifts it). Directions,
+/// Camera, shapes (meshes too, with their BVHs rebuilt) and point lights move; point-light
+/// intensities are multiplied by `scale^2` and absorption coefficients divided by `scale`, so
+/// irradiance and Beer's factors (and so the image) are unchanged; checker cells scale with the
+/// scene (their pattern is fixed in world space, so a translation that is not a whole number of
+/// cells shifts it). Directions,
 /// normals and the field of view are invariant. The offset epsilon stays absolute: an offset
 /// strategy either scales it or not, and that is what the sweep measures.
 #[must_use]

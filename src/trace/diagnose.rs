@@ -4,15 +4,15 @@
 //!
 //! - **self-hit**: the ray's closest hit (for a shadow ray: the closest object before the light)
 //!   is the object it was spawned from, within [`Shape::self_hit_radius`] of the spawn point
-//!   (`1e-6` of a sphere's radius or a box's thinnest side; any distance for planes and triangles, which a
-//!   straight ray cannot leave and meet again). On a mesh: the triangle it was spawned from at
-//!   any distance, or another triangle of the mesh within `1e-6` of the mesh's size (across an
-//!   edge). This is the acne of a too-small offset.
+//!   (`1e-6` of a sphere's radius or a box's thinnest side; any distance for planes and
+//!   triangles, which a straight ray cannot leave and meet again). On a mesh: the triangle it was
+//!   spawned from at any distance, or another triangle of the mesh within `1e-6` of the mesh's
+//!   size (across an edge). This is the acne of a too-small offset.
 //! - **leak**: the offset skipped a surface that a zero offset would have met: some surface
 //!   crosses the segment from the true spawn point to the offset origin, or the ray itself at
 //!   `t <= t_min`; crossings of the spawning object within its self-hit radius of the spawn
-//!   point, or of the spawning mesh triangle, do not count (that is the surface being left). This is the light leak or detached
-//!   contact shadow of a too-large offset.
+//!   point, or of the spawning mesh triangle, do not count (that is the surface being left).
+//!   This is the light leak or detached contact shadow of a too-large offset.
 //!
 //! Both checks cost extra intersections, so the tracer runs them only for recorders that ask
 //! ([`crate::Recorder::DIAGNOSE`]); the no-op recorder of the plain render does not.

@@ -8,8 +8,9 @@
 //!   (the packet culling of Wald, Boulos and Shirley, "Ray Tracing Deformable Scenes using
 //!   Dynamic Bounding Volume Hierarchies", ACM TOG 2007): the shifted origins lie in
 //!   `[omin, omax]` and the inverse directions in `[imin, imax]` per axis, all of one sign, so
-//!   the `f32` entry parameter of every ray on an axis, `fl(fl(plane - o) * inv)`, lies between the least and the largest of that formula at
-//!   the four corners (rounding is monotone, so the `f32` value is monotone in each argument).
+//!   the `f32` entry parameter of every ray on an axis, `fl(fl(plane - o) * inv)`, lies between
+//!   the least and the largest of that formula at the four corners (rounding is monotone, so
+//!   the `f32` value is monotone in each argument).
 //!   When the largest lower bound of entry exceeds the least upper bound of exit, no ray's own
 //!   `f32` test could enter the box; otherwise the whole packet goes in. Used when every ray
 //!   takes the `f32` path, the direction signs agree and the inverses are finite, and only
