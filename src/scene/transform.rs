@@ -12,9 +12,9 @@ use std::sync::Arc;
 /// intensities are multiplied by `scale^2` and absorption coefficients divided by `scale`, so
 /// irradiance and Beer's factors (and so the image) are unchanged; checker cells scale with the
 /// scene (their pattern is fixed in world space, so a translation that is not a whole number of
-/// cells shifts it). Directions,
-/// normals and the field of view are invariant. The offset epsilon stays absolute: an offset
-/// strategy either scales it or not, and that is what the sweep measures.
+/// cells shifts it). Directions, normals and the field of view are invariant. The offset
+/// epsilon stays absolute: an offset strategy either scales it or not, and that is what the
+/// sweep measures.
 #[must_use]
 pub fn transformed(scene: &Scene, scale: f64, translation: DVec3) -> Scene {
     let map = |p: DVec3| scale * p + translation;
