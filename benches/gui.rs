@@ -77,6 +77,32 @@ fn benches(c: &mut Criterion) {
             s.wait_render();
         })
     });
+    g.bench_function("rerender_640x360_depth16_worker_image_only", |b| {
+        b.iter(|| {
+            // The same change, waiting only for the image (the statistics follow it).
+            let mut st = s.doc.scene.settings;
+            st.max_depth = 16;
+            st.min_weight = if flip { 1e-12 } else { 0.0 };
+            flip = !flip;
+            s.apply(Command::SetSettings(st));
+            s.wait_image();
+        })
+    });
+    s.wait_render();
+    // With a debug view on screen: one recorded pass gives image and statistics.
+    let mut view = s.doc.view;
+    view.debug = raytree::gui::stats::DebugView::Depth;
+    s.apply(Command::SetView(view));
+    g.bench_function("rerender_640x360_depth16_worker_debug_view", |b| {
+        b.iter(|| {
+            let mut st = s.doc.scene.settings;
+            st.max_depth = 16;
+            st.min_weight = if flip { 1e-12 } else { 0.0 };
+            flip = !flip;
+            s.apply(Command::SetSettings(st));
+            s.wait_render();
+        })
+    });
     g.bench_function("render_640x360_depth16_noop_recorder", |b| {
         b.iter(|| black_box(raytree::render(&scene, &|_| {})))
     });

@@ -190,6 +190,53 @@ pub fn render_diagnosed(
     render_recorded::<DiagnosticRecorder>(&Tracer::new(scene), progress)
 }
 
+/// Rows `rows` of the image without recording, in parallel over rayon's pool: linear radiance
+/// (row-major, non-finite values as traced) and the rays traced. The same code path and so the
+/// same pixels as [`render_with`] (for scenes with meshes, bands of 8 rows from `rows.start`
+/// traced as 8x8 packets); the inspector shows its image with it before it gathers statistics.
+pub fn render_rows(tracer: &Tracer, rows: std::ops::Range<u32>) -> (Vec<Rgb>, RayCounts) {
+    let scene = tracer.scene();
+    let w = scene.camera.width;
+    let parts: Vec<(Vec<Rgb>, RayCounts)> = if uses_packets::<NoopRecorder>(scene) {
+        let starts: Vec<u32> = rows.clone().step_by(TILE as usize).collect();
+        starts
+            .into_par_iter()
+            .map(|y0| render_band::<NoopRecorder>(tracer, y0, TILE.min(rows.end - y0)))
+            .collect()
+    } else {
+        rows.into_par_iter()
+            .map(|y| {
+                let mut counts = RayCounts::default();
+                let row = (0..w)
+                    .map(|x| {
+                        render_pixel_with(tracer, x, y, &mut NoopRecorder, &mut counts, |_| {})
+                    })
+                    .collect();
+                (row, counts)
+            })
+            .collect()
+    };
+    let mut pixels = Vec::with_capacity(parts.iter().map(|p| p.0.len()).sum());
+    let mut counts = RayCounts::default();
+    for (p, c) in parts {
+        pixels.extend(p);
+        counts += c;
+    }
+    (pixels, counts)
+}
+
+/// Whether a render with recorder `R` traces camera rays as packets: nothing is recorded and
+/// the scene has a mesh.
+fn uses_packets<R: Recorder>(scene: &Scene) -> bool {
+    !R::RECORDS
+        && !R::DIAGNOSE
+        && scene.camera.width > 0
+        && scene
+            .objects
+            .iter()
+            .any(|o| matches!(o.shape, Shape::Mesh(_)))
+}
+
 type Row = (Vec<Rgb>, Vec<(u32, u32)>, RayCounts);
 
 fn render_recorded<R: Recorder + Default>(
@@ -199,14 +246,7 @@ fn render_recorded<R: Recorder + Default>(
     let scene = tracer.scene();
     let (w, h) = (scene.camera.width, scene.camera.height);
     let done = std::sync::atomic::AtomicU32::new(0);
-    let packets = !R::RECORDS
-        && !R::DIAGNOSE
-        && w > 0
-        && scene
-            .objects
-            .iter()
-            .any(|o| matches!(o.shape, Shape::Mesh(_)));
-    let rows: Vec<Row> = if packets {
+    let rows: Vec<Row> = if uses_packets::<R>(scene) {
         (0..h.div_ceil(TILE))
             .into_par_iter()
             .map(|band| {

@@ -175,6 +175,15 @@ fn title_ui(ui: &mut egui::Ui, doc: &Document) {
                     secs * 1e3,
                     doc.progress.rays
                 ));
+                ui.separator();
+                match doc.progress.stats_seconds {
+                    Some(s) => ui.label(format!("debug statistics in {:.0} ms", s * 1e3)),
+                    None => ui.add(
+                        egui::ProgressBar::new(doc.progress.stats_rows as f32 / h.max(1) as f32)
+                            .desired_width(160.0)
+                            .text("debug statistics"),
+                    ),
+                };
             }
             _ => {
                 let frac = doc.progress.rows as f32 / h.max(1) as f32;

@@ -70,6 +70,10 @@ pub struct Progress {
     pub seconds: Option<f64>,
     /// Rays of the last finished render.
     pub rays: u64,
+    /// Rows of debug statistics delivered for `generation` (gathered after the image).
+    pub stats_rows: u32,
+    /// Seconds of the last finished statistics pass.
+    pub stats_seconds: Option<f64>,
 }
 
 /// Everything the panels show.
@@ -128,6 +132,8 @@ impl Document {
                 rows: 0,
                 seconds: None,
                 rays: 0,
+                stats_rows: 0,
+                stats_seconds: None,
             },
             path_field: source
                 .path

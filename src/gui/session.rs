@@ -129,9 +129,14 @@ impl Session {
             };
             self.doc.stats = vec![Default::default(); (w * h) as usize];
         }
-        self.doc.progress.generation = self.worker.start(Arc::clone(&self.doc.scene));
+        // With a debug view on screen its statistics matter most: gather them in the one pass
+        // that also gives the image; otherwise show the image first.
+        let image_first = self.doc.view.debug == super::stats::DebugView::Off;
+        self.doc.progress.generation = self.worker.start(Arc::clone(&self.doc.scene), image_first);
         self.doc.progress.rows = 0;
         self.doc.progress.seconds = None;
+        self.doc.progress.stats_rows = 0;
+        self.doc.progress.stats_seconds = None;
     }
 
     fn select(&mut self, [x, y]: [u32; 2]) {
@@ -239,9 +244,26 @@ impl Session {
         changed
     }
 
-    /// Block until the current render has finished (for tests, benchmarks and exports).
-    pub fn wait_render(&mut self) {
+    /// Block until the current render's image is complete (its debug statistics may still be
+    /// on the way).
+    pub fn wait_image(&mut self) {
         while !self.doc.rendered() || self.doc.progress.seconds.is_none() {
+            match self.worker.recv() {
+                Some(d) => {
+                    self.deliver(d);
+                }
+                None => return,
+            }
+        }
+    }
+
+    /// Block until the current render and its statistics have finished (for tests, benchmarks
+    /// and exports).
+    pub fn wait_render(&mut self) {
+        while !self.doc.rendered()
+            || self.doc.progress.seconds.is_none()
+            || self.doc.progress.stats_seconds.is_none()
+        {
             match self.worker.recv() {
                 Some(d) => {
                     self.deliver(d);
@@ -256,12 +278,9 @@ impl Session {
             return false;
         }
         match d {
-            Delivery::Band {
-                y0, pixels, stats, ..
-            } => {
+            Delivery::Band { y0, pixels, .. } => {
                 let at = (y0 * self.doc.image.width) as usize;
                 self.doc.image.pixels[at..at + pixels.len()].copy_from_slice(&pixels);
-                self.doc.stats[at..at + stats.len()].copy_from_slice(&stats);
                 self.doc.progress.rows = y0 + (pixels.len() as u32) / self.doc.image.width.max(1);
                 self.doc.progress.seconds = None;
                 self.doc.image_version += 1;
@@ -270,6 +289,20 @@ impl Session {
                 self.doc.progress.rows = self.doc.image.height;
                 self.doc.progress.seconds = Some(seconds);
                 self.doc.progress.rays = rays.total();
+            }
+            Delivery::Stats { y0, stats, .. } => {
+                let at = (y0 * self.doc.image.width) as usize;
+                self.doc.stats[at..at + stats.len()].copy_from_slice(&stats);
+                self.doc.progress.stats_rows =
+                    y0 + (stats.len() as u32) / self.doc.image.width.max(1);
+                // A debug view shows the statistics: its texture must be rebuilt.
+                if self.doc.view.debug != super::stats::DebugView::Off {
+                    self.doc.image_version += 1;
+                }
+            }
+            Delivery::StatsDone { seconds, .. } => {
+                self.doc.progress.stats_rows = self.doc.image.height;
+                self.doc.progress.stats_seconds = Some(seconds);
             }
         }
         true

@@ -1,23 +1,28 @@
 //! The render worker: one background thread renders bands of rows (in parallel over rayon) and
 //! sends each band through a channel, so the UI never blocks and the image appears progressively.
+//! It works in two passes: the image on the plain render's path ([`render_rows`]: no recording,
+//! packets for meshes), then the per-pixel debug statistics, which record every ray and cost
+//! a few times more; the image is the same either way, so it is shown as soon as it exists.
 //!
 //! Every job carries a generation number; starting a new job bumps the shared counter, the worker
 //! abandons a job as soon as it sees a newer generation, and the receiver ignores stale bands.
 
 use super::stats::{PixelStats, StatsRecorder};
 use crate::math::Rgb;
-use crate::render::render_pixel;
+use crate::render::{render_pixel_with, render_rows};
 use crate::scene::Scene;
-use crate::trace::RayCounts;
+use crate::trace::{RayCounts, Tracer};
 use rayon::prelude::*;
+use std::sync::Arc;
 use std::sync::atomic::{AtomicU64, Ordering};
 use std::sync::mpsc::{Receiver, Sender, channel};
-use std::sync::{Arc, Mutex};
 use std::thread::JoinHandle;
 use std::time::Instant;
 
-/// Rows rendered between cancellation checks and deliveries.
+/// Rows of statistics gathered between cancellation checks and deliveries.
 pub const BAND_ROWS: u32 = 8;
+/// Rows of the image rendered between cancellation checks and deliveries (four packet bands).
+pub const IMAGE_ROWS: u32 = 32;
 
 /// Called from the worker thread after each delivery (the app passes `ctx.request_repaint`).
 pub type Repaint = Arc<dyn Fn() + Send + Sync>;
@@ -25,25 +30,39 @@ pub type Repaint = Arc<dyn Fn() + Send + Sync>;
 /// What the worker sends back.
 #[derive(Debug)]
 pub enum Delivery {
-    /// Rows `y0 .. y0 + pixels.len() / width` of generation `generation`.
+    /// Image rows `y0 .. y0 + pixels.len() / width` of generation `generation`.
     Band {
         /// The job this band belongs to.
         generation: u64,
         /// First row.
         y0: u32,
-        /// Linear radiance, row-major.
+        /// Linear radiance, row-major (non-finite values written black).
         pixels: Vec<Rgb>,
-        /// Debug statistics, one per pixel.
-        stats: Vec<PixelStats>,
     },
-    /// Generation `generation` finished.
+    /// The image of generation `generation` is complete.
     Done {
         /// The finished job.
         generation: u64,
-        /// Wall-clock seconds of the whole render.
+        /// Wall-clock seconds of the image pass.
         seconds: f64,
         /// Rays traced.
         rays: RayCounts,
+    },
+    /// Debug statistics of rows `y0 .. y0 + stats.len() / width`.
+    Stats {
+        /// The job these rows belong to.
+        generation: u64,
+        /// First row.
+        y0: u32,
+        /// One per pixel, row-major.
+        stats: Vec<PixelStats>,
+    },
+    /// The statistics of generation `generation` are complete.
+    StatsDone {
+        /// The finished job.
+        generation: u64,
+        /// Wall-clock seconds of the statistics pass.
+        seconds: f64,
     },
 }
 
@@ -52,7 +71,10 @@ impl Delivery {
     #[must_use]
     pub fn generation(&self) -> u64 {
         match self {
-            Delivery::Band { generation, .. } | Delivery::Done { generation, .. } => *generation,
+            Delivery::Band { generation, .. }
+            | Delivery::Done { generation, .. }
+            | Delivery::Stats { generation, .. }
+            | Delivery::StatsDone { generation, .. } => *generation,
         }
     }
 }
@@ -60,6 +82,7 @@ impl Delivery {
 struct Job {
     generation: u64,
     scene: Arc<Scene>,
+    image_first: bool,
 }
 
 /// A handle on the render thread. Dropping it cancels the current job and joins the thread.
@@ -99,11 +122,18 @@ impl Worker {
     }
 
     /// Render `scene` as a new generation (cancelling any older one); returns the generation.
-    pub fn start(&self, scene: Arc<Scene>) -> u64 {
+    /// With `image_first` the image is rendered on the plain path and the statistics gathered
+    /// after it; without, one pass records every ray and delivers both (sooner statistics, for
+    /// a debug view on screen, later image).
+    pub fn start(&self, scene: Arc<Scene>, image_first: bool) -> u64 {
         let generation = self.generation.fetch_add(1, Ordering::SeqCst) + 1;
         if let Some(jobs) = &self.jobs {
             // The thread only ends when we drop the sender, so this cannot fail.
-            let _ = jobs.send(Job { generation, scene });
+            let _ = jobs.send(Job {
+                generation,
+                scene,
+                image_first,
+            });
         }
         generation
     }
@@ -139,59 +169,112 @@ impl Drop for Worker {
 
 fn run_job(job: &Job, current: &AtomicU64, tx: &Sender<Delivery>, repaint: &Repaint) {
     let scene = &*job.scene;
+    let tracer = Tracer::new(scene);
     let (w, h) = (scene.camera.width, scene.camera.height);
-    let spp = scene.settings.spp.max(1);
+    let cancelled = || current.load(Ordering::SeqCst) != job.generation;
+    let send = |d: Delivery| {
+        let sent = tx.send(d).is_ok();
+        repaint();
+        sent
+    };
+    // 1. The image, on the plain render's path.
     let start = Instant::now();
-    let total = Mutex::new(RayCounts::default());
+    let mut rays = RayCounts::default();
+    let mut y0 = if job.image_first { 0 } else { h };
+    while y0 < h {
+        if cancelled() {
+            return;
+        }
+        let y1 = (y0 + IMAGE_ROWS).min(h);
+        let (mut pixels, counts) = render_rows(&tracer, y0..y1);
+        for p in &mut pixels {
+            if !p.is_finite() {
+                *p = Rgb::ZERO;
+            }
+        }
+        rays += counts;
+        let generation = job.generation;
+        if !send(Delivery::Band {
+            generation,
+            y0,
+            pixels,
+        }) {
+            return;
+        }
+        y0 = y1;
+    }
+    if job.image_first
+        && !send(Delivery::Done {
+            generation: job.generation,
+            seconds: start.elapsed().as_secs_f64(),
+            rays,
+        })
+    {
+        return;
+    }
+    // 2. The debug statistics: every ray recorded, folded per pixel (and the image too, when
+    // it was not rendered first: the recorded pass computes the same pixels).
+    let start = Instant::now();
+    let spp = scene.settings.spp.max(1);
     let mut y0 = 0;
     while y0 < h {
-        if current.load(Ordering::SeqCst) != job.generation {
+        if cancelled() {
             return;
         }
         let y1 = (y0 + BAND_ROWS).min(h);
-        let rows: Vec<(Vec<Rgb>, Vec<PixelStats>)> = (y0..y1)
+        let rows: Vec<(Vec<Rgb>, Vec<PixelStats>, RayCounts)> = (y0..y1)
             .into_par_iter()
             .map(|y| {
                 let mut rec = StatsRecorder::default();
                 let mut counts = RayCounts::default();
-                let mut px = Vec::with_capacity(w as usize);
-                let mut st = Vec::with_capacity(w as usize);
-                for x in 0..w {
-                    let l = render_pixel(scene, x, y, &mut rec, &mut counts, |_| {});
-                    px.push(if l.is_finite() { l } else { Rgb::ZERO });
-                    st.push(rec.take(spp));
-                }
-                *total.lock().expect("no panics while holding the lock") += counts;
-                (px, st)
+                let (px, st) = (0..w)
+                    .map(|x| {
+                        let l = render_pixel_with(&tracer, x, y, &mut rec, &mut counts, |_| {});
+                        (if l.is_finite() { l } else { Rgb::ZERO }, rec.take(spp))
+                    })
+                    .unzip();
+                (px, st, counts)
             })
             .collect();
-        let (pixels, stats) =
-            rows.into_iter()
-                .fold((Vec::new(), Vec::new()), |(mut p, mut s), (rp, rs)| {
-                    p.extend(rp);
-                    s.extend(rs);
-                    (p, s)
-                });
-        let band = Delivery::Band {
-            generation: job.generation,
-            y0,
-            pixels,
-            stats,
-        };
-        if tx.send(band).is_err() {
+        let mut pixels = Vec::new();
+        let mut stats = Vec::new();
+        for (p, st, counts) in rows {
+            pixels.extend(p);
+            stats.extend(st);
+            rays += counts;
+        }
+        if !job.image_first
+            && !send(Delivery::Band {
+                generation: job.generation,
+                y0,
+                pixels,
+            })
+        {
             return;
         }
-        repaint();
+        if !send(Delivery::Stats {
+            generation: job.generation,
+            y0,
+            stats,
+        }) {
+            return;
+        }
         y0 = y1;
     }
-    let rays = *total.lock().expect("no panics while holding the lock");
-    let done = Delivery::Done {
+    let seconds = start.elapsed().as_secs_f64();
+    if !job.image_first
+        && !send(Delivery::Done {
+            generation: job.generation,
+            seconds,
+            rays,
+        })
+    {
+        return;
+    }
+    send(Delivery::StatsDone {
         generation: job.generation,
-        seconds: start.elapsed().as_secs_f64(),
-        rays,
-    };
-    let _ = tx.send(done);
-    repaint();
+        seconds,
+    });
 }
 
 #[cfg(test)]
@@ -203,27 +286,84 @@ mod tests {
         let w = Worker::new(Arc::new(|| {}));
         let mut scene = Scene::default_scene();
         scene.camera = scene.camera.with_size(64, 36);
-        let g1 = w.start(Arc::new(scene.clone()));
+        let g1 = w.start(Arc::new(scene.clone()), true);
         scene.settings.max_depth = 0;
-        let g2 = w.start(Arc::new(scene.clone()));
+        let g2 = w.start(Arc::new(scene.clone()), true);
         assert!(g2 > g1);
         let mut pixels = vec![Rgb::ZERO; 64 * 36];
+        let mut stats = vec![PixelStats::default(); 64 * 36];
+        let (mut image_done, mut stats_rows) = (false, 0);
         loop {
             match w.recv().unwrap() {
                 Delivery::Band {
                     generation,
                     y0,
                     pixels: p,
-                    ..
                 } if generation == g2 => {
+                    assert_eq!(stats_rows, 0, "the image comes first");
                     let at = y0 as usize * 64;
                     pixels[at..at + p.len()].copy_from_slice(&p);
                 }
-                Delivery::Done { generation, .. } if generation == g2 => break,
+                Delivery::Done { generation, .. } if generation == g2 => image_done = true,
+                Delivery::Stats {
+                    generation,
+                    y0,
+                    stats: s,
+                } if generation == g2 => {
+                    assert!(image_done);
+                    let at = y0 as usize * 64;
+                    stats[at..at + s.len()].copy_from_slice(&s);
+                    stats_rows += s.len() / 64;
+                }
+                Delivery::StatsDone { generation, .. } if generation == g2 => break,
                 d => assert_eq!(d.generation(), g1),
             }
         }
+        assert_eq!(stats_rows, 36);
         let (image, _) = crate::render(&scene, &|_| {});
         assert_eq!(pixels, image.pixels);
+        // The statistics are those of each pixel's recorded tree.
+        for (x, y) in [(10, 5), (40, 20), (63, 35)] {
+            let tree = crate::render::trace_pixel(&scene, x, y).unwrap();
+            let want = super::super::stats::summarize(&tree.nodes, 1);
+            assert_eq!(stats[(y * 64 + x) as usize], want, "pixel {x},{y}");
+        }
+    }
+
+    #[test]
+    fn with_a_debug_view_one_recorded_pass_delivers_the_same_image_and_statistics() {
+        let mut scene = Scene::default_scene();
+        scene.camera = scene.camera.with_size(48, 27);
+        let scene = Arc::new(scene);
+        let collect = |image_first: bool| {
+            let w = Worker::new(Arc::new(|| {}));
+            let g = w.start(Arc::clone(&scene), image_first);
+            let mut pixels = vec![Rgb::ZERO; 48 * 27];
+            let mut stats = vec![PixelStats::default(); 48 * 27];
+            let mut rays = None;
+            loop {
+                match w.recv().unwrap() {
+                    Delivery::Band { y0, pixels: p, .. } => {
+                        let at = y0 as usize * 48;
+                        pixels[at..at + p.len()].copy_from_slice(&p);
+                    }
+                    Delivery::Stats { y0, stats: s, .. } => {
+                        let at = y0 as usize * 48;
+                        stats[at..at + s.len()].copy_from_slice(&s);
+                    }
+                    Delivery::Done { rays: r, .. } => rays = Some(r),
+                    Delivery::StatsDone { generation, .. } => {
+                        assert_eq!(generation, g);
+                        break;
+                    }
+                }
+            }
+            (pixels, stats, rays.expect("the image is reported done"))
+        };
+        let (a, b) = (collect(true), collect(false));
+        assert_eq!(a.0, b.0);
+        assert_eq!(a.1, b.1);
+        assert_eq!(a.2, b.2);
+        assert_eq!(a.0, crate::render(&scene, &|_| {}).0.pixels);
     }
 }
