@@ -64,27 +64,26 @@ fn benches(c: &mut Criterion) {
         b.iter(|| s.apply(Command::SelectPixel([x, y])))
     });
 
+    // Toggle min weight between two values that cut nothing, so every iteration is a real
+    // settings change and a full re-render at depth 16.
     let mut flip = false;
+    let mut change = |s: &mut Session| {
+        let mut st = s.doc.scene.settings;
+        st.max_depth = 16;
+        st.min_weight = if flip { 1e-12 } else { 0.0 };
+        flip = !flip;
+        s.apply(Command::SetSettings(st));
+    };
     g.bench_function("rerender_640x360_depth16_worker", |b| {
         b.iter(|| {
-            // Toggle min weight between two values that cut nothing, so every iteration is a
-            // real settings change and a full re-render at depth 16.
-            let mut st = s.doc.scene.settings;
-            st.max_depth = 16;
-            st.min_weight = if flip { 1e-12 } else { 0.0 };
-            flip = !flip;
-            s.apply(Command::SetSettings(st));
+            change(&mut s);
             s.wait_render();
         })
     });
     g.bench_function("rerender_640x360_depth16_worker_image_only", |b| {
         b.iter(|| {
             // The same change, waiting only for the image (the statistics follow it).
-            let mut st = s.doc.scene.settings;
-            st.max_depth = 16;
-            st.min_weight = if flip { 1e-12 } else { 0.0 };
-            flip = !flip;
-            s.apply(Command::SetSettings(st));
+            change(&mut s);
             s.wait_image();
         })
     });
@@ -95,11 +94,7 @@ fn benches(c: &mut Criterion) {
     s.apply(Command::SetView(view));
     g.bench_function("rerender_640x360_depth16_worker_debug_view", |b| {
         b.iter(|| {
-            let mut st = s.doc.scene.settings;
-            st.max_depth = 16;
-            st.min_weight = if flip { 1e-12 } else { 0.0 };
-            flip = !flip;
-            s.apply(Command::SetSettings(st));
+            change(&mut s);
             s.wait_render();
         })
     });

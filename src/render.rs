@@ -198,11 +198,7 @@ pub fn render_rows(tracer: &Tracer, rows: std::ops::Range<u32>) -> (Vec<Rgb>, Ra
     let scene = tracer.scene();
     let w = scene.camera.width;
     let parts: Vec<(Vec<Rgb>, RayCounts)> = if uses_packets::<NoopRecorder>(scene) {
-        let starts: Vec<u32> = rows.clone().step_by(TILE as usize).collect();
-        starts
-            .into_par_iter()
-            .map(|y0| render_band::<NoopRecorder>(tracer, y0, TILE.min(rows.end - y0)))
-            .collect()
+        packet_bands::<NoopRecorder>(tracer, rows, &|_| {})
     } else {
         rows.into_par_iter()
             .map(|y| {
@@ -223,6 +219,25 @@ pub fn render_rows(tracer: &Tracer, rows: std::ops::Range<u32>) -> (Vec<Rgb>, Ra
         counts += c;
     }
     (pixels, counts)
+}
+
+/// Rows `rows` in bands of [`TILE`] rows from `rows.start`, in parallel, each traced by
+/// [`render_band`]; `on_band` is called with each band's row count as it finishes.
+fn packet_bands<R: Recorder + Default>(
+    tracer: &Tracer,
+    rows: std::ops::Range<u32>,
+    on_band: &(dyn Fn(u32) + Sync),
+) -> Vec<(Vec<Rgb>, RayCounts)> {
+    let starts: Vec<u32> = rows.clone().step_by(TILE as usize).collect();
+    starts
+        .into_par_iter()
+        .map(|y0| {
+            let n = TILE.min(rows.end - y0);
+            let band = render_band::<R>(tracer, y0, n);
+            on_band(n);
+            band
+        })
+        .collect()
 }
 
 /// Whether a render with recorder `R` traces camera rays as packets: nothing is recorded and
@@ -247,16 +262,8 @@ fn render_recorded<R: Recorder + Default>(
     let (w, h) = (scene.camera.width, scene.camera.height);
     let done = std::sync::atomic::AtomicU32::new(0);
     let rows: Vec<Row> = if uses_packets::<R>(scene) {
-        (0..h.div_ceil(TILE))
-            .into_par_iter()
-            .map(|band| {
-                let y0 = band * TILE;
-                let n = TILE.min(h - y0);
-                let result = render_band::<R>(tracer, y0, n);
-                progress(done.fetch_add(n, std::sync::atomic::Ordering::Relaxed) + n);
-                result
-            })
-            .collect::<Vec<_>>()
+        let on_band = |n| progress(done.fetch_add(n, std::sync::atomic::Ordering::Relaxed) + n);
+        packet_bands::<R>(tracer, 0..h, &on_band)
             .into_iter()
             .flat_map(|(band, counts)| {
                 let rows: Vec<Row> = band

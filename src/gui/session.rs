@@ -247,23 +247,20 @@ impl Session {
     /// Block until the current render's image is complete (its debug statistics may still be
     /// on the way).
     pub fn wait_image(&mut self) {
-        while !self.doc.rendered() || self.doc.progress.seconds.is_none() {
-            match self.worker.recv() {
-                Some(d) => {
-                    self.deliver(d);
-                }
-                None => return,
-            }
-        }
+        self.wait_until(|d| d.rendered() && d.progress.seconds.is_some());
     }
 
     /// Block until the current render and its statistics have finished (for tests, benchmarks
     /// and exports).
     pub fn wait_render(&mut self) {
-        while !self.doc.rendered()
-            || self.doc.progress.seconds.is_none()
-            || self.doc.progress.stats_seconds.is_none()
-        {
+        self.wait_until(|d| {
+            d.rendered() && d.progress.seconds.is_some() && d.progress.stats_seconds.is_some()
+        });
+    }
+
+    /// Fold in deliveries, blocking, until `done` holds (or the worker is gone).
+    fn wait_until(&mut self, done: impl Fn(&Document) -> bool) {
+        while !done(&self.doc) {
             match self.worker.recv() {
                 Some(d) => {
                     self.deliver(d);
