@@ -30,10 +30,11 @@ fn sphere_scene(level: u32, size: u32) -> Scene {
 /// Closest hits of every pixel-centre camera ray; returns the number of hits.
 fn cast_rows(scene: &Scene, rows: std::ops::Range<u32>) -> u64 {
     let cam = &scene.camera;
+    let film = cam.film();
     let mut hits = 0;
     for y in rows {
         for x in 0..cam.width {
-            let ray = cam.ray(f64::from(x) + 0.5, f64::from(y) + 0.5);
+            let ray = film.ray(f64::from(x) + 0.5, f64::from(y) + 0.5);
             hits += u64::from(scene.intersect(&ray, f64::INFINITY).is_some());
         }
     }
@@ -44,6 +45,7 @@ fn cast_rows(scene: &Scene, rows: std::ops::Range<u32>) -> u64 {
 /// the render's path for scenes with meshes).
 fn cast_band(scene: &Scene, y0: u32) -> u64 {
     let cam = &scene.camera;
+    let film = cam.film();
     let y1 = (y0 + 8).min(cam.height);
     let mut hits = 0;
     let mut rays = Vec::with_capacity(64);
@@ -53,7 +55,7 @@ fn cast_band(scene: &Scene, y0: u32) -> u64 {
         rays.clear();
         for y in y0..y1 {
             for x in x0..(x0 + 8).min(cam.width) {
-                rays.push(cam.ray(f64::from(x) + 0.5, f64::from(y) + 0.5));
+                rays.push(film.ray(f64::from(x) + 0.5, f64::from(y) + 0.5));
             }
         }
         scene.intersect_packet(&rays, &mut found, &mut cost);

@@ -353,6 +353,7 @@ fn render_band<R: Recorder + Default>(
     let mut counts = RayCounts::default();
     let mut rec = R::default();
     let mut band = vec![Rgb::ZERO; (w * rows) as usize];
+    let film = scene.camera.film();
     let mut rays = Vec::with_capacity(PACKET);
     let mut hits = [None; PACKET];
     let mut cost = [TraversalCost::default(); PACKET];
@@ -363,7 +364,7 @@ fn render_band<R: Recorder + Default>(
             for dy in 0..rows {
                 for dx in 0..cols {
                     let (fx, fy) = sample_position(x0 + dx, y0 + dy, s, spp);
-                    rays.push(scene.camera.ray(fx, fy));
+                    rays.push(film.ray(fx, fy));
                 }
             }
             cost.fill(TraversalCost::default());

@@ -131,6 +131,14 @@ impl BoxRay {
     }
 }
 
+/// Start loading the cache line that holds `value` into the caches: a hint to the CPU, with
+/// no effect on any result. Through the `mem_prefetch` crate (`prefetcht0` on x86_64), because
+/// this crate forbids `unsafe` and `std`'s prefetch intrinsic is unsafe or unstable.
+#[inline(always)]
+pub(crate) fn prefetch<T>(value: &T) {
+    mem_prefetch::prefetch_read_data::<T, 3>(value);
+}
+
 /// `x < y ? x : y`: one `minsd`; a NaN in `x` yields `y` (what the slab test relies on).
 #[inline(always)]
 fn fmin(x: f64, y: f64) -> f64 {

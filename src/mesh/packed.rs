@@ -47,6 +47,18 @@ impl TriPack {
     }
 }
 
+impl TriPack {
+    /// Prefetch the pack's lines (144 bytes: addresses at most 48 bytes apart, the last in the
+    /// final word).
+    #[inline(always)]
+    pub(crate) fn prefetch(&self) {
+        for row in &self.v {
+            crate::bvh::prefetch(row);
+        }
+        crate::bvh::prefetch(&self.v[2][2][GROUP - 1]);
+    }
+}
+
 /// Per-query constants of the `f32` edge test.
 #[derive(Clone, Copy, Debug)]
 pub(crate) struct EdgeRay {
@@ -56,9 +68,28 @@ pub(crate) struct EdgeRay {
     sy: f32,
     /// Shifted origin, components in `k` order.
     o: [f32; 3],
-    delta: f32,
+    /// `4 delta` and `2 delta^2` (plus the least normal, so it is never 0) of the bound.
+    d4: f32,
+    dd: f32,
     /// Keep every lane (`f32` unsafe for this query).
     all: bool,
+}
+
+type Rows = [[f32; GROUP]; 3];
+
+/// The pack's rows of axes `k`: constant indices per permutation (one predictable jump where
+/// three indexings would each be bounds checked).
+#[inline(always)]
+fn rows(v: &[Rows; 3], k: [usize; 3]) -> (&Rows, &Rows, &Rows) {
+    match k {
+        [0, 1, 2] => (&v[0], &v[1], &v[2]),
+        [1, 2, 0] => (&v[1], &v[2], &v[0]),
+        [2, 0, 1] => (&v[2], &v[0], &v[1]),
+        [1, 0, 2] => (&v[1], &v[0], &v[2]),
+        [2, 1, 0] => (&v[2], &v[1], &v[0]),
+        [0, 2, 1] => (&v[0], &v[2], &v[1]),
+        [kx, ky, kz] => (&v[kx], &v[ky], &v[kz]),
+    }
 }
 
 const U4: f32 = 2.0 * f32::EPSILON;
@@ -73,7 +104,8 @@ impl EdgeRay {
             sx: sheared.s[0] as f32,
             sy: sheared.s[1] as f32,
             o: [kx, ky, kz].map(|a| w.origin[a]),
-            delta,
+            d4: 4.0 * delta,
+            dd: 2.0 * delta * delta + f32::MIN_POSITIVE,
             all: w.exact() || !delta.is_finite(),
         }
     }
@@ -85,13 +117,9 @@ impl EdgeRay {
         if self.all {
             return lanes;
         }
-        let [kx, ky, kz] = self.k;
-        let (px, py, pz) = (&pack.v[kx], &pack.v[ky], &pack.v[kz]);
+        let (px, py, pz) = rows(&pack.v, self.k);
         let [ox, oy, oz] = self.o;
-        let (d, dd) = (
-            self.delta,
-            2.0 * self.delta * self.delta + f32::MIN_POSITIVE,
-        );
+        let (d4, dd) = (self.d4, self.dd);
         let mut mask = 0;
         for l in 0..GROUP {
             let shear = |c: usize| {
@@ -108,7 +136,7 @@ impl EdgeRay {
                 max(max(ax.abs(), ay.abs()), max(bx.abs(), by.abs())),
                 max(cx.abs(), cy.abs()),
             );
-            let e = r * (4.0 * d + 2.0 * U4 * r) + dd;
+            let e = r * (d4 + 2.0 * U4 * r) + dd;
             let below = (u < -e) | (v < -e) | (w < -e);
             let above = (u > e) | (v > e) | (w > e);
             mask |= u32::from(!(below & above)) << l;

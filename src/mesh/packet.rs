@@ -59,8 +59,11 @@ impl Mesh {
         let mut costs = [TraversalCost::default(); PACKET];
         let mut prims = [0u32; PACKET];
         let mut best = [None; PACKET];
-        self.bvh
-            .traverse_packet(&wide, &mut limit[..n], &mut costs[..n], |r, g, t_max| {
+        self.bvh.traverse_packet(
+            &wide,
+            &mut limit[..n],
+            &mut costs[..n],
+            |r, g, t_max| {
                 let p = &prepared[r];
                 let group = self.bvh.groups[g];
                 prims[r] += group.count;
@@ -80,7 +83,9 @@ impl Mesh {
                     );
                 }
                 t_max
-            });
+            },
+            |g| self.prefetch_group(g),
+        );
         for (r, p) in prepared.iter().enumerate() {
             out[p.index] = best[r];
             cost[p.index].nodes += costs[r].nodes;

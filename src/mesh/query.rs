@@ -30,20 +30,26 @@ impl Mesh {
         };
         let edges = EdgeRay::new(&sheared, &wide_ray);
         let mut prims = 0;
-        self.bvh.traverse(&wide_ray, t_max, cost, |g, mut t_max| {
-            let group = self.bvh.groups[g];
-            prims += group.count;
-            let mut mask = edges.candidates(&self.packs[g], group.count);
-            while mask != 0 {
-                let slot = group.first as usize + mask.trailing_zeros() as usize;
-                mask &= mask - 1;
-                match test(&sheared, slot, t_max) {
-                    Visit::Continue(t) => t_max = t,
-                    Visit::Stop => return Visit::Stop,
+        self.bvh.traverse(
+            &wide_ray,
+            t_max,
+            cost,
+            |g, mut t_max| {
+                let group = self.bvh.groups[g];
+                prims += group.count;
+                let mut mask = edges.candidates(&self.packs[g], group.count);
+                while mask != 0 {
+                    let slot = group.first as usize + mask.trailing_zeros() as usize;
+                    mask &= mask - 1;
+                    match test(&sheared, slot, t_max) {
+                        Visit::Continue(t) => t_max = t,
+                        Visit::Stop => return Visit::Stop,
+                    }
                 }
-            }
-            Visit::Continue(t_max)
-        });
+                Visit::Continue(t_max)
+            },
+            |g| self.prefetch_group(g),
+        );
         cost.prims += prims;
     }
 

@@ -197,9 +197,10 @@ pub fn traversal_cost_image(scene: &Scene) -> Vec<TraversalCost> {
     (0..cam.height)
         .into_par_iter()
         .flat_map_iter(|y| {
+            let film = cam.film();
             (0..cam.width).map(move |x| {
                 let mut cost = TraversalCost::default();
-                let ray = cam.ray(f64::from(x) + 0.5, f64::from(y) + 0.5);
+                let ray = film.ray(f64::from(x) + 0.5, f64::from(y) + 0.5);
                 let _ = scene.intersect_counted(&ray, f64::INFINITY, &mut cost);
                 cost
             })

@@ -49,22 +49,29 @@ pub struct Camera {
 
 impl Camera {
     /// The camera ray through film position `(fx, fy)` in pixels; pixel (0,0) is top-left and
-    /// `(x + 0.5, y + 0.5)` is the centre of pixel (x, y).
+    /// `(x + 0.5, y + 0.5)` is the centre of pixel (x, y). For many rays, [`Camera::film`]
+    /// evaluates the field of view once.
     #[must_use]
     pub fn ray(&self, fx: f64, fy: f64) -> Ray {
-        let (u, v) = self.film_to_plane(fx, fy);
-        let d = (self.forward + u * self.right + v * self.up).normalize();
-        Ray::new(self.position, d, 0.0)
+        self.film().ray(fx, fy)
     }
 
     /// Film position to coordinates on the image plane at distance 1 along `forward`.
     #[must_use]
     pub fn film_to_plane(&self, fx: f64, fy: f64) -> (f64, f64) {
+        self.film().to_plane(fx, fy)
+    }
+
+    /// The image plane's extent computed once, for generating many rays (the same rays as
+    /// [`Camera::ray`], bit for bit).
+    #[must_use]
+    pub fn film(&self) -> Film<'_> {
         let half_h = (self.fov_y.to_radians() * 0.5).tan();
-        let half_w = half_h * f64::from(self.width) / f64::from(self.height);
-        let u = (2.0 * fx / f64::from(self.width) - 1.0) * half_w;
-        let v = (1.0 - 2.0 * fy / f64::from(self.height)) * half_h;
-        (u, v)
+        Film {
+            camera: self,
+            half_w: half_h * f64::from(self.width) / f64::from(self.height),
+            half_h,
+        }
     }
 
     /// The same camera rendering `width x height`.
@@ -75,6 +82,36 @@ impl Camera {
             height,
             ..self.clone()
         }
+    }
+}
+
+/// A camera with its image plane's half extents evaluated ([`Camera::film`]).
+#[derive(Clone, Copy, Debug)]
+pub struct Film<'a> {
+    camera: &'a Camera,
+    half_w: f64,
+    half_h: f64,
+}
+
+impl Film<'_> {
+    /// [`Camera::ray`].
+    #[must_use]
+    #[inline]
+    pub fn ray(&self, fx: f64, fy: f64) -> Ray {
+        let c = self.camera;
+        let (u, v) = self.to_plane(fx, fy);
+        let d = (c.forward + u * c.right + v * c.up).normalize();
+        Ray::new(c.position, d, 0.0)
+    }
+
+    /// [`Camera::film_to_plane`].
+    #[must_use]
+    #[inline]
+    pub fn to_plane(&self, fx: f64, fy: f64) -> (f64, f64) {
+        let c = self.camera;
+        let u = (2.0 * fx / f64::from(c.width) - 1.0) * self.half_w;
+        let v = (1.0 - 2.0 * fy / f64::from(c.height)) * self.half_h;
+        (u, v)
     }
 }
 

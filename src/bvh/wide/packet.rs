@@ -44,6 +44,10 @@ impl WideBvh {
     /// returns that ray's new `t_max` (smaller narrows it; anything else leaves it). Counts, per
     /// ray, one node for every wide node visited with that ray in the packet.
     ///
+    /// `warm(group)` is called for every group of a leaf the packet enters as soon as the node
+    /// above it is tested, before the leaf is visited (if it still is): the caller prefetches
+    /// the group's primitives there, as the traversal prefetches the inner nodes it enters.
+    ///
     /// # Panics
     /// If there are more than [`PACKET`] rays or `t_max`/`cost` are shorter than `rays`.
     pub fn traverse_packet(
@@ -52,6 +56,7 @@ impl WideBvh {
         t_max: &mut [f64],
         cost: &mut [TraversalCost],
         mut test: impl FnMut(usize, usize, f64) -> f64,
+        mut warm: impl FnMut(usize),
     ) {
         assert!(rays.len() <= PACKET && t_max.len() >= rays.len() && cost.len() >= rays.len());
         if self.nodes.is_empty() || rays.is_empty() {
@@ -115,6 +120,12 @@ impl WideBvh {
                 }
                 let children =
                     children.unwrap_or_else(|| enter_each(node, rays, mask, &s_max, t_max, self));
+                // Start loading every child the packet will visit (see the module notes).
+                for (lane, &(_, rays)) in children.iter().enumerate() {
+                    if rays != 0 {
+                        self.warm(node.child[lane], &mut warm);
+                    }
+                }
                 if let Some(near) = nearest(&children) {
                     // Push the other children farthest first, continue with the nearest.
                     let mut order = [(0f32, 0usize); WIDTH];
@@ -150,6 +161,22 @@ impl WideBvh {
                 if reachable(key, mask, &s_max, rays) {
                     break;
                 }
+            }
+        }
+    }
+}
+
+impl WideBvh {
+    /// Prefetch child reference `child`: an inner node's box data here, a leaf's groups
+    /// through `warm`.
+    #[inline(always)]
+    pub(super) fn warm(&self, child: u32, warm: &mut impl FnMut(usize)) {
+        if child & LEAF == 0 {
+            self.nodes[child as usize].prefetch();
+        } else {
+            let first = ((child & !LEAF) >> 4) as usize;
+            for g in first..first + (child & 15) as usize {
+                warm(g);
             }
         }
     }

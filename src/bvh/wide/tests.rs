@@ -30,14 +30,24 @@ fn boxes(n: usize, centre: DVec3, scale: f64, seed: u64) -> Vec<Aabb> {
         .collect()
 }
 
+/// The slots of every group the traversal tests; checks that each was offered for prefetching
+/// before its test.
 fn visited(wide: &WideBvh, ray: &Ray, t_max: f64) -> Vec<u32> {
     let mut out = Vec::new();
+    let warmed = std::cell::RefCell::new(Vec::new());
     if let Some(r) = wide.ray(ray, t_max) {
-        wide.traverse(&r, t_max, &mut TraversalCost::default(), |g, t| {
-            let grp = wide.groups[g];
-            out.extend(grp.first..grp.first + grp.count);
-            Visit::Continue(t)
-        });
+        wide.traverse(
+            &r,
+            t_max,
+            &mut TraversalCost::default(),
+            |g, t| {
+                assert!(warmed.borrow().contains(&g), "group {g} tested before warm");
+                let grp = wide.groups[g];
+                out.extend(grp.first..grp.first + grp.count);
+                Visit::Continue(t)
+            },
+            |g| warmed.borrow_mut().push(g),
+        );
     }
     out
 }
