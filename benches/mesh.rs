@@ -1,6 +1,7 @@
 //! Mesh and BVH performance: primary-ray throughput on a 1.3M-triangle icosphere (1 and 2
-//! threads; single rays and 8x8 packets), time per ray from 1K to 1.3M triangles, and the classic scene with the Stanford
-//! bunny in glass (skipped when `../shared/data/meshes/` is absent).
+//! threads; single rays and 8x8 packets; also at 1024x1024, a view `benches/embree.py` casts
+//! with Embree), time per ray from 1K to 1.3M triangles, and the classic scene with the
+//! Stanford bunny in glass (skipped when `../shared/data/meshes/` is absent).
 //!
 //! Run: `cargo bench --bench mesh`. Figures and the comparison with Embree: docs/mesh.md.
 
@@ -107,6 +108,23 @@ fn primary_1m(c: &mut Criterion) {
     g.finish();
 }
 
+/// The views `benches/embree.py` also casts, 1 thread, packets (512x512 is above; 256x256 is
+/// the scaling group's last row).
+fn embree_views(c: &mut Criterion) {
+    let scene = sphere_scene(8, 1024);
+    let mut g = c.benchmark_group("primary_icosphere_1.3M_1024x1024");
+    g.sample_size(10).measurement_time(Duration::from_secs(4));
+    g.throughput(Throughput::Elements(1024 * 1024));
+    let pool = rayon::ThreadPoolBuilder::new()
+        .num_threads(1)
+        .build()
+        .unwrap();
+    g.bench_function("threads1_packets8x8", |b| {
+        b.iter(|| pool.install(|| cast_parallel(black_box(&scene), true)))
+    });
+    g.finish();
+}
+
 fn scaling(c: &mut Criterion) {
     let mut g = c.benchmark_group("primary_scaling_256x256_1thread");
     g.sample_size(10).measurement_time(Duration::from_secs(2));
@@ -150,5 +168,5 @@ fn bunny(c: &mut Criterion) {
     g.finish();
 }
 
-criterion_group!(benches, primary_1m, scaling, bunny);
+criterion_group!(benches, primary_1m, embree_views, scaling, bunny);
 criterion_main!(benches);
