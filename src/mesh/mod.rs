@@ -276,6 +276,17 @@ impl Mesh {
         }
     }
 
+    /// Prefetch the corner normals [`Mesh::shading_normal`] reads for triangle `i`, when a
+    /// query finds it the closest so far (shading follows the query).
+    #[inline(always)]
+    pub(crate) fn prefetch_shading(&self, i: usize) {
+        if let Some(corners) = &self.corner_normals {
+            crate::bvh::prefetch(&corners[i][0]);
+            crate::bvh::prefetch(&corners[i][1]);
+            crate::bvh::prefetch(&corners[i][2].z);
+        }
+    }
+
     /// Unit outward geometric normal of stored triangle `i`.
     #[must_use]
     pub fn geometric_normal(&self, i: usize) -> DVec3 {

@@ -73,7 +73,7 @@ impl Mesh {
                     let slot = group.first as usize + mask.trailing_zeros() as usize;
                     mask &= mask - 1;
                     let t_min = rays[p.index].t_min;
-                    t_max = closer(
+                    let t = closer(
                         &p.sheared,
                         &self.tris[slot],
                         slot,
@@ -81,6 +81,10 @@ impl Mesh {
                         t_max,
                         &mut best[r],
                     );
+                    if t < t_max {
+                        self.prefetch_shading(slot);
+                        t_max = t;
+                    }
                 }
                 t_max
             },

@@ -65,14 +65,11 @@ impl Mesh {
     ) -> Option<(f64, usize)> {
         let mut best = None;
         self.candidates(ray, t_max, cost, |sheared, slot, t_max| {
-            Visit::Continue(closer(
-                sheared,
-                &self.tris[slot],
-                slot,
-                ray.t_min,
-                t_max,
-                &mut best,
-            ))
+            let t = closer(sheared, &self.tris[slot], slot, ray.t_min, t_max, &mut best);
+            if t < t_max {
+                self.prefetch_shading(slot);
+            }
+            Visit::Continue(t)
         });
         best
     }
