@@ -228,10 +228,18 @@ fn obj_errors_name_file_and_line_and_exit_2_without_output() {
         err.contains("s.json:") && err.contains("objects[1].file"),
         "{err}"
     );
-    assert!(
-        err.contains("cannot read") && err.contains("m.obj"),
-        "{err}"
+    // Named as the scene writes it; with the scene given by an absolute path, also where it
+    // was looked for.
+    assert!(err.contains("cannot read sub/m.obj: "), "{err}");
+    let scene = dir.path().join("s.json");
+    let o = raytree(
+        &["render", &scene.to_string_lossy(), "-o", "out.png"],
+        dir.path(),
     );
+    let err = String::from_utf8_lossy(&o.stderr).into_owned();
+    let looked = dir.path().join("sub").join("m.obj");
+    let expect = format!("cannot read sub/m.obj (looked for {}): ", looked.display());
+    assert!(err.contains(&expect), "{err}");
     // Bad index on line 4, then a parse error on line 2.
     std::fs::create_dir(dir.path().join("sub")).unwrap();
     for (text, line) in [
@@ -242,7 +250,7 @@ fn obj_errors_name_file_and_line_and_exit_2_without_output() {
         let o = run();
         let err = String::from_utf8_lossy(&o.stderr).into_owned();
         assert_eq!(o.status.code(), Some(2), "{err}");
-        assert!(err.contains(&format!("m.obj:{line}: ")), "{err}");
+        assert!(err.contains(&format!(": sub/m.obj:{line}: ")), "{err}");
     }
     assert!(!dir.path().join("out.png").exists());
     // A good file, found relative to the scene file, renders.

@@ -33,15 +33,10 @@ pub fn load(path: Option<&Path>, o: &Overrides) -> Result<Loaded> {
 }
 
 /// Read and parse the OBJ `file` (relative paths against the scene's directory `dir`); errors
-/// name the file and, for bad contents, the line.
+/// name the file and, for bad contents, the line ([`raytree::mesh::parse_obj_read`]).
 pub fn read_obj(dir: &Path, file: &str) -> Result<raytree::mesh::MeshData, String> {
     let path = dir.join(file);
-    let shown = path.display();
-    let text = std::fs::read_to_string(&path).map_err(|e| format!("cannot read {shown}: {e}"))?;
-    raytree::mesh::parse_obj(&text).map_err(|e| match e.line {
-        0 => format!("{shown}: {}", e.message),
-        line => format!("{shown}:{line}: {}", e.message),
-    })
+    raytree::mesh::parse_obj_read(file, &path, std::fs::read_to_string(&path))
 }
 
 fn enum_value<T: DeserializeOwned>(flag: &str, v: &str) -> Result<T> {

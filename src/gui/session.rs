@@ -62,14 +62,7 @@ impl Session {
         let dir = path.parent().unwrap_or(Path::new(""));
         let mut load_mesh = |file: &str| {
             let p = dir.join(file);
-            let text = self
-                .files
-                .read(&p)
-                .map_err(|e| format!("cannot read {}: {e}", p.display()))?;
-            crate::mesh::parse_obj(&text).map_err(|e| match e.line {
-                0 => format!("{}: {}", p.display(), e.message),
-                line => format!("{}:{line}: {}", p.display(), e.message),
-            })
+            crate::mesh::parse_obj_read(file, &p, self.files.read(&p))
         };
         let mut scene =
             Scene::from_json_with(&src, &mut load_mesh).map_err(|e| format!("{label}:{e}"))?;

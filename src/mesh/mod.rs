@@ -21,7 +21,7 @@ use glam::{DAffine3, DMat3, DVec3};
 use packed::TriPack;
 use serde::{Deserialize, Serialize};
 
-pub use obj::{ObjError, parse_obj};
+pub use obj::{ObjError, parse_obj, parse_obj_read};
 
 /// One triangle of [`MeshData`]: 0-based position indices and optional normal indices.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]

@@ -134,6 +134,34 @@ fn index(s: &str, count: usize, what: &str, corner: &str) -> Result<u32, String>
     u32::try_from(resolved).map_err(|_| format!("{what} index {i} is too large"))
 }
 
+/// [`parse_obj`] for a scene's mesh `file` (the name as the scene writes it), given what
+/// reading it from `resolved` (the name joined to the scene's directory) returned. Messages
+/// name the file as written, with the line for bad contents, and say where it was looked for
+/// when that differs. The library does no I/O: the CLI and the inspector read, this formats.
+///
+/// # Errors
+/// The message for a failed read or bad contents.
+pub fn parse_obj_read(
+    file: &str,
+    resolved: &std::path::Path,
+    read: std::io::Result<String>,
+) -> Result<MeshData, String> {
+    let text = read.map_err(|e| {
+        if resolved == std::path::Path::new(file) {
+            format!("cannot read {file}: {e}")
+        } else {
+            format!(
+                "cannot read {file} (looked for {}): {e}",
+                resolved.display()
+            )
+        }
+    })?;
+    parse_obj(&text).map_err(|e| match e.line {
+        0 => format!("{file}: {}", e.message),
+        line => format!("{file}:{line}: {}", e.message),
+    })
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -171,5 +199,30 @@ mod tests {
         assert_eq!(parse_obj("v 0 0 0\nf 0 1 1\n").unwrap_err().line, 2);
         assert_eq!(parse_obj("v 1 2 3\n").unwrap_err().line, 0);
         assert_eq!(parse_obj("v 1 2 nan\n").unwrap_err().line, 1);
+    }
+
+    #[test]
+    fn scene_mesh_errors_name_the_file_as_written() {
+        use std::io::{Error, ErrorKind};
+        use std::path::Path;
+        let missing = || Err(Error::new(ErrorKind::NotFound, "not found"));
+        let e = parse_obj_read("m.obj", Path::new("/scenes/m.obj"), missing()).unwrap_err();
+        assert_eq!(e, "cannot read m.obj (looked for /scenes/m.obj): not found");
+        let e = parse_obj_read("m.obj", Path::new("m.obj"), missing()).unwrap_err();
+        assert_eq!(e, "cannot read m.obj: not found");
+        let bad = Ok("v 0 0 0\nv 1 x 0\n".to_string());
+        let e = parse_obj_read("sub/m.obj", Path::new("/s/sub/m.obj"), bad).unwrap_err();
+        assert!(e.starts_with("sub/m.obj:2: "), "{e}");
+        let empty = Ok("v 1 2 3\n".to_string());
+        let e = parse_obj_read("e.obj", Path::new("/s/e.obj"), empty).unwrap_err();
+        assert!(e.starts_with("e.obj: ") && !e.contains("/s/"), "{e}");
+        let good = Ok("v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n".to_string());
+        assert_eq!(
+            parse_obj_read("t.obj", Path::new("t.obj"), good)
+                .unwrap()
+                .faces
+                .len(),
+            1
+        );
     }
 }
