@@ -1,7 +1,8 @@
 //! Mesh and BVH performance: primary-ray throughput on a 1.3M-triangle icosphere (1 and 2
 //! threads; single rays and 8x8 packets; also at 1024x1024, a view `benches/embree.py` casts
-//! with Embree), time per ray from 1K to 1.3M triangles, and the classic scene with the
-//! Stanford bunny in glass (skipped when `../shared/data/meshes/` is absent).
+//! with Embree), the whole direct-only render of that scene (shadow rays in packets too), time
+//! per ray from 1K to 1.3M triangles, and the classic scene with the Stanford bunny in glass
+//! (skipped when `../shared/data/meshes/` is absent).
 //!
 //! Run: `cargo bench --bench mesh`. Figures and the comparison with Embree: docs/mesh.md.
 
@@ -125,6 +126,23 @@ fn embree_views(c: &mut Criterion) {
     g.finish();
 }
 
+/// The whole render of the benchmark's scene (a diffuse sphere and a point light: the
+/// direct-only path, camera and shadow rays both in 8x8 packets), 1 thread.
+fn diffuse_render(c: &mut Criterion) {
+    let scene = sphere_scene(8, 512);
+    let pool = rayon::ThreadPoolBuilder::new()
+        .num_threads(1)
+        .build()
+        .unwrap();
+    let mut g = c.benchmark_group("render_diffuse_icosphere_1.3M_512x512");
+    g.sample_size(10).measurement_time(Duration::from_secs(6));
+    g.throughput(Throughput::Elements(512 * 512));
+    g.bench_function("threads1", |b| {
+        b.iter(|| pool.install(|| raytree::render(black_box(&scene), &|_| {})))
+    });
+    g.finish();
+}
+
 fn scaling(c: &mut Criterion) {
     let mut g = c.benchmark_group("primary_scaling_256x256_1thread");
     g.sample_size(10).measurement_time(Duration::from_secs(2));
@@ -168,5 +186,12 @@ fn bunny(c: &mut Criterion) {
     g.finish();
 }
 
-criterion_group!(benches, primary_1m, embree_views, scaling, bunny);
+criterion_group!(
+    benches,
+    primary_1m,
+    embree_views,
+    diffuse_render,
+    scaling,
+    bunny
+);
 criterion_main!(benches);

@@ -68,7 +68,8 @@ impl EffectPlan {
     #[must_use]
     pub fn for_scene(scene: &Scene) -> Self {
         let s = &scene.settings;
-        let mats = &scene.materials;
+        // Materials no object uses call for nothing.
+        let mats: Vec<&crate::scene::Material> = scene.used_materials().collect();
         let transmissive = mats.iter().any(|m| m.is_transmissive());
         let reflective = mats.iter().any(|m| nonzero(m.reflectivity));
         let fresnel = transmissive && s.fresnel != FresnelModel::None;
@@ -122,8 +123,7 @@ impl EffectPlan {
     pub fn explain(&self, scene: &Scene) -> Vec<EffectLine> {
         let names = |pred: &dyn Fn(&crate::scene::Material) -> bool| {
             let v: Vec<&str> = scene
-                .materials
-                .iter()
+                .used_materials()
                 .filter(|m| pred(m))
                 .map(|m| m.name.as_str())
                 .collect();
@@ -216,6 +216,20 @@ impl EffectPlan {
                 format!("spp {}", s.spp),
             ),
         ];
+        let unused: Vec<&str> = (0..scene.materials.len())
+            .filter(|&m| !scene.material_used(m))
+            .map(|m| scene.materials[m].name.as_str())
+            .collect();
+        if !unused.is_empty() {
+            out.push(line(
+                "unused materials",
+                false,
+                format!(
+                    "no object uses {}: they call for nothing",
+                    unused.join(", ")
+                ),
+            ));
+        }
         for (i, l) in scene.lights.iter().enumerate() {
             let on = self.light_on(i);
             out.push(line(
@@ -233,11 +247,10 @@ impl EffectPlan {
 }
 
 /// The largest drop in index a ray can meet, `(n1, n2)` with `n1 > n2`, if any. Media: air
-/// (1.0) and every transmissive material with an ior.
+/// (1.0) and every transmissive material with an ior that some object uses.
 fn max_ior_step(scene: &Scene) -> Option<(f64, f64)> {
     let iors = scene
-        .materials
-        .iter()
+        .used_materials()
         .filter(|m| m.is_transmissive())
         .filter_map(|m| m.ior)
         .chain(std::iter::once(1.0));
@@ -264,5 +277,50 @@ mod tests {
             .find(|l| l.effect.starts_with("total"))
             .unwrap();
         assert!(tir.reason.contains("41.81"), "{}", tir.reason);
+    }
+
+    #[test]
+    fn unused_materials_call_for_nothing() {
+        let json = r#"{"camera": {"position": [0, 1, 5], "look_at": [0, 0, 0], "fov_y": 45,
+            "width": 8, "height": 6},
+          "materials": {
+            "glass": {"transmissivity": [0.9, 0.9, 0.9], "ior": 1.5, "absorption": [0.2, 0, 0]},
+            "mirror": {"reflectivity": [0.8, 0.8, 0.8], "specular": [1, 1, 1]},
+            "matte": {"diffuse": [0.7, 0.6, 0.5]}},
+          "objects": [{"type": "sphere", "center": [0, 0, 0], "radius": 1, "material": "matte"}],
+          "lights": [{"type": "point", "position": [3, 5, 4], "intensity": [60, 60, 60]}]}"#;
+        let mut s = Scene::from_json(json).unwrap();
+        let p = EffectPlan::for_scene(&s);
+        assert!(
+            p.direct_only() && !p.specular && !p.tir && p.light_on(0),
+            "{p:?}"
+        );
+        let lines = p.explain(&s);
+        let unused = lines
+            .iter()
+            .find(|l| l.effect == "unused materials")
+            .unwrap();
+        assert!(unused.reason.contains("glass, mirror"), "{}", unused.reason);
+        let refraction = lines
+            .iter()
+            .find(|l| l.effect.starts_with("refraction"))
+            .unwrap();
+        assert!(
+            refraction.reason.contains("no material"),
+            "{}",
+            refraction.reason
+        );
+        // Once an object uses the glass, it calls for refraction, Beer's law and TIR.
+        s.objects[0].material = 0;
+        let p = EffectPlan::for_scene(&s);
+        assert!(
+            p.refraction && p.absorption && p.tir && !p.direct_only(),
+            "{p:?}"
+        );
+        assert!(
+            !p.explain(&s)
+                .iter()
+                .any(|l| l.reason.contains("glass, mirror"))
+        );
     }
 }

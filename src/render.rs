@@ -357,6 +357,7 @@ fn render_band<R: Recorder + Default>(
     let mut rays = Vec::with_capacity(PACKET);
     let mut hits = [None; PACKET];
     let mut cost = [TraversalCost::default(); PACKET];
+    let mut radiance = [Rgb::ZERO; PACKET];
     for x0 in (0..w).step_by(TILE as usize) {
         let cols = TILE.min(w - x0);
         for s in 0..spp {
@@ -369,10 +370,11 @@ fn render_band<R: Recorder + Default>(
             }
             cost.fill(TraversalCost::default());
             scene.intersect_packet(&rays, &mut hits, &mut cost);
-            for (i, ray) in rays.iter().enumerate() {
+            let n = rays.len();
+            let found = (&hits[..n], &cost[..n]);
+            tracer.trace_camera_packet(&rays, found, &mut radiance[..n], &mut rec, &mut counts);
+            for (i, &l) in radiance[..n].iter().enumerate() {
                 let (dx, dy) = (i as u32 % cols, i as u32 / cols);
-                let found = (hits[i], cost[i]);
-                let (l, _) = tracer.trace_camera_found(*ray, found, &mut rec, &mut counts);
                 band[(dy * w + x0 + dx) as usize] += l;
             }
         }

@@ -3,6 +3,7 @@
 
 use glam::DVec3;
 use raytree::bvh::TraversalCost;
+use raytree::effects::EffectPlan;
 use raytree::math::Ray;
 use raytree::mesh::MeshData;
 use raytree::mesh::generate::icosphere;
@@ -33,6 +34,17 @@ fn scene(objects: &str, w: u32, h: u32, spp: u32) -> Scene {
 const MESHES: &str = r#"{"type": "mesh", "file": "ico", "translate": [0, 0.4, 0], "normals": "smooth", "material": "glass"},
     {"type": "sphere", "center": [1.5, 0, -1], "radius": 0.6, "material": "mirror"},
     {"type": "mesh", "file": "ico", "translate": [-1.6, 0.2, -1], "scale": [0.6, 1, 0.6], "material": "matte"}"#;
+
+/// [`MESHES`] and 12 spheres: more than 8 objects, so the scene uses its object BVH.
+fn many_objects() -> Scene {
+    let spheres: Vec<String> = (0..12)
+        .map(|i| {
+            let x = f64::from(i) * 0.4 - 2.4;
+            format!(r#"{{"type": "sphere", "center": [{x}, -0.6, 1], "radius": 0.25, "material": "mirror"}}"#)
+        })
+        .collect();
+    scene(&format!("{MESHES},\n{}", spheres.join(",\n")), 37, 21, 1)
+}
 
 /// Packets of camera rays (and some others) against `Scene::intersect_counted`, ray by ray.
 fn packets_match(scene: &Scene) -> usize {
@@ -72,14 +84,55 @@ fn scene_packets_equal_single_rays_with_and_without_the_object_bvh() {
     let few = scene(MESHES, 37, 21, 1);
     assert!(packets_match(&few) > 500);
     // More than 8 objects: the object BVH.
-    let spheres: Vec<String> = (0..12)
-        .map(|i| {
-            let x = f64::from(i) * 0.4 - 2.4;
-            format!(r#"{{"type": "sphere", "center": [{x}, -0.6, 1], "radius": 0.25, "material": "mirror"}}"#)
-        })
-        .collect();
-    let many = scene(&format!("{MESHES},\n{}", spheres.join(",\n")), 37, 21, 1);
+    let many = many_objects();
     assert!(packets_match(&many) > 500);
+}
+
+/// Shadow rays of a tile's hits towards the light, as one packet, against
+/// `Scene::occluded` ray by ray; returns (blocked, free).
+fn shadow_packets_match(scene: &Scene) -> (usize, usize) {
+    let cam = &scene.camera;
+    let light = DVec3::new(3.0, 5.0, 4.0);
+    let (mut blocked, mut free) = (0, 0);
+    for y0 in (0..cam.height).step_by(8) {
+        for x0 in (0..cam.width).step_by(8) {
+            let (mut rays, mut t_max) = (Vec::new(), Vec::new());
+            for y in y0..(y0 + 8).min(cam.height) {
+                for x in x0..(x0 + 8).min(cam.width) {
+                    let ray = cam.ray(f64::from(x) + 0.5, f64::from(y) + 0.5);
+                    let cost = &mut TraversalCost::default();
+                    let Some(hit) = scene.intersect_counted(&ray, f64::INFINITY, cost) else {
+                        continue;
+                    };
+                    let p = ray.at(hit.t) + 1e-4 * hit.normal;
+                    rays.push(Ray::new(p, (light - p).normalize(), 0.0));
+                    t_max.push((light - p).length());
+                }
+            }
+            let mut got = vec![true; rays.len()];
+            scene.occluded_packet(&rays, &t_max, &mut got);
+            for (i, ray) in rays.iter().enumerate() {
+                let want = scene.occluded(ray, t_max[i], &mut TraversalCost::default());
+                assert_eq!(got[i], want, "{ray:?} to {}", t_max[i]);
+                (blocked, free) = if want {
+                    (blocked + 1, free)
+                } else {
+                    (blocked, free + 1)
+                };
+            }
+        }
+    }
+    (blocked, free)
+}
+
+#[test]
+fn shadow_packets_equal_single_shadow_rays_with_and_without_the_object_bvh() {
+    let few = scene(MESHES, 37, 21, 1);
+    let (blocked, free) = shadow_packets_match(&few);
+    assert!(blocked > 50 && free > 200, "{blocked} blocked, {free} free");
+    let many = many_objects();
+    let (blocked, free) = shadow_packets_match(&many);
+    assert!(blocked > 50 && free > 200, "{blocked} blocked, {free} free");
 }
 
 /// The render (packets for scenes with meshes) equals pixel-by-pixel tracing bit for bit:
@@ -88,17 +141,25 @@ fn scene_packets_equal_single_rays_with_and_without_the_object_bvh() {
 #[test]
 fn packet_render_equals_per_pixel_render_bit_for_bit() {
     let diffuse = r#"{"type": "mesh", "file": "ico", "translate": [0, 0.4, 0], "normals": "smooth", "material": "matte"}"#;
-    for (objects, spp) in [(MESHES, 4), (MESHES, 1), (diffuse, 2)] {
-        let scene = scene(objects, 29, 19, spp);
+    // Direct-only plans (shadow rays in packets too): one mesh, and two meshes and a sphere.
+    let all_matte = MESHES.replace("glass", "matte").replace("mirror", "matte");
+    for (objects, spp, w, h, direct) in [
+        (MESHES, 4, 29, 19, false),
+        (MESHES, 1, 29, 19, false),
+        (diffuse, 2, 61, 45, true),
+        (&all_matte, 1, 61, 45, true),
+    ] {
+        let scene = scene(objects, w, h, spp);
+        assert_eq!(EffectPlan::for_scene(&scene).direct_only(), direct);
         let (image, stats) = render(&scene, &|_| {});
         let mut counts = RayCounts::default();
-        for y in 0..19 {
-            for x in 0..29 {
+        for y in 0..h {
+            for x in 0..w {
                 let l = render_pixel(&scene, x, y, &mut NoopRecorder, &mut counts, |_| {});
                 assert_eq!(image.get(x, y), l, "pixel {x},{y}, spp {spp}");
             }
         }
         assert_eq!(stats.rays, counts);
-        assert_eq!(counts.camera, u64::from(29 * 19 * spp));
+        assert_eq!(counts.camera, u64::from(w * h * spp));
     }
 }

@@ -19,7 +19,44 @@ struct Prepared {
     edges: EdgeRay,
 }
 
+/// The rays of a packet that reach the mesh's root box, prepared for the walk.
+struct Packet {
+    wide: Vec<WideRay>,
+    prepared: Vec<Prepared>,
+    /// Per prepared ray, its limit.
+    limit: [f64; PACKET],
+}
+
 impl Mesh {
+    /// Prepare `rays` (each under its limit `t_max[i]`) for [`WideBvh::traverse_packet`]:
+    /// those that miss the root box or have no direction are left out (they hit nothing).
+    ///
+    /// [`WideBvh::traverse_packet`]: crate::bvh::wide::WideBvh::traverse_packet
+    fn packet(&self, rays: &[Ray], t_max: &[f64]) -> Packet {
+        assert!(rays.len() <= PACKET);
+        let mut p = Packet {
+            wide: Vec::with_capacity(rays.len()),
+            prepared: Vec::with_capacity(rays.len()),
+            limit: [0.0; PACKET],
+        };
+        for (i, ray) in rays.iter().enumerate() {
+            let Some(w) = self.bvh.ray(ray, t_max[i]) else {
+                continue;
+            };
+            let Some(sheared) = ShearedRay::new(ray) else {
+                continue;
+            };
+            p.limit[p.wide.len()] = t_max[i];
+            p.prepared.push(Prepared {
+                index: i,
+                edges: EdgeRay::new(&sheared, &w),
+                sheared,
+            });
+            p.wide.push(w);
+        }
+        p
+    }
+
     /// [`Mesh::intersect`] of every ray in `rays` (at most [`PACKET`]) below its own limit
     /// `t_max[i]`, into `out[i]`; adds each ray's work to `cost[i]` (nodes: the wide nodes the
     /// packet visited with that ray in it, which can differ from the single ray's count: the
@@ -35,26 +72,15 @@ impl Mesh {
         cost: &mut [TraversalCost],
     ) {
         assert!(rays.len() <= PACKET);
-        let mut wide: Vec<WideRay> = Vec::with_capacity(rays.len());
-        let mut prepared: Vec<Prepared> = Vec::with_capacity(rays.len());
-        let mut limit = [0f64; PACKET];
-        for (i, ray) in rays.iter().enumerate() {
+        for i in 0..rays.len() {
             out[i] = None;
             cost[i].nodes += 1; // the root box
-            let Some(w) = self.bvh.ray(ray, t_max[i]) else {
-                continue;
-            };
-            let Some(sheared) = ShearedRay::new(ray) else {
-                continue;
-            };
-            limit[wide.len()] = t_max[i];
-            prepared.push(Prepared {
-                index: i,
-                edges: EdgeRay::new(&sheared, &w),
-                sheared,
-            });
-            wide.push(w);
         }
+        let Packet {
+            wide,
+            prepared,
+            mut limit,
+        } = self.packet(rays, t_max);
         let n = wide.len();
         let mut costs = [TraversalCost::default(); PACKET];
         let mut prims = [0u32; PACKET];
@@ -95,5 +121,47 @@ impl Mesh {
             cost[p.index].nodes += costs[r].nodes;
             cost[p.index].prims += prims[r];
         }
+    }
+
+    /// [`Mesh::occludes`] of every ray in `rays` (at most [`PACKET`]) below its own limit
+    /// `t_max[i]`: sets `blocked[i]` when some triangle is hit in `(t_min, t_max[i])` and
+    /// leaves it otherwise. A ray leaves the walk at its first hit. The answer is the single
+    /// ray's: the walk takes each ray into every box its own test enters, and a ray's limit
+    /// only falls to minus infinity once it is blocked.
+    ///
+    /// # Panics
+    /// If there are more than [`PACKET`] rays or a slice is shorter than `rays`.
+    pub fn occludes_packet(&self, rays: &[Ray], t_max: &[f64], blocked: &mut [bool]) {
+        let Packet {
+            wide,
+            prepared,
+            mut limit,
+        } = self.packet(rays, t_max);
+        let n = wide.len();
+        let mut costs = [TraversalCost::default(); PACKET];
+        self.bvh.traverse_packet(
+            &wide,
+            &mut limit[..n],
+            &mut costs[..n],
+            |r, g, t_max| {
+                let p = &prepared[r];
+                let group = self.bvh.groups[g];
+                let t_min = rays[p.index].t_min;
+                let mut mask = p.edges.candidates(&self.packs[g], group.count);
+                while mask != 0 {
+                    let slot = group.first as usize + mask.trailing_zeros() as usize;
+                    mask &= mask - 1;
+                    if p.sheared
+                        .t(&self.tris[slot])
+                        .is_some_and(|t| t > t_min && t < t_max)
+                    {
+                        blocked[p.index] = true;
+                        return f64::NEG_INFINITY;
+                    }
+                }
+                t_max
+            },
+            |g| self.prefetch_group(g),
+        );
     }
 }

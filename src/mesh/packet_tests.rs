@@ -29,7 +29,58 @@ fn check(mesh: &Mesh, rays: &[Ray], t_max: &[f64]) -> usize {
         assert!(cost[i].nodes >= 1 && (want.is_none() || cost[i].prims >= 1));
         hits += usize::from(want.is_some());
     }
+    // Any-hit: the same rays and limits, against `Mesh::occludes` per ray.
+    let mut blocked = vec![false; rays.len()];
+    mesh.occludes_packet(rays, t_max, &mut blocked);
+    for (i, ray) in rays.iter().enumerate() {
+        let want = mesh.occludes(ray, t_max[i], &mut TraversalCost::default());
+        assert_eq!(
+            blocked[i], want,
+            "occludes, ray {i}: {ray:?} t_max {}",
+            t_max[i]
+        );
+    }
     hits
+}
+
+#[test]
+fn shadow_packets_equal_single_shadow_rays() {
+    // Shadow rays from points on the mesh (offset along the normal, some not) towards lights
+    // in and around it, limited to the light's distance: blocked and free ones in one packet.
+    let mesh = placed(3, 1.0, DVec3::ZERO);
+    let n = mesh.triangle_count();
+    let mut rng = Rng(5);
+    let (mut blocked, mut free) = (0, 0);
+    for round in 0..60 {
+        let light = rng.unit() * [0.5, 2.0, 6.0][round % 3];
+        let first = (round * 37) % n;
+        let mut rays = Vec::new();
+        let mut t_max = Vec::new();
+        for i in 0..[PACKET, 5, 40][round % 3] {
+            let [a, b, c] = mesh.triangle((first + i) % n);
+            let p = (a + b + c) / 3.0;
+            let lift = if i % 2 == 0 { 1e-6 } else { 0.0 };
+            let origin = p + lift * mesh.geometric_normal((first + i) % n);
+            let to = light - origin;
+            rays.push(Ray::new(origin, to.normalize(), 0.0));
+            t_max.push(to.length());
+        }
+        let mut got = vec![false; rays.len()];
+        mesh.occludes_packet(&rays, &t_max, &mut got);
+        for (i, ray) in rays.iter().enumerate() {
+            let want = mesh.occludes(ray, t_max[i], &mut TraversalCost::default());
+            assert_eq!(got[i], want, "round {round} ray {i}");
+            (blocked, free) = if want {
+                (blocked + 1, free)
+            } else {
+                (blocked, free + 1)
+            };
+        }
+    }
+    assert!(
+        blocked > 300 && free > 300,
+        "{blocked} blocked, {free} free"
+    );
 }
 
 #[test]

@@ -352,4 +352,23 @@ impl Scene {
     pub fn material_of(&self, object: usize) -> &Material {
         &self.materials[self.objects[object].material]
     }
+
+    /// Whether some object uses material `m` (an index into [`Scene::materials`]).
+    #[must_use]
+    pub fn material_used(&self, m: usize) -> bool {
+        self.objects.iter().any(|o| o.material == m)
+    }
+
+    /// The materials some object uses, in table order: the ones that decide the effect plan
+    /// ([`crate::effects::EffectPlan::for_scene`]).
+    pub fn used_materials(&self) -> impl Iterator<Item = &Material> {
+        let mut used = vec![false; self.materials.len()];
+        for o in &self.objects {
+            used[o.material] = true;
+        }
+        self.materials
+            .iter()
+            .zip(used)
+            .filter_map(|(m, u)| u.then_some(m))
+    }
 }

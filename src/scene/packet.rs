@@ -60,4 +60,50 @@ impl Scene {
             }
         }
     }
+
+    /// [`Scene::occluded`] of each of `rays` (at most [`PACKET`]) over `(ray.t_min, t_max[i])`,
+    /// into `blocked`: the single rays' answers. Shadow rays towards one light from a tile's
+    /// hits are coherent, so each mesh is walked once for all the rays no other object blocked
+    /// before it ([`crate::mesh::Mesh::occludes_packet`]); other objects take the rays one by
+    /// one, and scenes large enough for the object BVH take every ray alone.
+    ///
+    /// # Panics
+    /// If there are more than [`PACKET`] rays or a slice is shorter than `rays`.
+    pub fn occluded_packet(&self, rays: &[Ray], t_max: &[f64], blocked: &mut [bool]) {
+        let n = rays.len();
+        assert!(n <= PACKET && t_max.len() >= n && blocked.len() >= n);
+        let mut cost = TraversalCost::default();
+        if self.accel.is_for(self.objects.len()) {
+            for i in 0..n {
+                blocked[i] = self.occluded(&rays[i], t_max[i], &mut cost);
+            }
+            return;
+        }
+        blocked[..n].fill(false);
+        let mut open = Vec::with_capacity(n);
+        let (mut sub, mut limit, mut hit) = (Vec::with_capacity(n), [0.0; PACKET], [false; PACKET]);
+        for (object, o) in self.objects.iter().enumerate() {
+            open.clear();
+            open.extend((0..n).filter(|&i| !blocked[i]));
+            if open.is_empty() {
+                return;
+            }
+            if let Shape::Mesh(m) = &o.shape {
+                sub.clear();
+                for (k, &i) in open.iter().enumerate() {
+                    sub.push(rays[i]);
+                    limit[k] = t_max[i];
+                    hit[k] = false;
+                }
+                m.occludes_packet(&sub, &limit[..sub.len()], &mut hit[..sub.len()]);
+                for (k, &i) in open.iter().enumerate() {
+                    blocked[i] = hit[k];
+                }
+            } else {
+                for &i in &open {
+                    blocked[i] = object_hit(o, object, &rays[i], t_max[i], &mut cost).is_some();
+                }
+            }
+        }
+    }
 }

@@ -9,6 +9,7 @@
 use super::local::cos_to_light;
 use super::{MediaStack, RayCounts, Tracer};
 use crate::bvh::TraversalCost;
+use crate::bvh::wide::PACKET;
 use crate::math::{Ray, Rgb};
 use crate::scene::{Hit, Material, OffsetStrategy};
 use glam::DVec3;
@@ -58,22 +59,9 @@ impl Tracer<'_> {
         let Some(hit) = hit else {
             return scene.background;
         };
-        let m = scene.material_of(hit.object);
-        let s = self.surface(ray, &hit, m, &MediaStack::AIR);
-        let albedo = m.diffuse.at(s.p);
-        let emitted = if s.entering { m.emission } else { Rgb::ZERO };
-        let total = emitted + scene.ambient * albedo;
-        if m.diffuse.is_black() && m.specular == Rgb::ZERO {
+        let (total, at) = self.shading_at(ray, &hit);
+        let Some(at) = at else {
             return total;
-        }
-        let at = At {
-            hit: &hit,
-            m,
-            p: s.p,
-            n: s.n,
-            ns: s.ns,
-            wo: -ray.direction,
-            albedo,
         };
         use OffsetStrategy as O;
         match (self.plan.specular, scene.settings.offset.strategy) {
@@ -85,6 +73,114 @@ impl Tracer<'_> {
             (true, O::Ray) => self.lights::<true, RAY>(&at, total, counts),
             (true, O::Scaled) => self.lights::<true, SCALED>(&at, total, counts),
             (true, O::Robust) => self.lights::<true, ROBUST>(&at, total, counts),
+        }
+    }
+
+    /// [`Tracer::trace_direct_only`] of a packet of camera rays with their closest hits
+    /// (`hits[i]` for `rays[i]`, from [`crate::Scene::intersect_packet`]), into `out`: the same
+    /// radiance bit for bit, but each light's shadow rays from the packet's hits are tested
+    /// together ([`crate::Scene::occluded_packet`]). Every ray adds its lights in light order,
+    /// as the single path does.
+    ///
+    /// # Panics
+    /// If `hits` or `out` is shorter than `rays`, or there are more than
+    /// [`crate::bvh::wide::PACKET`] rays.
+    pub(crate) fn trace_direct_packet(
+        &self,
+        rays: &[Ray],
+        hits: &[Option<Hit>],
+        out: &mut [Rgb],
+        counts: &mut RayCounts,
+    ) {
+        use OffsetStrategy as O;
+        let args = (rays, hits, out, counts);
+        match (self.plan.specular, self.scene.settings.offset.strategy) {
+            (false, O::Normal) => self.packet_lights::<false, NORMAL>(args),
+            (false, O::Ray) => self.packet_lights::<false, RAY>(args),
+            (false, O::Scaled) => self.packet_lights::<false, SCALED>(args),
+            (false, O::Robust) => self.packet_lights::<false, ROBUST>(args),
+            (true, O::Normal) => self.packet_lights::<true, NORMAL>(args),
+            (true, O::Ray) => self.packet_lights::<true, RAY>(args),
+            (true, O::Scaled) => self.packet_lights::<true, SCALED>(args),
+            (true, O::Robust) => self.packet_lights::<true, ROBUST>(args),
+        }
+    }
+
+    /// The shading inputs of `hit` on `ray` and its radiance without lights, or only the
+    /// radiance when no light can add to it ([`Tracer::trace_direct_only`]'s first half).
+    #[inline(always)]
+    fn shading_at<'h>(&'h self, ray: &Ray, hit: &'h Hit) -> (Rgb, Option<At<'h>>) {
+        let scene = self.scene;
+        let m = scene.material_of(hit.object);
+        let s = self.surface(ray, hit, m, &MediaStack::AIR);
+        let albedo = m.diffuse.at(s.p);
+        let emitted = if s.entering { m.emission } else { Rgb::ZERO };
+        let total = emitted + scene.ambient * albedo;
+        if m.diffuse.is_black() && m.specular == Rgb::ZERO {
+            return (total, None);
+        }
+        let at = At {
+            hit,
+            m,
+            p: s.p,
+            n: s.n,
+            ns: s.ns,
+            wo: -ray.direction,
+            albedo,
+        };
+        (total, Some(at))
+    }
+
+    /// [`Tracer::trace_direct_packet`] for one plan and offset strategy.
+    fn packet_lights<const SPECULAR: bool, const STRATEGY: u8>(
+        &self,
+        (rays, hits, out, counts): (&[Ray], &[Option<Hit>], &mut [Rgb], &mut RayCounts),
+    ) {
+        let scene = self.scene;
+        let n = rays.len();
+        assert!(n <= PACKET && hits.len() >= n && out.len() >= n);
+        let mut ats: Vec<Option<At>> = Vec::with_capacity(n);
+        for (i, ray) in rays.iter().enumerate() {
+            counts.camera += 1;
+            let (total, at) = match &hits[i] {
+                Some(hit) => self.shading_at(ray, hit),
+                None => (scene.background, None),
+            };
+            out[i] = total;
+            ats.push(at);
+        }
+        // Per light: the shadow rays of the hits it faces, tested together.
+        let mut shadows = Vec::with_capacity(n);
+        let (mut of, mut seg, mut add) = ([0usize; PACKET], [0.0; PACKET], [Rgb::ZERO; PACKET]);
+        let mut blocked = [false; PACKET];
+        for (l, light) in scene.lights.iter().enumerate() {
+            if !self.plan.light_on(l) {
+                continue;
+            }
+            shadows.clear();
+            for (i, at) in ats.iter().enumerate() {
+                let Some(at) = at else { continue };
+                let (wi, dist, irradiance) = light.sample(at.p);
+                let cos = cos_to_light(at.n, at.ns, wi);
+                if cos <= 0.0 {
+                    continue;
+                }
+                counts.shadow += 1;
+                let from = (at.hit.object, at.hit.triangle);
+                let k = shadows.len();
+                let (ray, len) = self.shadow_ray(strategy(STRATEGY), from, at.p, at.n, wi, dist);
+                let (_, weight) =
+                    Self::light_weight(SPECULAR, at.m, at.albedo, at.ns, (wi, at.wo), cos);
+                (of[k], seg[k], add[k]) = (i, len, weight * irradiance);
+                shadows.push(ray);
+            }
+            let k = shadows.len();
+            scene.occluded_packet(&shadows, &seg[..k], &mut blocked[..k]);
+            for k in 0..k {
+                if !blocked[k] {
+                    out[of[k]] += add[k];
+                }
+            }
         }
     }
 

@@ -165,6 +165,33 @@ impl<'a> Tracer<'a> {
         self.trace_camera_general(ray, Some(found), rec, counts)
     }
 
+    /// [`Tracer::trace_camera_found`] of a packet of camera rays (at most
+    /// [`crate::bvh::wide::PACKET`]) with their hits and costs from
+    /// [`Scene::intersect_packet`], the radiance of `rays[i]` into `out[i]`, the same bits. On
+    /// the direct-only path (nothing recorded or diagnosed) the shadow rays of the packet's hits
+    /// are traced as packets too; otherwise ray by ray.
+    ///
+    /// # Panics
+    /// If `found`, `cost` or `out` is shorter than `rays`.
+    pub fn trace_camera_packet<R: Recorder>(
+        &self,
+        rays: &[Ray],
+        (found, cost): (&[Option<Hit>], &[TraversalCost]),
+        out: &mut [Rgb],
+        rec: &mut R,
+        counts: &mut RayCounts,
+    ) {
+        if self.direct_only && !R::RECORDS && !R::DIAGNOSE {
+            self.trace_direct_packet(rays, found, out, counts);
+            return;
+        }
+        for (i, ray) in rays.iter().enumerate() {
+            out[i] = self
+                .trace_camera_found(*ray, (found[i], cost[i]), rec, counts)
+                .0;
+        }
+    }
+
     fn trace_camera_general<R: Recorder>(
         &self,
         ray: Ray,
