@@ -57,6 +57,49 @@ impl Mesh {
         p
     }
 
+    /// Walk `rays` (each under its limit `t_max[i]`) through the BVH as one packet: for every
+    /// triangle the `f32` filter lets through on ray `i`'s way, `test(i, sheared, slot,
+    /// t_max)` returns that ray's new limit (below the old narrows it; minus infinity takes
+    /// the ray out of the walk). Adds each ray's nodes and filtered triangles to `cost[i]`.
+    fn walk_packet(
+        &self,
+        rays: &[Ray],
+        t_max: &[f64],
+        cost: &mut [TraversalCost],
+        mut test: impl FnMut(usize, &ShearedRay, usize, f64) -> f64,
+    ) {
+        let Packet {
+            wide,
+            prepared,
+            mut limit,
+        } = self.packet(rays, t_max);
+        let n = wide.len();
+        let mut costs = [TraversalCost::default(); PACKET];
+        let mut prims = [0u32; PACKET];
+        self.bvh.traverse_packet(
+            &wide,
+            &mut limit[..n],
+            &mut costs[..n],
+            |r, g, mut t_max| {
+                let p = &prepared[r];
+                let group = self.bvh.groups[g];
+                prims[r] += group.count;
+                let mut mask = p.edges.candidates(&self.packs[g], group.count);
+                while mask != 0 && t_max > f64::NEG_INFINITY {
+                    let slot = group.first as usize + mask.trailing_zeros() as usize;
+                    mask &= mask - 1;
+                    t_max = test(p.index, &p.sheared, slot, t_max);
+                }
+                t_max
+            },
+            |g| self.prefetch_group(g),
+        );
+        for (r, p) in prepared.iter().enumerate() {
+            cost[p.index].nodes += costs[r].nodes;
+            cost[p.index].prims += prims[r];
+        }
+    }
+
     /// [`Mesh::intersect`] of every ray in `rays` (at most [`PACKET`]) below its own limit
     /// `t_max[i]`, into `out[i]`; adds each ray's work to `cost[i]` (nodes: the wide nodes the
     /// packet visited with that ray in it, which can differ from the single ray's count: the
@@ -76,51 +119,14 @@ impl Mesh {
             out[i] = None;
             cost[i].nodes += 1; // the root box
         }
-        let Packet {
-            wide,
-            prepared,
-            mut limit,
-        } = self.packet(rays, t_max);
-        let n = wide.len();
-        let mut costs = [TraversalCost::default(); PACKET];
-        let mut prims = [0u32; PACKET];
-        let mut best = [None; PACKET];
-        self.bvh.traverse_packet(
-            &wide,
-            &mut limit[..n],
-            &mut costs[..n],
-            |r, g, t_max| {
-                let p = &prepared[r];
-                let group = self.bvh.groups[g];
-                prims[r] += group.count;
-                let mut mask = p.edges.candidates(&self.packs[g], group.count);
-                let mut t_max = t_max;
-                while mask != 0 {
-                    let slot = group.first as usize + mask.trailing_zeros() as usize;
-                    mask &= mask - 1;
-                    let t_min = rays[p.index].t_min;
-                    let t = closer(
-                        &p.sheared,
-                        &self.tris[slot],
-                        slot,
-                        t_min,
-                        t_max,
-                        &mut best[r],
-                    );
-                    if t < t_max {
-                        self.prefetch_shading(slot);
-                        t_max = t;
-                    }
-                }
-                t_max
-            },
-            |g| self.prefetch_group(g),
-        );
-        for (r, p) in prepared.iter().enumerate() {
-            out[p.index] = best[r];
-            cost[p.index].nodes += costs[r].nodes;
-            cost[p.index].prims += prims[r];
-        }
+        self.walk_packet(rays, t_max, cost, |i, sheared, slot, t_max| {
+            let tri = &self.tris[slot];
+            let t = closer(sheared, tri, slot, rays[i].t_min, t_max, &mut out[i]);
+            if t < t_max {
+                self.prefetch_shading(slot);
+            }
+            t
+        });
     }
 
     /// [`Mesh::occludes`] of every ray in `rays` (at most [`PACKET`]) below its own limit
@@ -132,36 +138,18 @@ impl Mesh {
     /// # Panics
     /// If there are more than [`PACKET`] rays or a slice is shorter than `rays`.
     pub fn occludes_packet(&self, rays: &[Ray], t_max: &[f64], blocked: &mut [bool]) {
-        let Packet {
-            wide,
-            prepared,
-            mut limit,
-        } = self.packet(rays, t_max);
-        let n = wide.len();
-        let mut costs = [TraversalCost::default(); PACKET];
-        self.bvh.traverse_packet(
-            &wide,
-            &mut limit[..n],
-            &mut costs[..n],
-            |r, g, t_max| {
-                let p = &prepared[r];
-                let group = self.bvh.groups[g];
-                let t_min = rays[p.index].t_min;
-                let mut mask = p.edges.candidates(&self.packs[g], group.count);
-                while mask != 0 {
-                    let slot = group.first as usize + mask.trailing_zeros() as usize;
-                    mask &= mask - 1;
-                    if p.sheared
-                        .t(&self.tris[slot])
-                        .is_some_and(|t| t > t_min && t < t_max)
-                    {
-                        blocked[p.index] = true;
-                        return f64::NEG_INFINITY;
-                    }
-                }
+        let mut cost = [TraversalCost::default(); PACKET];
+        self.walk_packet(rays, t_max, &mut cost, |i, sheared, slot, t_max| {
+            let t_min = rays[i].t_min;
+            if sheared
+                .t(&self.tris[slot])
+                .is_some_and(|t| t > t_min && t < t_max)
+            {
+                blocked[i] = true;
+                f64::NEG_INFINITY
+            } else {
                 t_max
-            },
-            |g| self.prefetch_group(g),
-        );
+            }
+        });
     }
 }
