@@ -65,14 +65,22 @@ fn harness(files: &MemFiles) -> Harness<'static, InspectorApp> {
         adjust,
         Arc::new(|| {}),
     );
-    let mut h = Harness::builder()
+    let mut h = inspector(session);
+    settle(&mut h);
+    h
+}
+
+/// The inspector on `session` in a harness. Up to 16 steps to settle: a frame can see the
+/// worker's deliveries (image, then statistics) one at a time, and on a loaded machine they
+/// arrive at different frames (4, kittest's default, was once too few under CI).
+fn inspector(session: Session) -> Harness<'static, InspectorApp> {
+    Harness::builder()
         .with_size([1500.0, 950.0])
+        .with_max_steps(16)
         .build_ui_state(
             |ui, app: &mut InspectorApp| app.show(ui),
             InspectorApp::new(session),
-        );
-    settle(&mut h);
-    h
+        )
 }
 
 /// Wait for the worker, then let the UI settle.
@@ -238,12 +246,7 @@ fn a_mesh_scene_reads_its_obj_through_the_file_hook() {
         raytree::geometry::Shape::Mesh(_)
     ));
     // The traversal heat map: picked in the view menu, the mesh's pixels cost BVH work.
-    let mut h = Harness::builder()
-        .with_size([1500.0, 950.0])
-        .build_ui_state(
-            |ui, app: &mut InspectorApp| app.show(ui),
-            InspectorApp::new(s),
-        );
+    let mut h = inspector(s);
     settle(&mut h);
     h.get_by_label("show").click();
     h.run();
