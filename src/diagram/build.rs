@@ -81,14 +81,28 @@ impl Diagram {
         let (lo, hi) = bounds(&mut pts.iter().copied());
         // Where the rays interact (hits, blockers, spawn points). When the eye or a light is
         // far away, frame on this part and let those rays enter or leave through the frame.
-        let mut core = segs.iter().flat_map(|s| {
-            let start = (s.node.kind != RayKind::Camera).then_some(s.start);
-            let end = s
-                .end
-                .filter(|_| matches!(s.end_kind, RayEnd::Hit | RayEnd::Blocked));
-            start.into_iter().chain(end)
-        });
-        let (clo, chi) = bounds(&mut core);
+        // Interactions far from those of the labelled depths (a deep bounce's hit a hundred
+        // units away) leave through the frame too: the figure is about the first bounces.
+        let interactions = || {
+            segs.iter().flat_map(|s| {
+                let start = (s.node.kind != RayKind::Camera).then_some(s.start);
+                let end = s
+                    .end
+                    .filter(|_| matches!(s.end_kind, RayEnd::Hit | RayEnd::Blocked));
+                start.into_iter().chain(end).map(|p| (s.node.depth, p))
+            })
+        };
+        let (nlo, nhi) = bounds(
+            &mut interactions()
+                .filter(|&(depth, _)| depth <= opts.label_depth)
+                .map(|(_, p)| p),
+        );
+        let margin = 3.0 * (nhi - nlo).max_element().max(extent3 * 0.02);
+        let near = |p: DVec3| {
+            let q = frame.plane_coords(p);
+            !nlo.x.is_finite() || (q.cmpge(nlo - margin).all() && q.cmple(nhi + margin).all())
+        };
+        let (clo, chi) = bounds(&mut interactions().map(|(_, p)| p).filter(|&p| near(p)));
         let zoomed = clo.x.is_finite()
             && (hi - lo).max_element() > 3.0 * (chi - clo).max_element().max(extent3 * 0.02);
         let (lo, hi) = if zoomed { (clo, chi) } else { (lo, hi) };
