@@ -98,6 +98,9 @@ pub fn diagram_ui(
     }
     if doc.tree.is_none() {
         ui.label("Select a pixel to see its diagram.");
+        // Fill the panel: egui keeps a bottom panel's height from its content, so a panel
+        // holding one line would stay one line tall once a diagram arrives.
+        ui.allocate_space(ui.available_size());
         return;
     }
     let area = ui.available_rect_before_wrap();
