@@ -10,7 +10,7 @@ use criterion::{Criterion, Throughput, criterion_group, criterion_main};
 use rayon::prelude::*;
 use raytree::Scene;
 use raytree::bvh::TraversalCost;
-use raytree::mesh::generate::icosphere;
+use raytree::mesh::generate::icosphere_scene;
 use raytree::mesh::{MeshData, parse_obj};
 use std::hint::black_box;
 use std::path::Path;
@@ -18,15 +18,7 @@ use std::time::{Duration, Instant};
 
 /// A unit icosphere of `level` subdivisions in front of the camera, filling most of the view.
 fn sphere_scene(level: u32, size: u32) -> Scene {
-    let json = format!(
-        r#"{{"camera": {{"position": [0, 0, 3], "look_at": [0, 0, 0], "fov_y": 40,
-             "width": {size}, "height": {size}}},
-            "materials": {{"m": {{"diffuse": [0.8, 0.8, 0.8]}}}},
-            "objects": [{{"type": "mesh", "file": "ico", "material": "m"}}],
-            "lights": [{{"type": "point", "position": [2, 2, 4], "intensity": [20, 20, 20]}}]}}"#
-    );
-    let data = icosphere(level);
-    Scene::from_json_with(&json, &mut |_| Ok::<MeshData, String>(data.clone())).unwrap()
+    icosphere_scene(level, size, 3.0)
 }
 
 /// Closest hits of every pixel-centre camera ray; returns the number of hits.

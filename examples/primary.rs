@@ -13,8 +13,7 @@
 
 use raytree::Scene;
 use raytree::bvh::TraversalCost;
-use raytree::mesh::MeshData;
-use raytree::mesh::generate::icosphere;
+use raytree::mesh::generate::icosphere_scene;
 use std::hint::black_box;
 use std::time::Instant;
 
@@ -24,15 +23,10 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     let level: u32 = args.first().ok_or(usage)?.parse()?;
     let size: u32 = args.get(1).ok_or(usage)?.parse()?;
     let distance: f64 = args.get(2).map_or(Ok(3.0), |s| s.parse())?;
-    let json = format!(
-        r#"{{"camera": {{"position": [0, 0, {distance}], "look_at": [0, 0, 0], "fov_y": 40,
-             "width": {size}, "height": {size}}},
-            "materials": {{"m": {{"diffuse": [0.8, 0.8, 0.8]}}}},
-            "objects": [{{"type": "mesh", "file": "ico", "material": "m"}}],
-            "lights": [{{"type": "point", "position": [2, 2, 4], "intensity": [20, 20, 20]}}]}}"#
-    );
-    let data = icosphere(level);
-    let scene = Scene::from_json_with(&json, &mut |_| Ok::<MeshData, String>(data.clone()))?;
+    if size == 0 || !(distance > 1.0 && distance.is_finite()) {
+        return Err("SIZE must be positive and DISTANCE above 1 (outside the sphere)".into());
+    }
+    let scene = icosphere_scene(level, size, distance);
     let mut best = [f64::INFINITY; 2];
     let mut hits = [0; 2];
     for _ in 0..15 {
@@ -50,7 +44,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     println!(
         "raytree {} triangles {size}x{size} distance {distance}: hit {:.3}, 8x8 packets {:.1} ns/ray \
          ({:.2} M rays/s), single rays {:.1} ns/ray (fastest of 15)",
-        data.faces.len(),
+        20 * 4u64.pow(level),
         hits[0] as f64 / n,
         best[0] * 1e9 / n,
         n / best[0] / 1e6,
