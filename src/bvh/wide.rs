@@ -180,6 +180,20 @@ impl WideBvh {
         self.walk(ray, t_max, cost, test, warm, stack);
     }
 
+    /// Prefetch child reference `child`: an inner node's box data here, a leaf's groups
+    /// through `warm` (the caller's data, see [`WideBvh::traverse`]).
+    #[inline(always)]
+    fn warm(&self, child: u32, warm: &mut impl FnMut(usize)) {
+        if child & LEAF == 0 {
+            self.nodes[child as usize].prefetch();
+        } else {
+            let first = ((child & !LEAF) >> 4) as usize;
+            for g in first..first + (child & 15) as usize {
+                warm(g);
+            }
+        }
+    }
+
     /// [`WideBvh::traverse`] with a stack of at least [`WideBvh::stack`] entries, each
     /// `entry distance bits << 32 | child reference`.
     #[inline(always)]

@@ -45,9 +45,7 @@ impl TriPack {
         }
         Self { v }
     }
-}
 
-impl TriPack {
     /// Prefetch the pack's lines (144 bytes: addresses at most 48 bytes apart, the last in the
     /// final word).
     #[inline(always)]
@@ -68,8 +66,9 @@ pub(crate) struct EdgeRay {
     sy: f32,
     /// Shifted origin, components in `k` order.
     o: [f32; 3],
-    /// `4 delta` and `2 delta^2` (plus the least normal, so it is never 0) of the bound.
+    /// `4 delta`, the bound's linear factor.
     d4: f32,
+    /// `2 delta^2` plus the least normal `f32` (so the bound is never 0).
     dd: f32,
     /// Keep every lane (`f32` unsafe for this query).
     all: bool,

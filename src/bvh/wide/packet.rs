@@ -166,22 +166,6 @@ impl WideBvh {
     }
 }
 
-impl WideBvh {
-    /// Prefetch child reference `child`: an inner node's box data here, a leaf's groups
-    /// through `warm`.
-    #[inline(always)]
-    pub(super) fn warm(&self, child: u32, warm: &mut impl FnMut(usize)) {
-        if child & LEAF == 0 {
-            self.nodes[child as usize].prefetch();
-        } else {
-            let first = ((child & !LEAF) >> 4) as usize;
-            for g in first..first + (child & 15) as usize {
-                warm(g);
-            }
-        }
-    }
-}
-
 /// Whether some ray of `mask` may enter a box whose entry parameter is at least `key` for
 /// every ray (in each ray's own shifted `s`): `key <= s_max` for one of them. `f64` rays keep
 /// every entry, as in [`WideBvh::traverse`].
