@@ -6,6 +6,7 @@
 use criterion::{Criterion, criterion_group, criterion_main};
 use raytree::bvh::TraversalCost;
 use raytree::math::Rgb;
+use raytree::scene::Film;
 use raytree::{NoopRecorder, RayCounts, Scene, Tracer, render_pixel_with};
 use std::hint::black_box;
 use std::time::{Duration, Instant};
@@ -27,9 +28,10 @@ const DIFFUSE_ONLY: &str = r#"{
   "lights": [{"type": "point", "position": [4, 7, 6], "intensity": [120, 120, 120]}]
 }"#;
 
-/// The baseline: Appel-style ray casting, the lecture's `evaluate_rendering_equation`.
-fn ray_cast(scene: &Scene, x: u32, y: u32) -> Rgb {
-    let ray = scene.camera.ray(f64::from(x) + 0.5, f64::from(y) + 0.5);
+/// The baseline: Appel-style ray casting, the lecture's `evaluate_rendering_equation`. Camera
+/// rays come from the camera's `film`, as the tracer's do.
+fn ray_cast(scene: &Scene, film: &Film, x: u32, y: u32) -> Rgb {
+    let ray = film.ray(f64::from(x) + 0.5, f64::from(y) + 0.5);
     let Some(hit) = scene.intersect(&ray, f64::INFINITY) else {
         return scene.background;
     };
@@ -60,11 +62,12 @@ fn ray_cast(scene: &Scene, x: u32, y: u32) -> Rgb {
 fn frame(scene: &Scene, tracer: &Tracer, caster: bool) -> f64 {
     let (w, h) = (scene.camera.width, scene.camera.height);
     let mut counts = RayCounts::default();
+    let film = scene.camera.film();
     let mut s = 0.0;
     for y in 0..h {
         for x in 0..w {
             s += if caster {
-                ray_cast(black_box(scene), x, y).x
+                ray_cast(black_box(scene), &film, x, y).x
             } else {
                 render_pixel_with(
                     black_box(tracer),
@@ -112,7 +115,7 @@ fn bench(c: &mut Criterion) {
     for y in (0..h).step_by(7) {
         for x in (0..w).step_by(5) {
             let a = render_pixel_with(&tracer, x, y, &mut NoopRecorder, &mut counts, |_| {});
-            let b = ray_cast(&scene, x, y);
+            let b = ray_cast(&scene, &scene.camera.film(), x, y);
             assert!(
                 (a - b).abs().max_element() < 1e-12,
                 "pixel {x},{y}: {a} vs {b}"

@@ -132,7 +132,7 @@ pub fn render_pixel_with<R: Recorder>(
     let mut sum = Rgb::ZERO;
     for s in 0..spp {
         let (fx, fy) = sample_position(x, y, s, spp);
-        let (l, root) = tracer.trace_camera(scene.camera.ray(fx, fy), rec, counts);
+        let (l, root) = tracer.trace_camera(tracer.film().ray(fx, fy), rec, counts);
         sum += l;
         if let Some(root) = root {
             on_sample(SampleRecord {
@@ -353,7 +353,7 @@ fn render_band<R: Recorder + Default>(
     let mut counts = RayCounts::default();
     let mut rec = R::default();
     let mut band = vec![Rgb::ZERO; (w * rows) as usize];
-    let film = scene.camera.film();
+    let film = tracer.film();
     let mut rays = Vec::with_capacity(PACKET);
     let mut hits = [None; PACKET];
     let mut cost = [TraversalCost::default(); PACKET];

@@ -16,7 +16,7 @@ pub use recorder::{DiagnosticRecorder, NoopRecorder, Recorder, TreeRecorder};
 use crate::bvh::TraversalCost;
 use crate::effects::EffectPlan;
 use crate::math::{Ray, Rgb};
-use crate::scene::{Hit, Scene};
+use crate::scene::{Film, Hit, Scene};
 use crate::tree::{EndReason, NodeId, RayKind};
 use glam::DVec3;
 
@@ -103,6 +103,8 @@ pub struct Tracer<'a> {
     /// radiance is the local term at its hit, which [`Tracer::trace_direct_only`] computes
     /// without the recursion's bookkeeping when nothing is recorded.
     direct_only: bool,
+    /// The camera's image plane, its field of view evaluated once.
+    film: Film<'a>,
 }
 
 impl<'a> Tracer<'a> {
@@ -120,7 +122,15 @@ impl<'a> Tracer<'a> {
             scene,
             plan,
             direct_only,
+            film: scene.camera.film(),
         }
+    }
+
+    /// The scene camera's image plane ([`crate::scene::Camera::film`]): its camera rays, the
+    /// same as [`crate::scene::Camera::ray`]'s, without evaluating the field of view per ray.
+    #[must_use]
+    pub fn film(&self) -> &Film<'a> {
+        &self.film
     }
 
     /// The scene.
