@@ -331,6 +331,20 @@ fn rows(b: &[[f32; WIDTH]; 6], a: usize, neg: bool) -> (&[f32; WIDTH], &[f32; WI
     if neg { (max, min) } else { (min, max) }
 }
 
+/// `x < y ? x : y`: one `minps` lane. Unlike `f32::min`, no NaN handling (a NaN in `x` yields
+/// `y`): the packet's interval test and the triangle filter need none (a NaN edge function
+/// already passes the filter).
+#[inline(always)]
+pub(crate) fn min(x: f32, y: f32) -> f32 {
+    if x < y { x } else { y }
+}
+
+/// `x > y ? x : y`: one `maxps` lane; a NaN in `x` yields `y` (see [`min`]).
+#[inline(always)]
+pub(crate) fn max(x: f32, y: f32) -> f32 {
+    if x > y { x } else { y }
+}
+
 /// The same test in `f64` on the original ray (entry distances are then only for the order).
 /// Boxes go back to world space in `f64`, widened by that addition's rounding.
 fn enter_f64(node: &Node, ray: &WideRay, t_max: f64, center: DVec3) -> (u32, [f32; WIDTH]) {

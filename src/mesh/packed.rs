@@ -21,7 +21,7 @@
 //! `8 u r^2`. `max` may drop a NaN coordinate, but a NaN also makes an edge function NaN, which
 //! no comparison rejects.
 
-use crate::bvh::wide::{GROUP, WideRay};
+use crate::bvh::wide::{GROUP, WideRay, max};
 use crate::geometry::ShearedRay;
 use glam::DVec3;
 
@@ -142,10 +142,4 @@ impl EdgeRay {
         }
         mask & lanes
     }
-}
-
-/// `maxps`: unlike `f32::max` no NaN handling (a NaN edge function already passes the filter).
-#[inline(always)]
-fn max(x: f32, y: f32) -> f32 {
-    if x > y { x } else { y }
 }

@@ -32,7 +32,9 @@
 
 #[cfg(test)]
 use super::enter_f32;
-use super::{EMPTY, LEAF, Node, STACK, WIDTH, WideBvh, WideRay, enter_f64, rows, slabs_f32};
+use super::{
+    EMPTY, LEAF, Node, STACK, WIDTH, WideBvh, WideRay, enter_f64, max, min, rows, slabs_f32,
+};
 use crate::bvh::{TraversalCost, up};
 
 /// Most rays in one packet (one bit each in a `u64` mask).
@@ -319,16 +321,6 @@ impl Interval {
         }
         [0, 1, 2, 3].map(|l| (lo[l], if lo[l] <= hi[l] { mask } else { 0 }))
     }
-}
-
-#[inline(always)]
-fn min(x: f32, y: f32) -> f32 {
-    if x < y { x } else { y }
-}
-
-#[inline(always)]
-fn max(x: f32, y: f32) -> f32 {
-    if x > y { x } else { y }
 }
 
 /// Per-ray visit counts as bit-sliced counters: plane `k` holds bit `k` of every ray's count,
