@@ -13,7 +13,7 @@ use super::model::{Diagram, Fill, LabelRole, LegendKey, RaySegment, SliceShape};
 use crate::tree::RayKind;
 use glam::DVec2;
 use hatch::hatch;
-use prim::{arrow_head, cross, rect_points, stroke};
+use prim::{arrow_head, cross, dot, rect_points, stroke};
 use rays::{inset_prims, ray_prims};
 use style::mix;
 
@@ -115,12 +115,7 @@ pub fn display_list(d: &Diagram, style: &Style) -> Vec<Prim> {
                 None,
             ));
         }
-        out.push(Prim::Circle {
-            center: h.point,
-            radius: 3.0 * ws,
-            fill: Some(style.ink.fade(h.fade)),
-            stroke: None,
-        });
+        out.push(dot(h.point, 3.0 * ws, style.ink.fade(h.fade)));
         if h.tir {
             out.push(Prim::Circle {
                 center: h.point,
@@ -185,18 +180,8 @@ pub fn display_list(d: &Diagram, style: &Style) -> Vec<Prim> {
                 None,
             ));
         }
-        out.push(Prim::Circle {
-            center: c.pixel,
-            radius: 3.5 * ws,
-            fill: Some(style.ink),
-            stroke: None,
-        });
-        out.push(Prim::Circle {
-            center: c.eye,
-            radius: 0.35 * fs,
-            fill: Some(style.ink),
-            stroke: None,
-        });
+        out.push(dot(c.pixel, 3.5 * ws, style.ink));
+        out.push(dot(c.eye, 0.35 * fs, style.ink));
     }
     for i in &d.insets {
         inset_prims(i, style, ws, fs, &mut out);

@@ -66,6 +66,16 @@ pub(super) fn stroke(points: Vec<Point>, color: Rgba, width: f64, dash: Option<[
     }
 }
 
+/// A filled disc without outline (hit points, spawn points, the eye).
+pub(super) fn dot(center: Point, radius: f64, color: Rgba) -> Prim {
+    Prim::Circle {
+        center,
+        radius,
+        fill: Some(color),
+        stroke: None,
+    }
+}
+
 pub(super) fn arrow_head(to: Point, dir: Point, len: f64, color: Rgba) -> Option<Prim> {
     let d = dir.try_normalize()?;
     let n = DVec2::new(-d.y, d.x);

@@ -1,7 +1,7 @@
 //! The primitives of one ray segment (line, dash, arrow head or end mark) and of one zoomed
 //! spawn-point inset.
 
-use super::prim::{arrow_head, cross, rect_points, stroke};
+use super::prim::{arrow_head, cross, dot, rect_points, stroke};
 use super::{Prim, Style};
 use crate::diagram::model::{Inset, RayEnd, RaySegment};
 use crate::diagram::slice::clip_half_plane;
@@ -90,19 +90,9 @@ pub(super) fn inset_prims(i: &Inset, style: &Style, ws: f64, fs: f64, out: &mut 
         }
         out.push(stroke(vec![*o, *end], style.ray(*kind), 2.2 * ws, None));
         out.extend(arrow_head(*end, *end - *o, 0.5 * fs, style.ray(*kind)));
-        out.push(Prim::Circle {
-            center: *o,
-            radius: 3.5 * ws,
-            fill: Some(style.ray(*kind)),
-            stroke: None,
-        });
+        out.push(dot(*o, 3.5 * ws, style.ray(*kind)));
     }
-    out.push(Prim::Circle {
-        center: i.hit,
-        radius: 4.0 * ws,
-        fill: Some(style.ink),
-        stroke: None,
-    });
+    out.push(dot(i.hit, 4.0 * ws, style.ink));
     out.push(Prim::Stroke {
         points: rect_points(r.min, r.max),
         color: style.ink,
