@@ -2,7 +2,7 @@
 //! normals, OBJ errors through the CLI, and the shared reference meshes.
 
 mod common;
-use common::raytree;
+use common::{Rng, raytree};
 
 use glam::DVec3;
 use raytree::check::tree_violations;
@@ -15,20 +15,10 @@ use raytree::{Scene, render, trace_pixel};
 use std::fmt::Write;
 use std::path::PathBuf;
 
-/// SplitMix64 in [0, 1).
-struct Rng(u64);
-
 impl Rng {
-    fn f(&mut self) -> f64 {
-        self.0 = self.0.wrapping_add(0x9E37_79B9_7F4A_7C15);
-        let mut z = self.0;
-        z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
-        z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
-        ((z ^ (z >> 31)) >> 11) as f64 / (1u64 << 53) as f64
-    }
-
+    /// A point in the cube `[-1, 1)^3`.
     fn v(&mut self) -> DVec3 {
-        DVec3::new(self.f(), self.f(), self.f()) * 2.0 - 1.0
+        DVec3::new(self.next(), self.next(), self.next()) * 2.0 - 1.0
     }
 }
 
@@ -102,7 +92,7 @@ fn bvh_scene_intersect_equals_the_linear_scan() {
                 c.x,
                 c.y,
                 c.z,
-                0.1 + 0.4 * rng.f()
+                0.1 + 0.4 * rng.next()
             ),
             1 => format!(
                 r#"{{"type": "box", "min": [{}, {}, {}], "max": [{}, {}, {}], "material": "matte"}}"#,

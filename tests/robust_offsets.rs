@@ -3,6 +3,8 @@
 //! moved to 1e4..1e6, tiny and huge spheres far from the origin, a watertight triangle fan and
 //! rays that start on a surface.
 
+mod common;
+use common::Rng;
 use glam::DVec3;
 use raytree::geometry::Shape;
 use raytree::math::Ray;
@@ -10,17 +12,7 @@ use raytree::scene::{OffsetStrategy, transformed};
 use raytree::trace::offset::robust_origin;
 use raytree::{Scene, render, render_diagnosed};
 
-/// SplitMix64: deterministic random numbers for the seeded loops.
-struct Rng(u64);
-
 impl Rng {
-    fn next(&mut self) -> f64 {
-        self.0 = self.0.wrapping_add(0x9E37_79B9_7F4A_7C15);
-        let mut z = self.0;
-        z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
-        z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
-        ((z ^ (z >> 31)) >> 11) as f64 / (1u64 << 53) as f64
-    }
     fn range(&mut self, a: f64, b: f64) -> f64 {
         a + (b - a) * self.next()
     }

@@ -1,4 +1,6 @@
-//! Helpers shared by the integration tests (each `tests/*.rs` is its own crate).
+//! Helpers shared by the integration tests (each `tests/*.rs` is its own crate, and none uses
+//! every helper).
+#![allow(dead_code)]
 
 use std::path::Path;
 use std::process::{Command, Output};
@@ -10,4 +12,18 @@ pub fn raytree(args: &[&str], dir: &Path) -> Output {
         .current_dir(dir)
         .output()
         .expect("the raytree binary runs")
+}
+
+/// SplitMix64: deterministic numbers for the seeded test loops.
+pub struct Rng(pub u64);
+
+impl Rng {
+    /// The next number in `[0, 1)`.
+    pub fn next(&mut self) -> f64 {
+        self.0 = self.0.wrapping_add(0x9E37_79B9_7F4A_7C15);
+        let mut z = self.0;
+        z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
+        z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
+        ((z ^ (z >> 31)) >> 11) as f64 / (1u64 << 53) as f64
+    }
 }
