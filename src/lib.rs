@@ -14,6 +14,7 @@ pub mod cost;
 pub mod diagram;
 pub mod effects;
 pub mod geometry;
+#[cfg(feature = "gui")]
 pub mod gui;
 pub mod math;
 pub mod mesh;

@@ -13,6 +13,7 @@ mod output;
 mod plot;
 mod render_cmd;
 mod trace_cmd;
+#[cfg(feature = "gui")]
 mod view_cmd;
 
 use clap::Parser;
@@ -30,7 +31,12 @@ pub fn run() -> ExitCode {
         Command::Effects(a) => effects_cmd::run(&a),
         Command::Cost(a) => cost_cmd::run(&a),
         Command::Compare(a) => compare_cmd::run(&a),
+        #[cfg(feature = "gui")]
         Command::View(a) => view_cmd::run(&a),
+        #[cfg(not(feature = "gui"))]
+        Command::View(_) => Err(anyhow::anyhow!(
+            "this raytree was built without the inspector (cargo feature \"gui\")"
+        )),
         Command::Diagram(a) => diagram_cmd::run(&a),
     };
     match result {
