@@ -5,7 +5,7 @@ mod common;
 use common::{Rng, raytree};
 
 use glam::DVec3;
-use raytree::check::tree_violations;
+use raytree::analysis::invariants::tree_violations;
 use raytree::math::Ray;
 use raytree::mesh::generate::icosphere;
 use raytree::mesh::{MeshData, parse_obj};
@@ -357,7 +357,7 @@ fn meshes_get_watertight_hits_robust_offsets_diagnostics_and_diagram_slices() {
     // A moved scene moves its mesh (and rebuilds its BVH): the same image.
     let moved = transformed(&scene, 4.0, DVec3::new(8.0, 0.0, -16.0));
     let (b, _) = render(&moved, &|_| {});
-    let worst = raytree::cost::compare(&translucent, &b)
+    let worst = raytree::analysis::cost::compare(&translucent, &b)
         .expect("same size")
         .max;
     assert!(worst < 1e-6, "worst pixel difference {worst}");

@@ -5,7 +5,7 @@ use super::args::{AcneArgs, Overrides};
 use super::load::{load, pair};
 use anyhow::{Context, Result, anyhow, bail};
 use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
-use raytree::acne::{AcneConfig, sweep};
+use raytree::analysis::acne::{AcneConfig, sweep};
 use raytree::scene::OffsetStrategy;
 use std::path::{Path, PathBuf};
 
@@ -162,7 +162,10 @@ pub fn run(a: &AcneArgs) -> Result<()> {
     );
     for &st in &cfg.strategies {
         let ok = report.clean_everywhere(st);
-        let list: Vec<String> = ok.iter().map(|e| raytree::acne::sci(*e)).collect();
+        let list: Vec<String> = ok
+            .iter()
+            .map(|e| raytree::analysis::acne::sci(*e))
+            .collect();
         let verdict = if !st.uses_epsilon() && ok.len() == cfg.epsilons.len() {
             "clean at every scale (uses no epsilon)".to_string()
         } else if list.is_empty() {

@@ -3,7 +3,7 @@
 use super::args::CompareArgs;
 use super::output::{Pending, encode_rgb8_png, read_image};
 use anyhow::{Result, bail};
-use raytree::cost::{compare, error_map};
+use raytree::analysis::cost::{compare, error_map};
 
 /// Print RMSE, max error and the share of pixels off by more than 1/255; optionally write the
 /// error map (black = equal, through red and yellow to white = the scale or more).

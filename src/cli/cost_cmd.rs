@@ -6,7 +6,7 @@ use super::output::{Pending, encode_rgb8_png};
 use super::plot::error_vs_time;
 use anyhow::{Context, Result};
 use indicatif::{ProgressBar, ProgressStyle};
-use raytree::cost::{self, CostReport, Sweep};
+use raytree::analysis::cost::{self, CostReport, Sweep};
 use std::fmt::Write;
 
 /// Run the sweep and write `cost.md`, `cost.csv`, `cost.json` and `cost.png` into the output

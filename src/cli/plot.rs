@@ -3,7 +3,7 @@
 use anyhow::{Result, anyhow};
 use plotters::prelude::*;
 use plotters::style::FontStyle;
-use raytree::cost::CostReport;
+use raytree::analysis::cost::CostReport;
 use std::sync::Once;
 
 /// Register egui's embedded Ubuntu Light as "sans-serif", so no system fonts are needed.
