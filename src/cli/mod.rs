@@ -3,6 +3,7 @@
 mod acne_cmd;
 mod acne_figures;
 mod args;
+mod budget;
 mod canvas;
 mod compare_cmd;
 mod cost_cmd;
