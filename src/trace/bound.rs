@@ -249,4 +249,117 @@ mod tests {
         assert_eq!(geometric_sum(2.0, 3), 15.0);
         assert_eq!(geometric_sum(3.0, 1024), f64::INFINITY);
     }
+
+    #[test]
+    fn the_ray_budget_cuts_each_sample_and_keeps_the_tree_whole() {
+        use crate::render::{render_pixel, trace_pixel};
+        use crate::trace::{NoopRecorder, RayCounts};
+        use crate::tree::EndReason;
+        let mut s =
+            scene(r#", "settings": {"max_depth": 40, "min_weight": 0, "max_rays": 50, "spp": 2}"#);
+        s.camera = s.camera.with_size(8, 6);
+        let mut cut_trees = 0;
+        for (x, y) in [(4, 3), (3, 2), (0, 0)] {
+            let t = trace_pixel(&s, x, y).unwrap();
+            assert!(crate::check::tree_violations(&t, s.background).is_empty());
+            let cut = t
+                .nodes
+                .iter()
+                .filter(|n| n.end == EndReason::RayBudget)
+                .count();
+            cut_trees += usize::from(cut > 0);
+            // Per sample: at most the budget, plus the last ray's shadow rays.
+            assert!(
+                t.nodes.len() <= 2 * (50 + s.lights.len() + 1),
+                "{}",
+                t.nodes.len()
+            );
+            let mut counts = RayCounts::default();
+            let l = render_pixel(&s, x, y, &mut NoopRecorder, &mut counts, |_| {});
+            assert_eq!(l, t.radiance);
+            assert_eq!(counts.budget_samples > 0, cut > 0);
+        }
+        assert!(cut_trees > 0);
+    }
+
+    mod nested_dielectrics {
+        //! Random nested-dielectric scenes: the automatic cut changes each pixel by no more than
+        //! its cut branches could carry (strict), and by at most one 8-bit sRGB step.
+        use super::super::*;
+        use crate::check::tree_violations;
+        use crate::math::linear_to_srgb;
+        use crate::render::trace_pixel;
+        use crate::tree::EndReason;
+        use proptest::prelude::*;
+
+        fn scene(ior: (f64, f64), t: (f64, f64), r: f64, depth: u32) -> Scene {
+            let src = format!(
+                r#"{{"camera": {{"position": [0,1,5], "look_at": [0,0.6,0], "fov_y": 35,
+                     "width": 12, "height": 8}},
+                   "background": [0.35, 0.55, 0.85], "ambient": [0.05, 0.05, 0.05],
+                   "materials": {{
+                     "floor": {{"diffuse": {{"checker": {{"even": [0.9,0.1,0.1],
+                                "odd": [0.9,0.9,0.2], "size": 0.5}}}}}},
+                     "outer": {{"transmissivity": [{t0},{t0},{t0}], "ior": {i0},
+                                "specular": [0.5,0.5,0.5], "shininess": 100}},
+                     "inner": {{"transmissivity": [{t1},{t1},{t1}], "ior": {i1},
+                                "reflectivity": [{r},{r},{r}]}}}},
+                   "objects": [
+                     {{"type": "plane", "point": [0,-0.4,0], "normal": [0,1,0],
+                       "material": "floor"}},
+                     {{"type": "sphere", "center": [0,0.6,0], "radius": 1,
+                       "material": "outer"}},
+                     {{"type": "sphere", "center": [0.1,0.6,0.1], "radius": 0.5,
+                       "material": "inner"}}],
+                   "lights": [{{"type": "point", "position": [3,5,4],
+                                "intensity": [60,60,60]}}],
+                   "settings": {{"max_depth": {depth}}}}}"#,
+                i0 = ior.0,
+                i1 = ior.1,
+                t0 = t.0,
+                t1 = t.1,
+            );
+            Scene::from_json(&src).unwrap()
+        }
+
+        proptest! {
+            #![proptest_config(ProptestConfig::with_cases(24))]
+            #[test]
+            fn the_cut_changes_pixels_by_less_than_its_bound(
+                ior in (1.05f64..2.4, 1.05f64..2.4),
+                t in (0.5f64..1.0, 0.3f64..0.9),
+                r in 0.0f64..0.1,
+                depth in 4u32..14,
+            ) {
+                let cut = scene(ior, t, r, depth);
+                let mut full = cut.clone();
+                full.settings.min_weight = Some(0.0);
+                let bound = radiance_bound(&cut, depth, cut.settings.shadows);
+                let w = effective_min_weight(&cut);
+                prop_assert!(w > 0.0);
+                for y in 0..8 {
+                    for x in 0..12 {
+                        let a = trace_pixel(&cut, x, y).unwrap();
+                        let b = trace_pixel(&full, x, y).unwrap();
+                        prop_assert!(tree_violations(&a, cut.background).is_empty());
+                        // What the cut branches could have carried: their throughput (at most
+                        // the parent's times the weight cut) times the radiance bound.
+                        let mut could = 0.0;
+                        for n in a.nodes.iter().filter(|n| n.end == EndReason::MinWeight) {
+                            could += (n.throughput * n.truncated).max_element() * bound;
+                        }
+                        let diff = (a.radiance - b.radiance).abs().max_element();
+                        prop_assert!(diff <= could * (1.0 + 1e-9) + 1e-15,
+                            "pixel {x},{y}: {diff} > {could}");
+                        let enc = |c: Rgb| c.to_array().map(linear_to_srgb);
+                        let (ea, eb) = (enc(a.radiance), enc(b.radiance));
+                        for k in 0..3 {
+                            prop_assert!((ea[k] - eb[k]).abs() <= 1.0 / 255.0,
+                                "pixel {x},{y}: {ea:?} vs {eb:?}");
+                        }
+                    }
+                }
+            }
+        }
+    }
 }
