@@ -364,8 +364,8 @@ pub struct Settings {
 
 /// Default [`Settings::tolerance`]: half an 8-bit display step.
 pub const DEFAULT_TOLERANCE: f64 = 1.0 / 510.0;
-/// Default [`Settings::max_rays`] per sample: 2^16.
-pub const DEFAULT_MAX_RAYS: u64 = 1 << 16;
+/// Default [`Settings::max_rays`] per sample: 2^20.
+pub const DEFAULT_MAX_RAYS: u64 = 1 << 20;
 
 impl Default for Settings {
     fn default() -> Self {
