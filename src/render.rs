@@ -156,10 +156,15 @@ pub fn trace_pixel(scene: &Scene, x: u32, y: u32) -> Option<RayTree> {
     let mut samples = Vec::new();
     let mut counts = RayCounts::default();
     let radiance = render_pixel(scene, x, y, &mut rec, &mut counts, |s| samples.push(s));
+    // The settings as traced: the automatic cut is recorded as the value it took.
+    let settings = crate::scene::Settings {
+        min_weight: Some(crate::trace::bound::effective_min_weight(scene)),
+        ..scene.settings
+    };
     Some(RayTree {
         schema: TREE_SCHEMA.to_string(),
         pixel: [x, y],
-        settings: scene.settings,
+        settings,
         radiance,
         samples,
         nodes: rec.nodes,

@@ -39,6 +39,7 @@ pub fn end_text(e: EndReason) -> &'static str {
         EndReason::Continued => "secondary rays traced",
         EndReason::MaxDepth => "secondary rays cut by max_depth",
         EndReason::MinWeight => "secondary rays cut by min_weight",
+        EndReason::RayBudget => "secondary rays cut by the sample's ray budget (max_rays)",
         EndReason::Unblocked => "reaches the light",
         EndReason::Attenuated => "reaches the light, attenuated by translucent blockers",
         EndReason::Blocked => "blocked",
@@ -148,7 +149,10 @@ fn node_summary(n: &RayNode) -> String {
     if n.truncated != Rgb::ZERO {
         let _ = write!(s, "  cut weight {}", w(n.truncated));
     }
-    if matches!(n.end, EndReason::MaxDepth | EndReason::MinWeight) {
+    if matches!(
+        n.end,
+        EndReason::MaxDepth | EndReason::MinWeight | EndReason::RayBudget
+    ) {
         let _ = write!(s, "  ({})", end_text(n.end));
     }
     s

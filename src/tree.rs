@@ -76,6 +76,8 @@ pub enum EndReason {
     MaxDepth,
     /// Secondary rays were cut by `min_weight`.
     MinWeight,
+    /// Secondary rays were cut because the sample reached its ray budget (`max_rays`).
+    RayBudget,
     /// Shadow ray reached its light unblocked.
     Unblocked,
     /// Shadow ray passed translucent blockers with some light left.

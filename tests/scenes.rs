@@ -170,6 +170,7 @@ fn facing_mirrors_sum_a_geometric_series() {
             r#", "ambient": [0.1, 0.1, 0.1]"#,
         );
         s.settings.max_depth = depth;
+        s.settings.min_weight = Some(0.0); // the exhaustive series
         let t = trace_pixel(&s, 1, 1).unwrap();
         let expect: f64 = (0..=depth).map(|k| ad * r.powi(k as i32)).sum();
         assert!(

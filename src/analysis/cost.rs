@@ -152,7 +152,7 @@ impl Sweep {
                 "min_weight",
                 format!("{w:e}"),
                 Settings {
-                    min_weight: w,
+                    min_weight: Some(w),
                     ..*base
                 },
             );
@@ -227,7 +227,7 @@ pub fn reference_settings(base: &Settings, sweep: &Sweep) -> Settings {
     let mut s = Settings {
         max_depth: sweep.reference_depth,
         fresnel: FresnelModel::Exact,
-        min_weight: 0.0,
+        min_weight: Some(0.0),
         spp: 1,
         ..*base
     };
@@ -255,7 +255,7 @@ pub fn run(scene: &Scene, sweep: &Sweep, progress: &dyn Fn(usize, usize)) -> Cos
         max_depth: 16,
         fresnel: FresnelModel::Exact,
         spp: 1,
-        min_weight: 0.0,
+        min_weight: Some(0.0),
         ..scene.settings
     };
     base.offset.strategy = OffsetStrategy::Robust;

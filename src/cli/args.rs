@@ -59,9 +59,21 @@ pub struct Overrides {
     /// Shadow rays through transmissive objects.
     #[arg(long, value_name = "opaque|translucent")]
     pub shadows: Option<String>,
-    /// Stop rays whose throughput falls below this (0 = off).
+    /// Stop rays whose throughput falls below this (0 = the exhaustive tree; default: chosen
+    /// from --tolerance and the scene).
     #[arg(long, allow_negative_numbers = true)]
     pub min_weight: Option<f64>,
+    /// What one cut branch may still add to a pixel, in display units (default 1/510, half an
+    /// 8-bit step); sets the automatic min weight.
+    #[arg(long, allow_negative_numbers = true)]
+    pub tolerance: Option<f64>,
+    /// Per-sample ray budget: a sample that reaches it spawns no more secondary rays.
+    #[arg(long)]
+    pub max_rays: Option<u64>,
+    /// Memory budget in MiB: commands refuse (before any work) what may need more [default:
+    /// 4096, or half the address-space limit (`ulimit -v`) when that is smaller].
+    #[arg(long, value_name = "MIB")]
+    pub max_memory: Option<u64>,
 }
 
 /// `raytree render`.

@@ -87,7 +87,13 @@ pub fn apply(scene: &mut Scene, o: &Overrides) -> Result<()> {
         s.shadows = enum_value("shadows", v)?;
     }
     if let Some(v) = o.min_weight {
-        s.min_weight = v;
+        s.min_weight = Some(v);
+    }
+    if let Some(v) = o.tolerance {
+        s.tolerance = v;
+    }
+    if let Some(v) = o.max_rays {
+        s.max_rays = v;
     }
     raytree::scene::check_settings(s).map_err(|(path, msg)| {
         let flag = path.rsplit('.').next().unwrap_or(&path).replace('_', "-");

@@ -5,6 +5,7 @@
 mod acne_cmd;
 mod acne_figures;
 mod args;
+mod budget;
 mod canvas;
 mod cleanup;
 mod compare_cmd;

@@ -13,6 +13,7 @@ pub fn run(a: &RenderArgs) -> Result<()> {
     let format = image_format(&a.output)?;
     let loaded = load(a.scene.as_deref(), &a.overrides)?;
     let scene = &loaded.scene;
+    super::budget::check_image(scene, super::budget::mib(a.overrides.max_memory))?;
     let pending = Pending::create(
         &a.output,
         &Inputs::new(loaded.inputs.iter().map(|p| p.as_path())),
@@ -58,6 +59,14 @@ pub fn run(a: &RenderArgs) -> Result<()> {
         r.refracted,
         r.shadow
     )?;
+    if r.budget_samples > 0 {
+        warnln!(
+            "warning: {} samples reached the ray budget of {} rays per sample (--max-rays); {} secondary rays were cut there (`raytree trace` records the weight cut)",
+            r.budget_samples,
+            scene.settings.max_rays,
+            r.budget_cuts
+        );
+    }
     if a.diagnose {
         sayln!(
             "diagnostics: {} self-hit rays in {} pixels, {} leaking rays in {} pixels (offset {} {:e})",

@@ -2,13 +2,17 @@
 
 use super::args::TraceArgs;
 use super::load::{load, pair};
-use super::say::{out, sayln};
+use super::say::{out, sayln, warnln};
 use anyhow::{Result, bail};
 
 /// Print the ray tree of one pixel as text or JSON.
 pub fn run(a: &TraceArgs) -> Result<()> {
     let (x, y) = pair("pixel", &a.pixel, ',')?;
-    let loaded = load(a.scene.as_deref(), &a.overrides)?;
+    let mut loaded = load(a.scene.as_deref(), &a.overrides)?;
+    let lowered = super::budget::fit_tree(
+        &mut loaded.scene,
+        super::budget::mib(a.overrides.max_memory),
+    )?;
     let cam = &loaded.scene.camera;
     let Some(tree) = raytree::trace_pixel(&loaded.scene, x, y) else {
         bail!(
@@ -17,6 +21,18 @@ pub fn run(a: &TraceArgs) -> Result<()> {
             cam.height
         );
     };
+    let cut = super::budget::cut_samples(&tree);
+    if cut > 0 {
+        let why = match lowered {
+            Some(_) => " (lowered to fit --max-memory)",
+            None => "",
+        };
+        warnln!(
+            "warning: {cut} of {} samples reached the ray budget of {} rays per sample{why}; their trees are cut (end: ray budget, with the weight cut)",
+            tree.samples.len(),
+            loaded.scene.settings.max_rays
+        );
+    }
     if a.json {
         // serde_json would write NaN and infinities as null, indistinguishable from "absent".
         if let Some(at) = super::finite::first_nonfinite(&tree) {

@@ -196,7 +196,10 @@ pub(super) fn hits(
             normal: nc,
             normal_len,
             tir,
-            truncated: matches!(n.end, EndReason::MaxDepth | EndReason::MinWeight),
+            truncated: matches!(
+                n.end,
+                EndReason::MaxDepth | EndReason::MinWeight | EndReason::RayBudget
+            ),
             arcs,
             fade: r.fade,
         });

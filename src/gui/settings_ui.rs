@@ -81,15 +81,30 @@ pub fn settings_ui(ui: &mut egui::Ui, doc: &Document, cmds: &mut Vec<Command>) {
         ui.radio_value(&mut s.shadows, ShadowMode::Opaque, "opaque");
         ui.radio_value(&mut s.shadows, ShadowMode::Translucent, "translucent");
     });
-    ui.add(
-        Slider::new(&mut s.min_weight, 0.0..=1.0)
-            .logarithmic(true)
-            .smallest_positive(1e-6)
-            .text("min weight"),
-    );
+    min_weight_ui(ui, doc, &mut s);
     if s != old {
         cmds.push(Command::SetSettings(s));
     }
+}
+
+/// The min-weight cut: "auto" shows the cut chosen from the tolerance and the scene
+/// ([`crate::trace::bound`]); unticking starts the slider there; 0 is the exhaustive tree.
+fn min_weight_ui(ui: &mut egui::Ui, doc: &Document, s: &mut crate::scene::Settings) {
+    let auto_value = crate::trace::bound::auto_min_weight(&doc.scene, s);
+    let mut auto = s.min_weight.is_none();
+    let mut w = s.min_weight.unwrap_or(auto_value);
+    ui.horizontal(|ui| {
+        ui.add_enabled(
+            !auto,
+            Slider::new(&mut w, 0.0..=1.0)
+                .logarithmic(true)
+                .smallest_positive(1e-9)
+                .text("min weight"),
+        );
+        ui.checkbox(&mut auto, "auto")
+            .on_hover_text("cut branches that could add less than the tolerance (1/510)");
+    });
+    s.min_weight = if auto { None } else { Some(w) };
 }
 
 /// Debug view, overlay and zoom.

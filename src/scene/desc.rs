@@ -350,9 +350,22 @@ pub struct Settings {
     pub fresnel: FresnelModel,
     /// Shadow-ray mode.
     pub shadows: ShadowMode,
-    /// Throughput below which recursion stops (0 = off).
-    pub min_weight: f64,
+    /// Throughput below which recursion stops (`0` = the exhaustive tree); absent (`None`):
+    /// chosen from `tolerance` and the scene ([`crate::trace::bound`]).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub min_weight: Option<f64>,
+    /// What one cut branch may still add to a pixel, in display units (sRGB-encoded, 0..1);
+    /// decides the automatic `min_weight`. Default half an 8-bit step, 1/510.
+    pub tolerance: f64,
+    /// Per-sample ray budget (camera, secondary and shadow rays): a sample that reaches it
+    /// spawns no more secondary rays (the safety net of the exhaustive tree).
+    pub max_rays: u64,
 }
+
+/// Default [`Settings::tolerance`]: half an 8-bit display step.
+pub const DEFAULT_TOLERANCE: f64 = 1.0 / 510.0;
+/// Default [`Settings::max_rays`] per sample: 2^20.
+pub const DEFAULT_MAX_RAYS: u64 = 1 << 20;
 
 impl Default for Settings {
     fn default() -> Self {
@@ -362,7 +375,9 @@ impl Default for Settings {
             offset: OffsetDesc::default(),
             fresnel: FresnelModel::Exact,
             shadows: ShadowMode::Opaque,
-            min_weight: 0.0,
+            min_weight: None,
+            tolerance: DEFAULT_TOLERANCE,
+            max_rays: DEFAULT_MAX_RAYS,
         }
     }
 }

@@ -237,6 +237,9 @@ fn settings(ck: &Check, s: &Settings) -> Result<Settings, SceneError> {
     check_settings(s).or_else(|(path, msg)| ck.fail(path, msg))
 }
 
+/// Largest accepted per-sample ray budget (2^32).
+pub const MAX_RAYS_LIMIT: u64 = 1 << 32;
+
 /// Validate settings (also used for command-line overrides): `(json path, message)` on error.
 pub fn check_settings(s: &Settings) -> Result<Settings, (String, String)> {
     if s.spp == 0 || s.spp > 65_536 {
@@ -258,10 +261,24 @@ pub fn check_settings(s: &Settings) -> Result<Settings, (String, String)> {
             format!("must be a finite number >= 0, got {eps}"),
         ));
     }
-    if !(s.min_weight.is_finite() && s.min_weight >= 0.0) {
+    if let Some(w) = s.min_weight
+        && !(w.is_finite() && w >= 0.0)
+    {
         return Err((
             "settings.min_weight".into(),
-            format!("must be a finite number >= 0, got {}", s.min_weight),
+            format!("must be a finite number >= 0, got {w}"),
+        ));
+    }
+    if !(s.tolerance.is_finite() && s.tolerance >= 0.0) {
+        return Err((
+            "settings.tolerance".into(),
+            format!("must be a finite number >= 0, got {}", s.tolerance),
+        ));
+    }
+    if s.max_rays == 0 || s.max_rays > MAX_RAYS_LIMIT {
+        return Err((
+            "settings.max_rays".into(),
+            format!("must be in 1..={MAX_RAYS_LIMIT}, got {}", s.max_rays),
         ));
     }
     Ok(*s)

@@ -1,6 +1,7 @@
 //! The Whitted tracer, exactly as the lecture's `trace(ray, objects, lights)` recursion, with a
 //! [`Recorder`] hook that sees every ray.
 
+pub mod bound;
 pub mod diagnose;
 mod direct_only;
 mod local;
@@ -35,6 +36,10 @@ pub struct RayCounts {
     pub self_hits: u64,
     /// Spawned rays whose offset skipped a surface (counted only by diagnosing recorders).
     pub leaks: u64,
+    /// Secondary rays not traced because their sample reached `settings.max_rays`.
+    pub budget_cuts: u64,
+    /// Samples that reached `settings.max_rays` (their trees were cut).
+    pub budget_samples: u64,
 }
 
 impl RayCounts {
@@ -62,6 +67,8 @@ impl std::ops::AddAssign for RayCounts {
         self.shadow += o.shadow;
         self.self_hits += o.self_hits;
         self.leaks += o.leaks;
+        self.budget_cuts += o.budget_cuts;
+        self.budget_samples += o.budget_samples;
     }
 }
 
@@ -92,6 +99,8 @@ struct PathState<'m> {
     throughput: Rgb,
     /// By reference: most rays do not change media, so nothing is copied for them.
     media: &'m MediaStack,
+    /// No secondary ray is spawned once `RayCounts::total` reaches this (the sample's budget).
+    ray_limit: u64,
 }
 
 /// Traces rays through one scene, running only the effects of its [`EffectPlan`].
@@ -105,6 +114,8 @@ pub struct Tracer<'a> {
     direct_only: bool,
     /// The camera's image plane, its field of view evaluated once.
     film: Film<'a>,
+    /// The cut in use: `settings.min_weight`, or the automatic one ([`bound`]).
+    min_weight: f64,
 }
 
 impl<'a> Tracer<'a> {
@@ -123,7 +134,15 @@ impl<'a> Tracer<'a> {
             plan,
             direct_only,
             film: scene.camera.film(),
+            min_weight: bound::effective_min_weight(scene),
         }
+    }
+
+    /// The throughput below which secondary rays are cut: the scene's `min_weight`, or when
+    /// absent the automatic cut for its tolerance ([`bound::auto_min_weight`]).
+    #[must_use]
+    pub fn min_weight(&self) -> f64 {
+        self.min_weight
     }
 
     /// The scene camera's image plane ([`crate::scene::Camera::film`]): its camera rays, the
@@ -217,12 +236,16 @@ impl<'a> Tracer<'a> {
             triangle: None,
             weight: Rgb::ONE,
         };
+        let cuts = counts.budget_cuts;
         let state = PathState {
             depth: 0,
             throughput: Rgb::ONE,
             media: &MediaStack::AIR,
+            ray_limit: counts.total().saturating_add(self.scene.settings.max_rays),
         };
-        self.trace_ray(ray, found, spawn, state, rec, counts)
+        let out = self.trace_ray(ray, found, spawn, state, rec, counts);
+        counts.budget_samples += u64::from(counts.budget_cuts > cuts);
+        out
     }
 
     /// Offset a spawn point on `object` (for meshes: on stored `triangle`) by the configured

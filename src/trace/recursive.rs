@@ -174,17 +174,11 @@ impl Tracer<'_> {
                 weight: reflect_w,
                 ..at
             };
-            self.secondary(
-                &mut acc,
-                spawn,
-                reflect(d, ns),
-                n,
+            let state = PathState {
                 throughput,
-                state.depth,
-                state.media,
-                rec,
-                counts,
-            );
+                ..state
+            };
+            self.secondary(&mut acc, spawn, reflect(d, ns), n, state, rec, counts);
         }
         if let Some((dir, weight)) = refraction.filter(|r| r.1.max_element() > 0.0) {
             let media = if entering {
@@ -199,17 +193,12 @@ impl Tracer<'_> {
                 weight,
                 ..at
             };
-            self.secondary(
-                &mut acc,
-                spawn,
-                dir,
-                -n,
+            let state = PathState {
                 throughput,
-                state.depth,
-                &media,
-                rec,
-                counts,
-            );
+                media: &media,
+                ..state
+            };
+            self.secondary(&mut acc, spawn, dir, -n, state, rec, counts);
         }
         let Secondary {
             total,
@@ -246,7 +235,8 @@ impl Tracer<'_> {
         ns
     }
 
-    /// Trace one secondary ray (or record why it was cut) and add its weighted radiance.
+    /// Trace one secondary ray (or record why it was cut) and add its weighted radiance;
+    /// `state` is the parent's, with the throughput at its hit and the child's media.
     #[allow(clippy::too_many_arguments)]
     fn secondary<R: Recorder>(
         &self,
@@ -254,18 +244,19 @@ impl Tracer<'_> {
         spawn: Spawn,
         dir: DVec3,
         side: DVec3,
-        throughput: Rgb,
-        depth: u32,
-        media: &MediaStack,
+        state: PathState,
         rec: &mut R,
         counts: &mut RayCounts,
     ) {
-        let settings = &self.scene.settings;
-        let child_throughput = throughput * spawn.weight;
-        let cut = if depth >= settings.max_depth {
+        let depth = state.depth;
+        let child_throughput = state.throughput * spawn.weight;
+        let cut = if depth >= self.scene.settings.max_depth {
             Some(EndReason::MaxDepth)
-        } else if child_throughput.max_element() < settings.min_weight {
+        } else if child_throughput.max_element() < self.min_weight {
             Some(EndReason::MinWeight)
+        } else if counts.total() >= state.ray_limit {
+            counts.budget_cuts += 1;
+            Some(EndReason::RayBudget)
         } else {
             None
         };
@@ -284,7 +275,7 @@ impl Tracer<'_> {
         let state = PathState {
             depth: depth + 1,
             throughput: child_throughput,
-            media,
+            ..state
         };
         let (l, _) = self.trace_ray(ray, None, spawn, state, rec, counts);
         acc.total += spawn.weight * l;

@@ -7,6 +7,8 @@ use crate::bvh::{Bvh, down, up};
 
 /// Binary subtrees with at most this many primitives become one leaf.
 pub(super) const LEAF_MAX: u32 = 8;
+/// Most slots one leaf reference holds: its group count has 4 bits (at most 15 groups).
+pub(super) const LEAF_SLOTS: u32 = 15 * GROUP as u32;
 
 impl WideBvh {
     /// Collapse `bvh` (whose slots number `bvh.order.len()`).
@@ -70,7 +72,11 @@ impl WideBvh {
             }
             let (first, count) = sizes[k];
             let child = if n.count > 0 || count <= LEAF_MAX {
-                self.leaf(first, count)
+                // A binary leaf can be oversized (primitives sharing one centroid, e.g.
+                // duplicated triangles): more slots than one leaf reference holds.
+                let (child, need) = self.leaves(me, lane, first, count);
+                deepest = deepest.max(need);
+                child
             } else {
                 let (child, need) = self.build(bvh, sizes, k, pad);
                 deepest = deepest.max(need);
@@ -81,7 +87,47 @@ impl WideBvh {
         (me as u32, kids.len() - 1 + deepest)
     }
 
-    /// Groups for slots `first..first + count`; returns the leaf reference.
+    /// A reference to slots `first..first + count` in lane `lane` of node `parent`: one leaf
+    /// when they fit ([`LEAF_SLOTS`]), else a node whose lanes all repeat the parent lane's
+    /// box and split the slots evenly (recursively). Returns the reference and the most stack
+    /// entries a traversal below it pushes.
+    fn leaves(&mut self, parent: usize, lane: usize, first: u32, count: u32) -> (u32, usize) {
+        if count <= LEAF_SLOTS {
+            return (self.leaf(first, count), 0);
+        }
+        let me = self.nodes.len();
+        let mut node = self.nodes[parent];
+        for row in &mut node.bounds {
+            *row = [row[lane]; WIDTH];
+        }
+        node.child = [EMPTY; WIDTH];
+        self.nodes.push(node);
+        let part = count.div_ceil(WIDTH as u32);
+        let mut deepest = 0;
+        let mut lanes = 0;
+        let mut slot = first;
+        while slot < first + count {
+            let n = part.min(first + count - slot);
+            let (child, need) = self.leaves(me, lanes, slot, n);
+            self.nodes[me].child[lanes] = child;
+            deepest = deepest.max(need);
+            lanes += 1;
+            slot += n;
+        }
+        for row in 0..6 {
+            // Unused lanes (never for more than LEAF_SLOTS slots, kept for safety): empty.
+            let empty = if row < 3 {
+                f32::INFINITY
+            } else {
+                f32::NEG_INFINITY
+            };
+            self.nodes[me].bounds[row][lanes..].fill(empty);
+        }
+        (me as u32, lanes - 1 + deepest)
+    }
+
+    /// Groups for slots `first..first + count` (at most [`LEAF_SLOTS`]); returns the leaf
+    /// reference.
     fn leaf(&mut self, first: u32, count: u32) -> u32 {
         let start = self.groups.len() as u32;
         let mut slot = first;

@@ -123,3 +123,104 @@ fn f32_traversal_never_culls_a_box_the_f64_test_enters() {
         assert_eq!(exact_queries > 0, k >= 4, "case {k}: {exact_queries}");
     }
 }
+
+#[test]
+fn identical_boxes_beyond_one_leaf_are_split_and_all_visited() {
+    // Issue 13: 61 identical triangles made one binary leaf of 61 slots, more than the 15
+    // groups a wide leaf reference holds ("leaf of at most 15 groups").
+    let b = Aabb {
+        min: DVec3::ZERO,
+        max: DVec3::ONE,
+    };
+    for n in [60, 61, 64, 240, 241, 961, 5000] {
+        let bvh = Bvh::build(&vec![b; n]);
+        let wide = WideBvh::from_binary(&bvh);
+        let ray = Ray::new(DVec3::new(0.5, 0.5, -1.0), DVec3::Z, 0.0);
+        let mut got = visited(&wide, &ray, f64::INFINITY);
+        got.sort_unstable();
+        assert_eq!(got, (0..n as u32).collect::<Vec<_>>(), "{n} boxes");
+        let ray = Ray::new(DVec3::new(2.5, 0.5, -1.0), DVec3::Z, 0.0);
+        assert!(visited(&wide, &ray, f64::INFINITY).is_empty(), "{n} boxes");
+    }
+}
+
+mod duplicated_triangles {
+    //! The wide BVH over meshes of duplicated, coplanar and sliver triangles (many sharing one
+    //! centroid) answers exactly as a loop over every triangle.
+    use crate::bvh::TraversalCost;
+    use crate::geometry::triangle_t;
+    use crate::math::Ray;
+    use crate::mesh::{Mesh, MeshNormals, parse_obj};
+    use glam::{DAffine3, DVec3};
+    use proptest::prelude::*;
+    use std::fmt::Write;
+
+    /// An OBJ of `shapes` triangles, each written `copies` times (and a sliver: its third
+    /// vertex moved `sliver` towards the midpoint of the first two).
+    fn obj(shapes: &[([f64; 9], usize)], sliver: f64) -> String {
+        let mut s = String::new();
+        let mut v = 0;
+        for (p, copies) in shapes {
+            for c in 0..*copies {
+                let mut q = *p;
+                if c % 3 == 2 {
+                    for a in 0..3 {
+                        let mid = 0.5 * (p[a] + p[3 + a]);
+                        q[6 + a] = p[6 + a] + sliver * (mid - p[6 + a]);
+                    }
+                }
+                for k in 0..3 {
+                    writeln!(s, "v {} {} {}", q[3 * k], q[3 * k + 1], q[3 * k + 2]).unwrap();
+                }
+                writeln!(s, "f {} {} {}", v + 1, v + 2, v + 3).unwrap();
+                v += 3;
+            }
+        }
+        s
+    }
+
+    proptest! {
+        #![proptest_config(ProptestConfig::with_cases(48))]
+        #[test]
+        fn wide_bvh_equals_brute_force(
+            shapes in prop::collection::vec(
+                (prop::array::uniform9(-1.0f64..1.0), 1usize..200), 1..5),
+            sliver in prop_oneof![Just(0.0), Just(1.0 - 1e-9), 0.0f64..1.0],
+            rays in prop::collection::vec(
+                (prop::array::uniform3(-3.0f64..3.0), prop::array::uniform3(-1.0f64..1.0)),
+                40),
+        ) {
+            let data = parse_obj(&obj(&shapes, sliver)).unwrap();
+            let Some(mesh) = Mesh::new(&data, &DAffine3::IDENTITY, MeshNormals::Flat) else {
+                return Ok(()); // every triangle had zero area
+            };
+            for (o, d) in rays {
+                let Some(dir) = DVec3::from(d).try_normalize() else { continue };
+                // Aim at a triangle's centroid half the time (many hits, many ties).
+                let tri = mesh.triangle(0);
+                let origin = DVec3::from(o);
+                let dir = if d[0] > 0.0 {
+                    ((tri[0] + tri[1] + tri[2]) / 3.0 - origin).try_normalize().unwrap_or(dir)
+                } else {
+                    dir
+                };
+                let ray = Ray::new(origin, dir, 0.0);
+                let brute = (0..mesh.triangle_count())
+                    .filter_map(|i| triangle_t(&mesh.triangle(i), &ray).map(|t| (t, i)))
+                    .filter(|&(t, _)| t > 0.0)
+                    .min_by(|a, b| a.0.total_cmp(&b.0).then(a.1.cmp(&b.1)));
+                let cost = &mut TraversalCost::default();
+                prop_assert_eq!(mesh.intersect(&ray, f64::INFINITY, cost), brute);
+                prop_assert_eq!(mesh.occludes(&ray, f64::INFINITY, cost), brute.is_some());
+                let line = Ray::new(origin, dir, f64::NEG_INFINITY);
+                let mut all: Vec<f64> = (0..mesh.triangle_count())
+                    .filter_map(|i| triangle_t(&mesh.triangle(i), &line))
+                    .collect();
+                // Merged as `Mesh::crossings` documents (duplicates are one crossing).
+                all.sort_by(f64::total_cmp);
+                all.dedup_by(|b, a| (*b - *a) <= 1e-9 * a.abs().max(b.abs()).max(1.0));
+                prop_assert_eq!(mesh.crossings(&ray, cost), all);
+            }
+        }
+    }
+}
