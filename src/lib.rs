@@ -15,6 +15,7 @@ pub mod diagram;
 pub mod effects;
 pub mod geometry;
 pub mod gui;
+pub mod input;
 pub mod math;
 pub mod mesh;
 pub mod render;

@@ -7,6 +7,9 @@ mod error;
 mod locate;
 mod mesh_object;
 mod packet;
+mod path;
+mod scan;
+mod suggest;
 mod transform;
 mod validate;
 
