@@ -4,7 +4,7 @@
 //! case, and every panic or rejection without a position (with the input, to reproduce).
 //!
 //! ```sh
-//! cargo run --release --example fuzz_loader -- --seconds 60 [--seed 1]
+//! cargo run --release --example fuzz_loader -- --seconds 60 [--seed 1] [--show-slowest]
 //! ```
 //!
 //! Exit status 1 if anything was found. Results are recorded in docs/robustness.md.
@@ -226,6 +226,9 @@ fn main() {
         slowest.0.as_secs_f64() * 1e3,
         slowest.1.len()
     );
+    if std::env::args().any(|a| a == "--show-slowest") {
+        println!("{}", slowest.1);
+    }
     for f in findings.iter().take(10) {
         println!("---\n{f}");
     }
