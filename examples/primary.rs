@@ -13,7 +13,7 @@
 
 use raytree::Scene;
 use raytree::bvh::TraversalCost;
-use raytree::mesh::generate::icosphere_scene;
+use raytree::scene::icosphere_scene;
 use std::hint::black_box;
 use std::time::Instant;
 

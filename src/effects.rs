@@ -3,8 +3,15 @@
 use crate::math::{FresnelModel, Rgb, critical_angle};
 use crate::scene::{LightKind, Scene, ShadowMode};
 
-/// The effects the tracer evaluates for one scene and its settings. Computed once per tracer;
-/// every flag that is off removes its code from the per-ray path.
+/// The effects the tracer evaluates for one scene and its settings. Computed once per tracer.
+///
+/// Two kinds of flag: *switches* remove code from the per-ray path when off (`reflection`,
+/// `refraction`, `absorption`, `translucent_shadows`, `specular`, `lights`, and through
+/// [`EffectPlan::direct_only`] the whole recursion); *explanations* are read only by
+/// [`EffectPlan::explain`] (`fresnel`, `tir`, `recursion`, `supersampling`), because their cost
+/// already vanishes without a switch: Fresnel and TIR are evaluated only at dielectric hits,
+/// which exist only when `refraction` is on; recursion stops at `max_depth` or when no
+/// secondary ray is spawned; one sample per pixel is simply one iteration.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct EffectPlan {
     /// Some material reflects (mirror reflectivity, or Fresnel/TIR reflection of a dielectric).
@@ -12,8 +19,9 @@ pub struct EffectPlan {
     /// Some material transmits: Snell refraction and the media stack.
     pub refraction: bool,
     /// Fresnel weights are evaluated (refraction on and a model other than `none`).
+    /// Explanation only (see the type's doc).
     pub fresnel: bool,
-    /// Total internal reflection is possible: some interface has n1 > n2.
+    /// Total internal reflection is possible: some interface has n1 > n2. Explanation only.
     pub tir: bool,
     /// Beer's law: some transmissive material absorbs.
     pub absorption: bool,
@@ -23,9 +31,9 @@ pub struct EffectPlan {
     pub specular: bool,
     /// Lights that can light something: bit i for light i (lights past 64 are always on).
     pub lights: u64,
-    /// Recursion happens (max_depth > 0 and something reflects or refracts).
+    /// Recursion happens (max_depth > 0 and something reflects or refracts). Explanation only.
     pub recursion: bool,
-    /// More than one sample per pixel.
+    /// More than one sample per pixel. Explanation only.
     pub supersampling: bool,
 }
 

@@ -6,14 +6,13 @@
 #![forbid(unsafe_code)]
 #![warn(missing_docs)]
 
-pub mod acne;
+pub mod analysis;
 pub mod bvh;
-pub mod check;
 pub mod codec;
-pub mod cost;
 pub mod diagram;
 pub mod effects;
 pub mod geometry;
+#[cfg(feature = "gui")]
 pub mod gui;
 pub mod input;
 pub mod math;

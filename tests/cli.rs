@@ -95,27 +95,61 @@ fn trace_prints_text_and_json() {
     );
 }
 
+/// Every fixture renders from the command line with every override spelled out, and the EXR
+/// holds exactly (as f32) what the library renders for the same scene and settings.
 #[test]
 fn fixtures_render_from_the_command_line() {
+    use raytree::math::FresnelModel;
+    use raytree::scene::{OffsetStrategy, ShadowMode};
     let dir = tempfile::tempdir().unwrap();
-    let o = raytree(
-        &[
-            "render",
-            &fixture("tir-block.json"),
-            "-o",
-            "t.png",
-            "--size",
-            "32x18",
-            "--fresnel",
-            "schlick",
-            "--offset",
-            "ray",
-            "--shadows",
-            "opaque",
-        ],
-        dir.path(),
-    );
-    assert!(o.status.success(), "{}", stderr(&o));
+    let fixtures = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("fixtures");
+    let mut names: Vec<_> = std::fs::read_dir(&fixtures)
+        .unwrap()
+        .filter_map(|e| e.ok()?.file_name().into_string().ok())
+        .filter(|n| n.ends_with(".json"))
+        .collect();
+    names.sort();
+    assert!(names.len() >= 9, "{names:?}");
+    for name in &names {
+        let o = raytree(
+            &[
+                "render",
+                &fixture(name),
+                "-o",
+                "t.exr",
+                "--size",
+                "32x18",
+                "--fresnel",
+                "schlick",
+                "--offset",
+                "ray",
+                "--shadows",
+                "opaque",
+                "--max-depth",
+                "5",
+            ],
+            dir.path(),
+        );
+        assert!(o.status.success(), "{name}: {}", stderr(&o));
+        let mut scene =
+            raytree::Scene::from_json(&std::fs::read_to_string(fixtures.join(name)).unwrap())
+                .unwrap();
+        scene.camera = scene.camera.with_size(32, 18);
+        scene.settings.fresnel = FresnelModel::Schlick;
+        scene.settings.offset.strategy = OffsetStrategy::Ray;
+        scene.settings.shadows = ShadowMode::Opaque;
+        scene.settings.max_depth = 5;
+        let (expect, _) = raytree::render(&scene, &|_| {});
+        let got = image::open(dir.path().join("t.exr")).unwrap().into_rgb32f();
+        assert_eq!(got.dimensions(), (32, 18), "{name}");
+        let mut lit = 0;
+        for (p, e) in got.pixels().zip(&expect.pixels) {
+            let e = e.to_array().map(|c| c as f32);
+            assert_eq!(p.0, e, "{name}");
+            lit += usize::from(e.iter().any(|c| *c > 0.0));
+        }
+        assert!(lit > 32 * 18 / 2, "{name}: mostly black ({lit} lit pixels)");
+    }
 }
 
 #[test]

@@ -2,7 +2,7 @@
 //! offset keeps it, a large epsilon leaks through it), nested dielectrics, TIR chains ending
 //! exactly at max_depth, and the NaN/infinity guard on images.
 
-use raytree::check::tree_violations;
+use raytree::analysis::invariants::tree_violations;
 use raytree::tree::{EndReason, RayKind};
 use raytree::{Scene, render, render_diagnosed, trace_pixel};
 

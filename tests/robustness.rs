@@ -177,7 +177,7 @@ fn acne_writes_a_complete_report_directory() {
 }
 
 #[test]
-fn acne_rejects_bad_lists_and_foreign_directories() {
+fn acne_rejects_bad_lists_and_keeps_foreign_files() {
     let dir = tempfile::tempdir().unwrap();
     for (flag, v) in [
         ("--strategies", "normal,fancy"),
@@ -191,9 +191,17 @@ fn acne_rejects_bad_lists_and_foreign_directories() {
     }
     std::fs::create_dir(dir.path().join("mine")).unwrap();
     std::fs::write(dir.path().join("mine/notes.txt"), "keep").unwrap();
-    let o = raytree(&["acne", "--size", "4x3", "-o", "mine"], dir.path());
-    assert_eq!(o.status.code(), Some(2));
-    assert!(dir.path().join("mine/notes.txt").is_file());
+    // A foreign directory is written into, never emptied: only acne's own files appear.
+    let o = raytree(
+        &["acne", "--size", "4x3", "--scales", "1", "-o", "mine"],
+        dir.path(),
+    );
+    assert_eq!(o.status.code(), Some(0));
+    assert_eq!(
+        std::fs::read_to_string(dir.path().join("mine/notes.txt")).unwrap(),
+        "keep"
+    );
+    assert!(dir.path().join("mine/report.json").is_file());
 }
 
 #[test]

@@ -1,7 +1,7 @@
 //! Whole scenes: the tree invariants on every fixture, bit-for-bit agreement of render and
 //! trace, and analytic scenes with closed-form answers.
 
-use raytree::check::tree_violations;
+use raytree::analysis::invariants::tree_violations;
 use raytree::math::Rgb;
 use raytree::tree::{EndReason, RayKind};
 use raytree::{Scene, render, trace_pixel};

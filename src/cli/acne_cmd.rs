@@ -3,11 +3,13 @@
 use super::acne_figures::{heat_map, plot};
 use super::args::{AcneArgs, Overrides};
 use super::load::{load, pair};
-use anyhow::{Context, Result, anyhow, bail};
+use super::output::{Inputs, OutDir};
+use super::say::sayln;
+use anyhow::{Result, anyhow, bail};
 use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
-use raytree::acne::{AcneConfig, sweep};
+use raytree::analysis::acne::{AcneConfig, sweep};
 use raytree::scene::OffsetStrategy;
-use std::path::{Path, PathBuf};
+use std::path::Path;
 
 fn list<T>(flag: &str, v: &str, parse: impl Fn(&str) -> Option<T>) -> Result<Vec<T>> {
     let out: Vec<T> = v
@@ -52,78 +54,26 @@ fn config(a: &AcneArgs) -> Result<AcneConfig> {
     })
 }
 
-/// A directory that appears whole: files go into a hidden sibling, which replaces the target
-/// on [`StagedDir::commit`] and is removed if dropped before.
-struct StagedDir {
-    target: PathBuf,
-    temp: PathBuf,
-}
-
-impl StagedDir {
-    fn create(target: &Path) -> Result<Self> {
-        if target.exists() && !(target.is_dir() && is_replaceable(target)) {
-            bail!(
-                "cannot write {}: it exists and is not an earlier acne report (no report.json)",
-                target.display()
-            );
-        }
-        let name = target
-            .file_name()
-            .with_context(|| format!("cannot write {}: not a directory name", target.display()))?;
-        let parent = target
-            .parent()
-            .filter(|p| !p.as_os_str().is_empty())
-            .unwrap_or(Path::new("."));
-        let temp = parent.join(format!(
-            ".{}.{}.tmp",
-            name.to_string_lossy(),
-            std::process::id()
-        ));
-        std::fs::create_dir_all(&temp)
-            .with_context(|| format!("cannot write {}", target.display()))?;
-        Ok(Self {
-            target: target.to_path_buf(),
-            temp,
-        })
-    }
-
-    fn write(&self, name: &str, bytes: &[u8]) -> Result<()> {
-        std::fs::write(self.temp.join(name), bytes)
-            .with_context(|| format!("cannot write {}", self.target.join(name).display()))
-    }
-
-    fn commit(mut self) -> Result<()> {
-        let old = self.temp.with_extension("old");
-        if self.target.exists() {
-            std::fs::rename(&self.target, &old)
-                .with_context(|| format!("cannot replace {}", self.target.display()))?;
-        }
-        std::fs::rename(&self.temp, &self.target)
-            .with_context(|| format!("cannot write {}", self.target.display()))?;
-        let _ = std::fs::remove_dir_all(&old);
-        self.temp = PathBuf::new();
-        Ok(())
-    }
-}
-
-impl Drop for StagedDir {
-    fn drop(&mut self) {
-        if !self.temp.as_os_str().is_empty() {
-            let _ = std::fs::remove_dir_all(&self.temp);
-        }
-    }
-}
-
-fn is_replaceable(dir: &Path) -> bool {
-    dir.join("report.json").is_file()
-        || std::fs::read_dir(dir).is_ok_and(|mut d| d.next().is_none())
-}
-
-/// Run the sweep and write report.md, report.json, heatmap-<strategy>.png and plot.png.
+/// Run the sweep and write report.md, report.json, heatmap-<strategy>.png and plot.png into
+/// the output directory (created if missing; in an existing one only these files are replaced,
+/// each atomically, and nothing is written unless the whole sweep succeeded).
 pub fn run(a: &AcneArgs) -> Result<()> {
     let cfg = config(a)?;
     let loaded = load(a.scene.as_deref(), &Overrides::default())?;
-    let out = StagedDir::create(&a.output)?;
+    let inputs = Inputs::new(loaded.inputs.iter().map(|p| p.as_path()));
+    let dir = OutDir::create(&a.output)?;
+    let mut names = vec!["report.md".to_string(), "report.json".to_string()];
+    names.extend(
+        cfg.strategies
+            .iter()
+            .map(|st| format!("heatmap-{}.png", st.name())),
+    );
+    names.push("plot.png".to_string());
+    let mut pending = names
+        .iter()
+        .map(|n| dir.file(n, &inputs))
+        .collect::<Result<Vec<_>>>()?
+        .into_iter();
     let total = cfg.strategies.len() * cfg.epsilons.len() * cfg.scales.len();
     let bar = ProgressBar::with_draw_target(Some(total as u64), ProgressDrawTarget::stderr())
         .with_style(
@@ -141,28 +91,30 @@ pub fn run(a: &AcneArgs) -> Result<()> {
         .map_or("classic (built-in)".to_string(), |s| {
             s.to_string_lossy().into_owned()
         });
-    out.write("report.md", report.markdown(&name).as_bytes())?;
-    out.write(
-        "report.json",
-        serde_json::to_string_pretty(&report)?.as_bytes(),
-    )?;
+    let mut bytes = vec![
+        report.markdown(&name).into_bytes(),
+        serde_json::to_string_pretty(&report)?.into_bytes(),
+    ];
     for &st in &cfg.strategies {
-        out.write(
-            &format!("heatmap-{}.png", st.name()),
-            &heat_map(&report, st)?,
-        )?;
+        bytes.push(heat_map(&report, st)?);
     }
-    out.write("plot.png", &plot(&report, &name)?)?;
-    out.commit()?;
-    println!(
+    bytes.push(plot(&report, &name)?);
+    for b in bytes {
+        pending.next().expect("one file per output").commit(&b)?;
+    }
+    dir.keep();
+    sayln!(
         "wrote {} ({total} renders of {}x{}): report.md, report.json, plot.png, heatmap-*.png",
         a.output.display(),
         cfg.width,
         cfg.height
-    );
+    )?;
     for &st in &cfg.strategies {
         let ok = report.clean_everywhere(st);
-        let list: Vec<String> = ok.iter().map(|e| raytree::acne::sci(*e)).collect();
+        let list: Vec<String> = ok
+            .iter()
+            .map(|e| raytree::analysis::acne::sci(*e))
+            .collect();
         let verdict = if !st.uses_epsilon() && ok.len() == cfg.epsilons.len() {
             "clean at every scale (uses no epsilon)".to_string()
         } else if list.is_empty() {
@@ -170,7 +122,7 @@ pub fn run(a: &AcneArgs) -> Result<()> {
         } else {
             format!("clean at every scale with epsilon {}", list.join(", "))
         };
-        println!("{:>7}: {verdict}", st.name());
+        sayln!("{:>7}: {verdict}", st.name())?;
     }
     Ok(())
 }

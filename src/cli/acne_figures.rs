@@ -6,7 +6,7 @@
 
 use super::canvas::{Canvas, Rgb8};
 use anyhow::Result;
-use raytree::acne::{AcneCell, AcneReport, sci};
+use raytree::analysis::acne::{AcneCell, AcneReport, sci};
 use raytree::scene::OffsetStrategy;
 
 const INK: Rgb8 = [30, 30, 30];

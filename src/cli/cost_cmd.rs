@@ -2,28 +2,31 @@
 
 use super::args::CostArgs;
 use super::load::load;
-use super::output::{Pending, encode_rgb8_png};
+use super::output::{Inputs, OutDir, encode_rgb8_png};
 use super::plot::error_vs_time;
-use anyhow::{Context, Result};
+use super::say::{out, sayln};
+use anyhow::Result;
 use indicatif::{ProgressBar, ProgressStyle};
-use raytree::cost::{self, CostReport, Sweep};
+use raytree::analysis::cost::{self, CostReport, Sweep};
 use std::fmt::Write;
 
 /// Run the sweep and write `cost.md`, `cost.csv`, `cost.json` and `cost.png` into the output
-/// directory. Nothing is written unless every render succeeded.
+/// directory (created if missing; in an existing one only these four files are replaced, each
+/// atomically). Nothing is written unless every render succeeded. A non-finite error is
+/// written as `not finite` (Markdown), an empty field (CSV) or `null` (JSON), and not plotted.
 pub fn run(a: &CostArgs) -> Result<()> {
     let mut overrides = a.overrides.clone();
     if overrides.size.is_none() {
         overrides.size = Some(if a.quick { "160x90" } else { "320x180" }.to_string());
     }
     let loaded = load(a.scene.as_deref(), &overrides)?;
-    std::fs::create_dir_all(&a.output)
-        .with_context(|| format!("cannot create {}", a.output.display()))?;
+    let inputs = Inputs::new(loaded.inputs.iter().map(|p| p.as_path()));
+    let dir = OutDir::create(&a.output)?;
     let names = ["cost.md", "cost.csv", "cost.json", "cost.png"];
-    let pending: Vec<Pending> = names
+    let pending = names
         .iter()
-        .map(|n| Pending::create(&a.output.join(n)))
-        .collect::<Result<_>>()?;
+        .map(|n| dir.file(n, &inputs))
+        .collect::<Result<Vec<_>>>()?;
     let mut sweep = if a.quick {
         Sweep::quick()
     } else {
@@ -53,8 +56,9 @@ pub fn run(a: &CostArgs) -> Result<()> {
     for (p, b) in pending.into_iter().zip(bytes) {
         p.commit(&b)?;
     }
-    print!("{md}");
-    println!("wrote {}/{{{}}}", a.output.display(), names.join(","));
+    dir.keep();
+    out(&md)?;
+    sayln!("wrote {}/{{{}}}", a.output.display(), names.join(","))?;
     Ok(())
 }
 
@@ -77,7 +81,7 @@ fn markdown(r: &CostReport, label: &str) -> String {
     for row in &r.rows {
         let _ = writeln!(
             s,
-            "| {} | {} | {:.1} | {} | {} | {} | {} | {} | {:.2e} | {:.3} | {:.2}% | {} |",
+            "| {} | {} | {:.1} | {} | {} | {} | {} | {} | {} | {} | {} | {} |",
             row.axis,
             row.value,
             row.median_ms,
@@ -86,9 +90,15 @@ fn markdown(r: &CostReport, label: &str) -> String {
             row.rays.reflected,
             row.rays.refracted,
             row.rays.shadow,
-            row.error.rmse,
-            row.error.max,
-            row.error.off_8bit * 100.0,
+            fin(row.error.rmse, |v| format!("{v:.2e}")),
+            fin(row.error.max, |v| {
+                if v < 1e6 {
+                    format!("{v:.3}")
+                } else {
+                    format!("{v:.3e}")
+                }
+            }),
+            fin(row.error.off_8bit, |v| format!("{:.2}%", v * 100.0)),
             if row.pareto { "*" } else { "" }
         );
     }
@@ -111,11 +121,29 @@ fn csv(r: &CostReport) -> String {
             row.rays.reflected,
             row.rays.refracted,
             row.rays.shadow,
-            row.error.rmse,
-            row.error.max,
-            row.error.off_8bit,
+            csv_num(row.error.rmse),
+            csv_num(row.error.max),
+            csv_num(row.error.off_8bit),
             row.pareto
         );
     }
     s
+}
+
+/// `f(v)`, or `not finite` for NaN and infinities (never written as a number).
+fn fin(v: f64, f: impl Fn(f64) -> String) -> String {
+    if v.is_finite() {
+        f(v)
+    } else {
+        "not finite".to_string()
+    }
+}
+
+/// A CSV field: the number, or empty for NaN and infinities.
+fn csv_num(v: f64) -> String {
+    if v.is_finite() {
+        v.to_string()
+    } else {
+        String::new()
+    }
 }

@@ -2,10 +2,11 @@
 
 use super::args::DiagramArgs;
 use super::load::{load, pair};
-use super::output::Pending;
+use super::output::{Inputs, Pending};
+use super::say::{sayln, warnln};
 use anyhow::{Result, anyhow, bail};
 use raytree::RayKind;
-use raytree::diagram::{Diagram, DiagramOptions, PlaneSpec, Style, Theme, to_png, to_svg};
+use raytree::diagram::{Diagram, DiagramOptions, PlaneSpec, Style, Theme, to_png, to_svg_counting};
 
 #[derive(Clone, Copy, PartialEq, Eq)]
 enum Format {
@@ -86,7 +87,10 @@ pub fn run(a: &DiagramArgs) -> Result<()> {
             scene.settings.spp
         );
     }
-    let pending = Pending::create(&a.output)?;
+    let pending = Pending::create(
+        &a.output,
+        &Inputs::new(loaded.inputs.iter().map(|p| p.as_path())),
+    )?;
     let name = a
         .scene
         .as_ref()
@@ -117,16 +121,25 @@ pub fn run(a: &DiagramArgs) -> Result<()> {
     let diagram = Diagram::build(scene, &tree, &opts)?;
     let style = Style::new(theme);
     let bytes = match format {
-        Format::Svg => to_svg(&diagram, &style).into_bytes(),
+        Format::Svg => {
+            let (svg, dropped) = to_svg_counting(&diagram, &style);
+            if dropped > 0 {
+                warnln!(
+                    "warning: {dropped} shapes with non-finite coordinates (NaN or infinite) were left out of {}",
+                    a.output.display()
+                );
+            }
+            svg.into_bytes()
+        }
         Format::Png => to_png(&diagram, &style),
     };
     pending.commit(&bytes)?;
-    println!(
+    sayln!(
         "wrote {} ({width}x{height}, {} rays drawn, {} off the plane; {})",
         a.output.display(),
         diagram.rays.len(),
         diagram.off_plane_rays,
         diagram.plane_text
-    );
+    )?;
     Ok(())
 }

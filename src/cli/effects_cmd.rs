@@ -2,6 +2,7 @@
 
 use super::args::EffectsArgs;
 use super::load::load;
+use super::say::sayln;
 use anyhow::Result;
 use raytree::effects::EffectPlan;
 
@@ -9,14 +10,14 @@ use raytree::effects::EffectPlan;
 pub fn run(a: &EffectsArgs) -> Result<()> {
     let loaded = load(a.scene.as_deref(), &a.overrides)?;
     let plan = EffectPlan::for_scene(&loaded.scene);
-    println!("effects for {}:", loaded.label);
+    sayln!("effects for {}:", loaded.label)?;
     for l in plan.explain(&loaded.scene) {
-        println!(
+        sayln!(
             "  [{}] {:<26} {}",
             if l.on { "on " } else { "off" },
             l.effect,
             l.reason
-        );
+        )?;
     }
     Ok(())
 }

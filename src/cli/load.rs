@@ -14,10 +14,14 @@ pub struct Loaded {
     pub scene: Scene,
     /// The file name, or `<built-in classic>`.
     pub label: String,
+    /// The files read: the scene and the OBJ meshes it references (outputs may not overwrite
+    /// them).
+    pub inputs: Vec<std::path::PathBuf>,
 }
 
 /// Read and validate `path` (or the built-in scene), then apply `o`.
 pub fn load(path: Option<&Path>, o: &Overrides) -> Result<Loaded> {
+    let mut inputs = Vec::new();
     let (mut scene, label) = match path {
         None => (Scene::default_scene(), "<built-in classic>".to_string()),
         Some(p) => {
@@ -26,13 +30,21 @@ pub fn load(path: Option<&Path>, o: &Overrides) -> Result<Loaded> {
                 .map_err(|e| anyhow!("cannot read scene {label}: {e}"))?;
             let src = raytree::input::decode(bytes).map_err(|e| anyhow!("{label}:{e}"))?;
             let dir = p.parent().unwrap_or(Path::new(""));
-            let scene = Scene::from_json_with(&src, &mut |file| read_obj(dir, file))
-                .map_err(|e| anyhow!("{label}:{e}"))?;
+            inputs.push(p.to_path_buf());
+            let scene = Scene::from_json_with(&src, &mut |file| {
+                inputs.push(dir.join(file));
+                read_obj(dir, file)
+            })
+            .map_err(|e| anyhow!("{label}:{e}"))?;
             (scene, label)
         }
     };
     apply(&mut scene, o)?;
-    Ok(Loaded { scene, label })
+    Ok(Loaded {
+        scene,
+        label,
+        inputs,
+    })
 }
 
 /// Read and parse the OBJ `file` (relative paths against the scene's directory `dir`); errors

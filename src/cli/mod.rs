@@ -1,18 +1,24 @@
-//! Subcommands. Every user error (bad scene, bad flag, unwritable output) exits with code 2.
+//! Subcommands. Every user error (bad scene, bad flag, unwritable output) exits with code 2;
+//! a closed standard output (`| head`) exits quietly with 0; SIGINT, SIGTERM and SIGHUP remove
+//! the temporary files and exit with 128 + the signal.
 
 mod acne_cmd;
 mod acne_figures;
 mod args;
 mod canvas;
+mod cleanup;
 mod compare_cmd;
 mod cost_cmd;
 mod diagram_cmd;
 mod effects_cmd;
+mod finite;
 mod load;
 mod output;
 mod plot;
 mod render_cmd;
+mod say;
 mod trace_cmd;
+#[cfg(feature = "gui")]
 mod view_cmd;
 
 use clap::Parser;
@@ -22,6 +28,7 @@ pub use args::{Cli, Command};
 
 /// Parse arguments, run, and map errors to exit code 2.
 pub fn run() -> ExitCode {
+    cleanup::install();
     let cli = Cli::parse();
     let result = match cli.command {
         Command::Render(a) => render_cmd::run(&a),
@@ -30,14 +37,22 @@ pub fn run() -> ExitCode {
         Command::Effects(a) => effects_cmd::run(&a),
         Command::Cost(a) => cost_cmd::run(&a),
         Command::Compare(a) => compare_cmd::run(&a),
+        #[cfg(feature = "gui")]
         Command::View(a) => view_cmd::run(&a),
+        #[cfg(not(feature = "gui"))]
+        Command::View(_) => Err(anyhow::anyhow!(
+            "this raytree was built without the inspector (cargo feature \"gui\")"
+        )),
         Command::Diagram(a) => diagram_cmd::run(&a),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,
-        Err(e) => {
-            eprintln!("error: {e:#}");
-            ExitCode::from(2)
-        }
+        Err(e) => match e.downcast_ref::<say::StdoutError>() {
+            Some(o) if o.is_broken_pipe() => ExitCode::SUCCESS,
+            _ => {
+                say::warnln!("error: {e:#}");
+                ExitCode::from(2)
+            }
+        },
     }
 }

@@ -3,7 +3,7 @@
 use anyhow::{Result, anyhow};
 use plotters::prelude::*;
 use plotters::style::FontStyle;
-use raytree::cost::CostReport;
+use raytree::analysis::cost::CostReport;
 use std::sync::Once;
 
 /// Register egui's embedded Ubuntu Light as "sans-serif", so no system fonts are needed.
@@ -27,32 +27,38 @@ const AXES: [(&str, RGBColor); 5] = [
 ];
 
 /// Draw RMSE (log) against median time (log) as RGB bytes of `w x h`; Pareto points ringed
-/// and joined.
+/// and joined. Rows whose error or time is not finite cannot sit on a log axis (an infinite
+/// range never ends its tick loop): they are left out and the caption counts them.
 pub fn error_vs_time(report: &CostReport, w: u32, h: u32) -> Result<Vec<u8>> {
     register_font();
     let mut buf = vec![255u8; (w * h * 3) as usize];
     {
         let root = BitMapBackend::with_buffer(&mut buf, (w, h)).into_drawing_area();
         root.fill(&WHITE).map_err(|e| anyhow!("plot: {e}"))?;
+        let plottable = |r: &&raytree::analysis::cost::CostRow| {
+            r.error.rmse.is_finite() && r.median_ms.is_finite() && r.median_ms > 0.0
+        };
+        let rows: Vec<_> = report.rows.iter().filter(plottable).collect();
+        let left_out = report.rows.len() - rows.len();
         // Zero error cannot sit on a log axis: floor it at a tenth of the smallest non-zero error.
-        let nonzero = report
-            .rows
-            .iter()
-            .map(|r| r.error.rmse)
-            .filter(|e| *e > 0.0);
+        let nonzero = rows.iter().map(|r| r.error.rmse).filter(|e| *e > 0.0);
         let floor = nonzero.clone().fold(f64::INFINITY, f64::min).min(1e-3) / 10.0;
         let emax = nonzero.fold(floor * 10.0, f64::max) * 30.0; // room for the legend
-        let tmin = report
-            .rows
+        let fastest = rows
             .iter()
             .map(|r| r.median_ms)
-            .fold(f64::INFINITY, f64::min)
-            / 1.5;
-        let tmax = report.rows.iter().map(|r| r.median_ms).fold(0.0, f64::max) * 1.5;
+            .fold(f64::INFINITY, f64::min);
+        let tmin = if fastest.is_finite() { fastest } else { 1.0 } / 1.5;
+        let tmax = rows.iter().map(|r| r.median_ms).fold(tmin * 1.5, f64::max) * 1.5;
+        let note = if left_out > 0 {
+            format!("; {left_out} settings with non-finite error not plotted")
+        } else {
+            String::new()
+        };
         let mut chart = ChartBuilder::on(&root)
             .caption(
                 format!(
-                    "raytree cost: error vs time ({}x{})",
+                    "raytree cost: error vs time ({}x{}){note}",
                     report.size[0], report.size[1]
                 ),
                 ("sans-serif", 28),
@@ -73,8 +79,7 @@ pub fn error_vs_time(report: &CostReport, w: u32, h: u32) -> Result<Vec<u8>> {
             .draw()
             .map_err(|e| anyhow!("plot: {e}"))?;
         let clamp = |e: f64| e.max(floor);
-        let mut front: Vec<(f64, f64)> = report
-            .rows
+        let mut front: Vec<(f64, f64)> = rows
             .iter()
             .filter(|r| r.pareto)
             .map(|r| (r.median_ms, clamp(r.error.rmse)))
@@ -88,7 +93,7 @@ pub fn error_vs_time(report: &CostReport, w: u32, h: u32) -> Result<Vec<u8>> {
         for (k, (axis, color)) in AXES.into_iter().enumerate() {
             // Stagger labels by axis so settings that land on the same point stay legible.
             let dy = -10 + 16 * k as i32 - 32;
-            let pts: Vec<_> = report.rows.iter().filter(|r| r.axis == axis).collect();
+            let pts: Vec<_> = rows.iter().filter(|r| r.axis == axis).collect();
             chart
                 .draw_series(pts.iter().map(|r| {
                     let p = (r.median_ms, clamp(r.error.rmse));

@@ -2,7 +2,8 @@
 
 use super::args::RenderArgs;
 use super::load::load;
-use super::output::{Pending, encode, image_format};
+use super::output::{ImageFormat, Inputs, Pending, encode_counting, image_format};
+use super::say::{sayln, warnln};
 use anyhow::Result;
 use indicatif::{ProgressBar, ProgressStyle};
 use std::time::Instant;
@@ -12,7 +13,10 @@ pub fn run(a: &RenderArgs) -> Result<()> {
     let format = image_format(&a.output)?;
     let loaded = load(a.scene.as_deref(), &a.overrides)?;
     let scene = &loaded.scene;
-    let pending = Pending::create(&a.output)?;
+    let pending = Pending::create(
+        &a.output,
+        &Inputs::new(loaded.inputs.iter().map(|p| p.as_path())),
+    )?;
     let (w, h) = (scene.camera.width, scene.camera.height);
     let bar = ProgressBar::new(u64::from(h)).with_style(
         ProgressStyle::with_template("{msg} [{bar:40}] {pos}/{len} rows {elapsed_precise}")
@@ -30,15 +34,22 @@ pub fn run(a: &RenderArgs) -> Result<()> {
     };
     let secs = start.elapsed().as_secs_f64();
     bar.finish_and_clear();
-    pending.commit(&encode(&image, format)?)?;
+    let (bytes, clamped) = encode_counting(&image, format)?;
+    pending.commit(&bytes)?;
+    if clamped > 0 && format == ImageFormat::Exr {
+        warnln!(
+            "warning: {clamped} pixels had a channel beyond the 32-bit float range (3.4e38) and were clamped to it in {}",
+            a.output.display()
+        );
+    }
     let r = stats.rays;
-    println!(
+    sayln!(
         "wrote {} ({w}x{h}, {} spp, max depth {})",
         a.output.display(),
         scene.settings.spp,
         scene.settings.max_depth
-    );
-    println!(
+    )?;
+    sayln!(
         "time {secs:.3} s, {} rays ({:.2} Mrays/s): camera {}, reflected {}, refracted {}, shadow {}",
         r.total(),
         r.total() as f64 / secs / 1e6,
@@ -46,9 +57,9 @@ pub fn run(a: &RenderArgs) -> Result<()> {
         r.reflected,
         r.refracted,
         r.shadow
-    );
+    )?;
     if a.diagnose {
-        println!(
+        sayln!(
             "diagnostics: {} self-hit rays in {} pixels, {} leaking rays in {} pixels (offset {} {:e})",
             r.self_hits,
             stats.self_hit_pixels,
@@ -56,15 +67,15 @@ pub fn run(a: &RenderArgs) -> Result<()> {
             stats.leak_pixels,
             scene.settings.offset.strategy.name(),
             scene.settings.offset.epsilon
-        );
+        )?;
     }
     if let Some((x, y)) = stats.first_nonfinite {
-        eprintln!(
+        warnln!(
             "warning: {} pixels were not finite and were written black; first at {x},{y} (`raytree trace --pixel {x},{y}`); its tree:",
             stats.nonfinite_pixels
         );
         if let Some(tree) = raytree::trace_pixel(scene, x, y) {
-            eprint!("{}", raytree::text::tree_text(&tree));
+            super::say::err(&raytree::text::tree_text(&tree));
         }
     }
     Ok(())

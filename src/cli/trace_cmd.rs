@@ -2,6 +2,7 @@
 
 use super::args::TraceArgs;
 use super::load::{load, pair};
+use super::say::{out, sayln};
 use anyhow::{Result, bail};
 
 /// Print the ray tree of one pixel as text or JSON.
@@ -17,9 +18,15 @@ pub fn run(a: &TraceArgs) -> Result<()> {
         );
     };
     if a.json {
-        println!("{}", serde_json::to_string_pretty(&tree)?);
+        // serde_json would write NaN and infinities as null, indistinguishable from "absent".
+        if let Some(at) = super::finite::first_nonfinite(&tree) {
+            bail!(
+                "pixel {x},{y}: the tree holds a non-finite number at {at}; JSON cannot carry it, so none was written (the text form shows it: drop --json)"
+            );
+        }
+        sayln!("{}", serde_json::to_string_pretty(&tree)?)?;
     } else {
-        print!("{}", raytree::text::tree_text(&tree));
+        out(&raytree::text::tree_text(&tree))?;
     }
     Ok(())
 }

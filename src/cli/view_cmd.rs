@@ -3,15 +3,15 @@
 
 use super::args::ViewArgs;
 use super::load::{apply, pair};
-use super::output::Pending;
+use super::output::{Inputs, Pending};
 use anyhow::{Result, anyhow};
 use raytree::gui::{Files, InspectorApp, Session};
-use std::path::Path;
+use std::path::{Path, PathBuf};
 use std::sync::Arc;
 use std::time::SystemTime;
 
-/// Real files.
-struct DiskFiles;
+/// Real files; exports never overwrite the scene (`.0`).
+struct DiskFiles(Option<PathBuf>);
 
 impl Files for DiskFiles {
     /// Bounded like the command line's reads; the session refuses a scene over
@@ -25,7 +25,7 @@ impl Files for DiskFiles {
     }
 
     fn write(&self, path: &Path, bytes: &[u8]) -> std::io::Result<()> {
-        Pending::create(path)
+        Pending::create(path, &Inputs::new(self.0.as_deref()))
             .and_then(|p| p.commit(bytes))
             .map_err(|e| std::io::Error::other(format!("{e:#}")))
     }
@@ -62,8 +62,8 @@ pub fn run(a: &ViewArgs) -> Result<()> {
                 apply(s, &overrides).map_err(|e| format!("{e:#}"))
             });
             let mut session = Session::new(
-                path,
-                Box::new(DiskFiles),
+                path.clone(),
+                Box::new(DiskFiles(path)),
                 adjust,
                 Arc::new(move || ctx.request_repaint()),
             );

@@ -23,7 +23,7 @@ pub use model::{Diagram, Label, LabelRole, RayEnd, RaySegment};
 pub use paint::{Style, Theme, display_list};
 pub use plane::{PlaneFrame, PlaneSpec};
 pub use raster::{to_pixmap, to_png};
-pub use svg::to_svg;
+pub use svg::{to_svg, to_svg_counting};
 
 use crate::tree::{NodeId, RayKind};
 

@@ -39,9 +39,44 @@ fn points(p: &[Point]) -> String {
     s
 }
 
-/// The diagram as a standalone SVG document.
+/// Every number of `p` is finite (SVG has no way to write NaN or infinity).
+fn finite(p: &Prim) -> bool {
+    let pt = |q: &Point| q.x.is_finite() && q.y.is_finite();
+    match p {
+        Prim::Fill { points, .. } => points.iter().all(pt),
+        Prim::Stroke {
+            points,
+            width,
+            dash,
+            ..
+        } => {
+            points.iter().all(pt)
+                && width.is_finite()
+                && dash.is_none_or(|d| d.iter().all(|v| v.is_finite()))
+        }
+        Prim::Circle {
+            center,
+            radius,
+            stroke,
+            ..
+        } => pt(center) && radius.is_finite() && stroke.is_none_or(|(_, w)| w.is_finite()),
+        Prim::Text { pos, size, .. } => pt(pos) && size.is_finite(),
+    }
+}
+
+/// The diagram as a standalone SVG document; shapes with a non-finite number are left out
+/// ([`to_svg_counting`] says how many).
 #[must_use]
 pub fn to_svg(d: &Diagram, style: &Style) -> String {
+    to_svg_counting(d, style).0
+}
+
+/// [`to_svg`] and the number of shapes left out because a coordinate, radius or size was NaN
+/// or infinite (a sphere of radius 1e300 projects to an infinite circle): no `r="inf"` or
+/// `x="NaN"` is ever written.
+#[must_use]
+pub fn to_svg_counting(d: &Diagram, style: &Style) -> (String, usize) {
+    let mut dropped = 0;
     let mut s = String::new();
     let _ = writeln!(
         s,
@@ -51,6 +86,10 @@ pub fn to_svg(d: &Diagram, style: &Style) -> String {
         f = escape(SVG_FONT_FAMILY)
     );
     for p in display_list(d, style) {
+        if !finite(&p) {
+            dropped += 1;
+            continue;
+        }
         match p {
             Prim::Fill {
                 points: pts,
@@ -137,12 +176,26 @@ pub fn to_svg(d: &Diagram, style: &Style) -> String {
         }
     }
     s.push_str("</svg>\n");
-    s
+    (s, dropped)
 }
 
 #[cfg(test)]
 mod tests {
-    use super::escape;
+    use super::{Point, Prim, escape, finite};
+    use crate::diagram::paint::Rgba;
+
+    #[test]
+    fn non_finite_shapes_are_recognised() {
+        let c = |r: f64, x: f64| Prim::Circle {
+            center: Point::new(x, 1.0),
+            radius: r,
+            fill: Some(Rgba(0, 0, 0, 255)),
+            stroke: None,
+        };
+        assert!(finite(&c(2.0, 1.0)));
+        assert!(!finite(&c(f64::INFINITY, 1.0)));
+        assert!(!finite(&c(2.0, f64::NAN)));
+    }
 
     #[test]
     fn escapes_markup() {

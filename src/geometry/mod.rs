@@ -10,11 +10,10 @@ use std::sync::Arc;
 
 mod intersect;
 mod spawn;
-mod triangle;
 
+pub(crate) use crate::mesh::triangle::triangle_t;
 use intersect::{accept, box_normal, slab_interval, sphere_hit, sphere_roots};
 pub use spawn::{SELF_HIT_FRACTION, gamma};
-pub(crate) use triangle::{ShearedRay, triangle_t};
 
 /// A primitive. Every shape has an outward normal; planes bound the half-space behind the normal.
 #[derive(Clone, Debug, PartialEq)]
@@ -61,6 +60,16 @@ pub struct ShapeHit {
 }
 
 impl Shape {
+    /// Stored triangle `i` of `mesh` (BVH order) as a stand-alone [`Shape::Triangle`] (outward
+    /// normal).
+    #[must_use]
+    pub fn mesh_triangle(mesh: &Mesh, i: usize) -> Shape {
+        Shape::Triangle {
+            vertices: mesh.triangle(i),
+            normal: mesh.geometric_normal(i),
+        }
+    }
+
     /// The closest hit with `t` in `(ray.t_min, t_max)`.
     #[must_use]
     pub fn intersect(&self, ray: &Ray, t_max: f64) -> Option<ShapeHit> {

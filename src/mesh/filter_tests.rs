@@ -5,9 +5,9 @@
 use super::generate::icosphere;
 use super::packed::EdgeRay;
 use super::tests::Rng;
+use super::triangle::triangle_t;
 use super::*;
 use crate::bvh::{BoxRay, TraversalCost, Visit};
-use crate::geometry::triangle_t;
 use crate::math::Ray;
 
 /// An icosphere of `level` subdivisions, rotated, squashed, scaled and moved.
@@ -25,7 +25,7 @@ fn kept(mesh: &Mesh, ray: &Ray) -> Vec<usize> {
     let Some(w) = mesh.bvh.ray(ray, f64::INFINITY) else {
         return Vec::new();
     };
-    let Some(sheared) = crate::geometry::ShearedRay::new(ray) else {
+    let Some(sheared) = super::triangle::ShearedRay::new(ray) else {
         return Vec::new();
     };
     let edges = EdgeRay::new(&sheared, &w);

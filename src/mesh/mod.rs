@@ -13,10 +13,10 @@ mod packed;
 mod packet;
 mod query;
 pub mod shading;
+pub(crate) mod triangle;
 
 use crate::bvh::wide::WideBvh;
 use crate::bvh::{Aabb, Bvh};
-use crate::geometry::Shape;
 use glam::{DAffine3, DMat3, DVec3};
 use packed::TriPack;
 use serde::{Deserialize, Serialize};
@@ -238,15 +238,6 @@ impl Mesh {
     #[must_use]
     pub fn triangle(&self, i: usize) -> [DVec3; 3] {
         self.tris[i]
-    }
-
-    /// Stored triangle `i` as a stand-alone [`Shape::Triangle`] (outward normal).
-    #[must_use]
-    pub fn triangle_shape(&self, i: usize) -> Shape {
-        Shape::Triangle {
-            vertices: self.tris[i],
-            normal: self.geometric_normal(i),
-        }
     }
 
     /// The face index in the input data of stored triangle `i`.

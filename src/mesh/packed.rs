@@ -21,8 +21,8 @@
 //! `8 u r^2`. `max` may drop a NaN coordinate, but a NaN also makes an edge function NaN, which
 //! no comparison rejects.
 
+use super::triangle::ShearedRay;
 use crate::bvh::wide::{GROUP, WideRay, max};
-use crate::geometry::ShearedRay;
 use glam::DVec3;
 
 /// Four triangles: `v[axis][corner][lane]`.

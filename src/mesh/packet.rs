@@ -7,9 +7,9 @@
 use super::Mesh;
 use super::packed::EdgeRay;
 use super::query::closer;
+use super::triangle::ShearedRay;
 use crate::bvh::TraversalCost;
 use crate::bvh::wide::{PACKET, WideRay};
-use crate::geometry::ShearedRay;
 use crate::math::Ray;
 
 /// A ray prepared for the packet walk.

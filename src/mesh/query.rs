@@ -5,8 +5,8 @@
 
 use super::Mesh;
 use super::packed::EdgeRay;
+use super::triangle::ShearedRay;
 use crate::bvh::{TraversalCost, Visit};
-use crate::geometry::ShearedRay;
 use crate::math::Ray;
 
 impl Mesh {

@@ -1,9 +1,9 @@
 //! Mesh unit tests: BVH against brute force, watertightness, normals, transforms, slices.
 
 use super::generate::icosphere;
+use super::triangle::triangle_t;
 use super::*;
 use crate::bvh::TraversalCost;
-use crate::geometry::triangle_t;
 use crate::math::Ray;
 
 /// A tiny seeded generator (SplitMix64), so the tests need no dependency.

@@ -3,11 +3,13 @@
 use super::SceneError;
 use super::check::Check;
 use super::desc::{ObjectDesc, ScaleDesc};
-use super::validate::MeshLoader;
 use crate::geometry::Shape;
-use crate::mesh::{Mesh, Transform};
+use crate::mesh::{Mesh, MeshData, Transform};
 use glam::DVec3;
 use std::sync::Arc;
+
+/// The caller's mesh-file reader (see [`super::Scene::from_json_with`]).
+pub(super) type MeshLoader<'a> = &'a mut dyn FnMut(&str) -> Result<MeshData, String>;
 
 /// The world-space mesh of object `o` at JSON path `p`.
 pub(super) fn shape(

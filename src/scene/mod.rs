@@ -4,6 +4,7 @@ mod accel;
 mod check;
 pub mod desc;
 mod error;
+mod generated;
 mod locate;
 mod mesh_object;
 mod packet;
@@ -23,6 +24,7 @@ use std::borrow::Cow;
 pub use accel::{Accel, traversal_cost_image};
 pub use desc::{OffsetDesc, OffsetStrategy, SceneDesc, Settings, ShadowMode};
 pub use error::SceneError;
+pub use generated::icosphere_scene;
 pub use locate::locate;
 pub use transform::transformed;
 pub use validate::check_settings;
@@ -345,7 +347,7 @@ impl Scene {
     #[must_use]
     pub fn surface_shape(&self, object: usize, triangle: Option<u32>) -> Cow<'_, Shape> {
         match (&self.objects[object].shape, triangle) {
-            (Shape::Mesh(m), Some(t)) => Cow::Owned(m.triangle_shape(t as usize)),
+            (Shape::Mesh(m), Some(t)) => Cow::Owned(Shape::mesh_triangle(m, t as usize)),
             (shape, _) => Cow::Borrowed(shape),
         }
     }

@@ -79,7 +79,9 @@ mod tests {
         let moved = transformed(&s, 4.0, DVec3::new(8.0, 0.0, -16.0));
         let (a, _) = render(&s, &|_| {});
         let (b, _) = render(&moved, &|_| {});
-        let worst = crate::cost::compare(&a, &b).expect("same size").max;
+        let worst = crate::analysis::cost::compare(&a, &b)
+            .expect("same size")
+            .max;
         assert!(worst < 1e-6, "worst pixel difference {worst}");
     }
 }

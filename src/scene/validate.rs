@@ -5,14 +5,11 @@ use super::desc::{
     CameraDesc, LightDesc, MaterialDesc, ObjectDesc, SceneDesc, Settings, TextureDesc,
 };
 use super::error::{bare_message, field_of_tagged, path_of, reword, with_missing_field};
+use super::mesh_object::MeshLoader;
 use super::{Accel, Camera, Light, LightKind, Material, Object, Scene, SceneError, Texture};
 use crate::geometry::Shape;
-use crate::mesh::MeshData;
 use glam::DVec3;
 use std::collections::HashMap;
-
-/// The caller's mesh-file reader (see [`Scene::from_json_with`]).
-pub(super) type MeshLoader<'a> = &'a mut dyn FnMut(&str) -> Result<MeshData, String>;
 
 pub(super) fn from_json(src: &str, load_mesh: MeshLoader) -> Result<Scene, SceneError> {
     let src = crate::input::strip_bom(src);

@@ -35,7 +35,9 @@ pub(super) fn hatch(shape: &SliceShape, spacing: f64) -> Vec<(Point, Point)> {
     let mut out = Vec::new();
     match shape {
         SliceShape::Circle { center, radius } => {
-            let k = (radius / spacing).floor() as i64;
+            // At most 4001 lines, as for polygons: a huge (1e300) or non-finite radius must not
+            // allocate without bound (f64::min also maps NaN to the cap).
+            let k = (radius / spacing).floor().min(2000.0) as i64;
             for i in -k..=k {
                 let off = i as f64 * spacing;
                 let half = (radius * radius - off * off).max(0.0).sqrt();

@@ -93,3 +93,77 @@ pub fn tree_violations(tree: &RayTree, background: Rgb) -> Vec<String> {
     }
     v
 }
+
+#[cfg(test)]
+mod tests {
+    use super::tree_violations;
+    use crate::math::Rgb;
+    use crate::tree::{RayKind, RayTree};
+    use crate::{Scene, trace_pixel};
+
+    /// The classic scene's glass-ball pixel: reflection, refraction, shadows, an interface.
+    fn glass_pixel() -> (RayTree, Rgb) {
+        let scene = Scene::default_scene();
+        let tree = trace_pixel(&scene, 400, 200).expect("pixel inside the image");
+        (tree, scene.background)
+    }
+
+    fn first(tree: &RayTree, kind: RayKind) -> usize {
+        tree.nodes
+            .iter()
+            .position(|n| n.kind == kind)
+            .expect("the glass pixel has one")
+    }
+
+    #[test]
+    fn a_traced_tree_is_clean() {
+        let (tree, bg) = glass_pixel();
+        assert!(tree.nodes.len() > 5, "a real tree");
+        assert_eq!(tree_violations(&tree, bg), Vec::<String>::new());
+    }
+
+    /// Each corruption is one the checker exists to catch; each must be reported.
+    #[test]
+    fn every_corruption_is_reported() {
+        type Corrupt = fn(&mut RayTree);
+        let cases: [(&str, &str, Corrupt); 8] = [
+            ("sample mean", "sample mean", |t| {
+                t.radiance += Rgb::splat(1e-3)
+            }),
+            ("not finite", "not finite", |t| {
+                t.nodes[0].weight = Rgb::splat(f64::NAN)
+            }),
+            ("local", "local", |t| t.nodes[0].local += Rgb::splat(0.1)),
+            ("radiance", "radiance", |t| {
+                let i = first(t, RayKind::Reflected);
+                t.nodes[i].radiance += Rgb::splat(0.1);
+            }),
+            ("throughput", "throughput", |t| {
+                let i = first(t, RayKind::Refracted);
+                t.nodes[i].throughput *= 0.5;
+            }),
+            ("shadow weight", "sum of parts", |t| {
+                let i = first(t, RayKind::Shadow);
+                t.nodes[i].weight += Rgb::splat(0.25);
+                t.nodes[i].radiance = Rgb::ONE;
+            }),
+            ("R + T", "+ T", |t| {
+                let i = t.nodes.iter().position(|n| n.interface.is_some()).unwrap();
+                t.nodes[i].interface.as_mut().unwrap().fresnel.r += 0.1;
+            }),
+            ("TIR with refraction", "TIR but", |t| {
+                let i = t.nodes.iter().position(|n| n.interface.is_some()).unwrap();
+                t.nodes[i].interface.as_mut().unwrap().tir = true;
+            }),
+        ];
+        for (what, expect, corrupt) in cases {
+            let (mut tree, bg) = glass_pixel();
+            corrupt(&mut tree);
+            let v = tree_violations(&tree, bg);
+            assert!(
+                v.iter().any(|m| m.contains(expect)),
+                "{what}: corruption not reported as {expect:?}: {v:?}"
+            );
+        }
+    }
+}

@@ -1,4 +1,4 @@
-//! The watertight ray-triangle test, [`triangle_t`], and its per-ray part, [`ShearedRay`].
+//! The watertight ray-triangle test (used by meshes and by [`crate::geometry::Shape::Triangle`]), [`triangle_t`], and its per-ray part, [`ShearedRay`].
 
 use crate::math::Ray;
 use glam::DVec3;

@@ -1,0 +1,7 @@
+//! Analyses over many renders or recorded trees: the epsilon sweep ([`acne`]), what accuracy
+//! costs in time ([`cost`]), and the invariants every recorded tree must satisfy
+//! ([`invariants`]).
+
+pub mod acne;
+pub mod cost;
+pub mod invariants;
