@@ -14,6 +14,7 @@ pub mod effects;
 pub mod geometry;
 #[cfg(feature = "gui")]
 pub mod gui;
+pub mod input;
 pub mod math;
 pub mod mesh;
 pub mod render;

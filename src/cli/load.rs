@@ -1,9 +1,11 @@
 //! Loading scenes and applying command-line overrides, with errors that name the file.
 
 use super::args::Overrides;
-use anyhow::{Context, Result, anyhow, bail};
+use anyhow::{Result, anyhow, bail};
 use raytree::Scene;
+use raytree::input::{MAX_OBJ_BYTES, MAX_SCENE_BYTES, escape_controls};
 use serde::de::DeserializeOwned;
+use std::io::Read;
 use std::path::Path;
 
 /// A loaded scene and how to name it in messages.
@@ -23,9 +25,10 @@ pub fn load(path: Option<&Path>, o: &Overrides) -> Result<Loaded> {
     let (mut scene, label) = match path {
         None => (Scene::default_scene(), "<built-in classic>".to_string()),
         Some(p) => {
-            let label = p.display().to_string();
-            let src =
-                std::fs::read_to_string(p).with_context(|| format!("cannot read scene {label}"))?;
+            let label = escape_controls(&p.display().to_string()).into_owned();
+            let bytes = read_limited(p, MAX_SCENE_BYTES)
+                .map_err(|e| anyhow!("cannot read scene {label}: {e}"))?;
+            let src = raytree::input::decode(bytes).map_err(|e| anyhow!("{label}:{e}"))?;
             let dir = p.parent().unwrap_or(Path::new(""));
             inputs.push(p.to_path_buf());
             let scene = Scene::from_json_with(&src, &mut |file| {
@@ -48,7 +51,73 @@ pub fn load(path: Option<&Path>, o: &Overrides) -> Result<Loaded> {
 /// name the file and, for bad contents, the line ([`raytree::mesh::parse_obj_read`]).
 pub fn read_obj(dir: &Path, file: &str) -> Result<raytree::mesh::MeshData, String> {
     let path = dir.join(file);
-    raytree::mesh::parse_obj_read(file, &path, std::fs::read_to_string(&path))
+    raytree::mesh::parse_obj_read(file, &path, read_text(&path, MAX_OBJ_BYTES))
+}
+
+/// [`read_limited`] decoded as text ([`raytree::input::decode`]: a byte-order mark dropped,
+/// invalid UTF-8 reported at its line and column), for the inspector's file hook and meshes.
+pub fn read_text(path: &Path, limit: u64) -> std::io::Result<String> {
+    let bytes = read_limited(path, limit).map_err(std::io::Error::other)?;
+    raytree::input::decode(bytes).map_err(std::io::Error::other)
+}
+
+/// The bytes of the regular file `path`, refused if larger than `limit`. Anything else (a
+/// directory, a FIFO that would block, a device such as `/dev/zero` that never ends) is
+/// refused before it is opened for reading; at most `limit + 1` bytes are read, so a file
+/// that grows while it is read is refused too.
+pub fn read_limited(path: &Path, limit: u64) -> Result<Vec<u8>, String> {
+    let meta = std::fs::metadata(path).map_err(|e| e.to_string())?;
+    if !meta.is_file() {
+        return Err(format!("not a regular file ({})", kind(&meta.file_type())));
+    }
+    let too_big = || {
+        format!(
+            "larger than the limit of {} MiB for this kind of file",
+            limit >> 20
+        )
+    };
+    if meta.len() > limit {
+        return Err(too_big());
+    }
+    let file = std::fs::File::open(path).map_err(|e| e.to_string())?;
+    // The name may now point elsewhere: check what was opened.
+    let meta = file.metadata().map_err(|e| e.to_string())?;
+    if !meta.is_file() {
+        return Err(format!("not a regular file ({})", kind(&meta.file_type())));
+    }
+    let mut bytes = Vec::with_capacity(usize::try_from(meta.len()).unwrap_or(0));
+    file.take(limit + 1)
+        .read_to_end(&mut bytes)
+        .map_err(|e| e.to_string())?;
+    if bytes.len() as u64 > limit {
+        return Err(too_big());
+    }
+    Ok(bytes)
+}
+
+/// What a file that is not a regular file is, for messages.
+fn kind(t: &std::fs::FileType) -> &'static str {
+    #[cfg(unix)]
+    {
+        use std::os::unix::fs::FileTypeExt;
+        if t.is_fifo() {
+            return "a FIFO";
+        }
+        if t.is_char_device() {
+            return "a character device";
+        }
+        if t.is_block_device() {
+            return "a block device";
+        }
+        if t.is_socket() {
+            return "a socket";
+        }
+    }
+    if t.is_dir() {
+        "a directory"
+    } else {
+        "not a file"
+    }
 }
 
 fn enum_value<T: DeserializeOwned>(flag: &str, v: &str) -> Result<T> {
@@ -107,4 +176,24 @@ pub fn apply(scene: &mut Scene, o: &Overrides) -> Result<()> {
         scene.camera = scene.camera.with_size(w, h);
     }
     Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn only_regular_files_within_the_limit_are_read() {
+        let dir = tempfile::tempdir().unwrap();
+        let f = dir.path().join("a.json");
+        std::fs::write(&f, b"0123456789").unwrap();
+        assert_eq!(read_limited(&f, 10).unwrap().len(), 10);
+        let e = read_limited(&f, 9).unwrap_err();
+        assert!(e.contains("larger than the limit"), "{e}");
+        let e = read_limited(dir.path(), 10).unwrap_err();
+        assert_eq!(e, "not a regular file (a directory)");
+        let e = read_limited(Path::new("/dev/zero"), 10).unwrap_err();
+        assert_eq!(e, "not a regular file (a character device)");
+        assert!(read_limited(&dir.path().join("none"), 10).is_err());
+    }
 }

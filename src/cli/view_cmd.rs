@@ -14,8 +14,10 @@ use std::time::SystemTime;
 struct DiskFiles(Option<PathBuf>);
 
 impl Files for DiskFiles {
+    /// Bounded like the command line's reads; the session refuses a scene over
+    /// [`raytree::input::MAX_SCENE_BYTES`] itself (the hook reads meshes too).
     fn read(&self, path: &Path) -> std::io::Result<String> {
-        std::fs::read_to_string(path)
+        super::load::read_text(path, raytree::input::MAX_OBJ_BYTES)
     }
 
     fn modified(&self, path: &Path) -> Option<SystemTime> {

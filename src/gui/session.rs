@@ -58,6 +58,12 @@ impl Session {
             .files
             .read(path)
             .map_err(|e| format!("cannot read scene {label}: {e}"))?;
+        if src.len() as u64 > crate::input::MAX_SCENE_BYTES {
+            return Err(format!(
+                "cannot read scene {label}: larger than the limit of {} MiB",
+                crate::input::MAX_SCENE_BYTES >> 20
+            ));
+        }
         // Mesh files are read through the same hook, relative to the scene's directory.
         let dir = path.parent().unwrap_or(Path::new(""));
         let mut load_mesh = |file: &str| {

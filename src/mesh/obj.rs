@@ -29,7 +29,9 @@ impl fmt::Display for ObjError {
 }
 
 /// Parse OBJ text into positions, normals and triangles.
+/// A leading UTF-8 byte-order mark is skipped (it would otherwise hide the first statement).
 pub fn parse_obj(src: &str) -> Result<MeshData, ObjError> {
+    let src = crate::input::strip_bom(src);
     let mut data = MeshData::default();
     let mut corners: Vec<(u32, Option<u32>)> = Vec::new();
     for (i, raw) in src.lines().enumerate() {
@@ -177,6 +179,14 @@ mod tests {
         assert_eq!(d.faces[1].vertices, [0, 2, 3]);
         assert_eq!(d.faces[0].normals, Some([0, 0, 0]));
         assert_eq!(d.faces[2].normals, None);
+    }
+
+    #[test]
+    fn a_byte_order_mark_keeps_the_first_vertex() {
+        let plain = "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nf 1 2 3\nf 2 3 4\n";
+        let with_bom = format!("\u{feff}{plain}");
+        assert_eq!(parse_obj(&with_bom).unwrap(), parse_obj(plain).unwrap());
+        assert_eq!(parse_obj(&with_bom).unwrap().positions.len(), 4);
     }
 
     #[test]

@@ -17,13 +17,22 @@ impl Check<'_> {
         message: impl Into<String>,
     ) -> Result<T, SceneError> {
         let path = path.into();
-        let pos = super::locate(self.src, &path);
+        let pos = self.position(&path);
         Err(SceneError {
             line: pos.map(|p| p.0),
             column: pos.map(|p| p.1),
             path,
             message: message.into(),
         })
+    }
+
+    /// Where `path` is, or else its nearest enclosing value that the file writes (a default
+    /// such as `camera.up` is not in the text; its `camera` is).
+    fn position(&self, path: &str) -> Option<(usize, usize)> {
+        let segs = super::path::parse(path)?;
+        (0..=segs.len())
+            .rev()
+            .find_map(|n| super::locate(self.src, &super::path::join(&segs[..n])))
     }
 
     pub(super) fn finite(&self, path: &str, v: f64) -> Result<f64, SceneError> {
@@ -63,5 +72,19 @@ impl Check<'_> {
         } else {
             self.fail(path, format!("must be positive, got {v}"))
         }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use crate::Scene;
+
+    #[test]
+    fn a_default_value_is_placed_at_what_encloses_it() {
+        // No `up`: the default [0, 1, 0] is parallel to a camera looking straight down.
+        let src = "{\n  \"camera\": {\"position\": [0,5,0], \"look_at\": [0,0,0], \"fov_y\": 40, \"width\": 4, \"height\": 3}\n}";
+        let e = Scene::from_json(src).unwrap_err();
+        assert_eq!(e.path, "camera.up");
+        assert_eq!((e.line, e.column), (Some(2), Some(13)), "{e}");
     }
 }

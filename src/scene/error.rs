@@ -1,5 +1,8 @@
 //! [`SceneError`], and serde_json's messages reworded for it.
 
+use super::path::{self, Seg};
+use crate::input::{escape_controls, quote};
+use serde_json::Value;
 use std::fmt;
 
 /// A scene that failed to parse or validate.
@@ -16,15 +19,52 @@ pub struct SceneError {
 }
 
 impl fmt::Display for SceneError {
+    /// `line:col: path: message`, on one line: control characters in the path or the message
+    /// (which may quote the file's strings) are escaped.
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         if let (Some(l), Some(c)) = (self.line, self.column) {
             write!(f, "{l}:{c}: ")?;
         }
         if !self.path.is_empty() {
-            write!(f, "{}: ", self.path)?;
+            write!(f, "{}: ", escape_controls(&self.path))?;
         }
-        f.write_str(&self.message)
+        f.write_str(&escape_controls(&self.message))
     }
+}
+
+/// serde_path_to_error's path in this crate's format ([`super::path`]): a key that is not a
+/// plain name is quoted (`materials["a.b"]`); an unknown segment (after a syntax error) and
+/// enum variants are left out.
+pub(super) fn path_of(p: &serde_path_to_error::Path) -> String {
+    use serde_path_to_error::Segment;
+    let mut out = String::new();
+    for seg in p {
+        out = match seg {
+            Segment::Seq { index } => path::index(&out, *index),
+            Segment::Map { key } => path::key(&out, key),
+            Segment::Enum { .. } | Segment::Unknown => out,
+        };
+    }
+    out
+}
+
+/// serde's "unknown field `x`, expected ..." and "unknown variant `x`, expected ..." with the
+/// user's string quoted by [`quote`] (escaped, and cut if long); other messages unchanged.
+pub(super) fn reword(message: String) -> String {
+    for what in ["unknown field `", "unknown variant `"] {
+        let Some(rest) = message.strip_prefix(what) else {
+            continue;
+        };
+        let cut = rest
+            .rfind("`, expected ")
+            .or_else(|| rest.rfind("`, there are no"));
+        if let Some(i) = cut {
+            let name = &rest[..i];
+            let tail = &rest[i + 1..];
+            return format!("{}{}{tail}", &what[..what.len() - 1], quote(name));
+        }
+    }
+    message
 }
 
 /// Strip serde_json's " at line L column C" suffix (the position is reported separately).
@@ -36,70 +76,126 @@ pub(super) fn bare_message(e: &serde_json::Error) -> String {
     }
 }
 
+/// The members each `type` of object and light may have (besides `type`), as in
+/// `desc::ObjectDesc` and `desc::LightDesc` (a test holds the two together).
+const MEMBERS: [(&str, &str, &[&str]); 7] = [
+    (
+        "objects",
+        "sphere",
+        &["center", "radius", "material", "name"],
+    ),
+    ("objects", "plane", &["point", "normal", "material", "name"]),
+    ("objects", "triangle", &["vertices", "material", "name"]),
+    ("objects", "box", &["min", "max", "material", "name"]),
+    (
+        "objects",
+        "mesh",
+        &[
+            "file",
+            "translate",
+            "rotate",
+            "scale",
+            "normals",
+            "material",
+            "name",
+        ],
+    ),
+    ("lights", "point", &["position", "intensity", "name"]),
+    (
+        "lights",
+        "directional",
+        &["direction", "irradiance", "name"],
+    ),
+];
+
 /// A path for an error inside `objects[i]` or `lights[i]`, which serde reports at the element
 /// itself (an internally tagged enum is buffered, so the path stops there), and its position.
-/// The offending member is found by elimination: the first member (not `type`) without which
-/// the element no longer fails this way, deserialised again on its own. A path ending in an
-/// unknown segment (`camera.?`, from a syntax error) loses that segment. Anything else is
-/// returned as it came.
+///
+/// An unknown member is the first one, in document order, that the element's `type` does not
+/// have. Any other error is found by elimination among the members the type does have (at
+/// most seven, unknown ones set aside): the first whose removal changes the error. Each step
+/// deserialises that small object again, so the cost is linear in the element's size, however
+/// many members it has. Anything else is returned as it came.
 pub(super) fn field_of_tagged(
     src: &str,
     path: String,
     message: &str,
     at: (usize, usize),
 ) -> (String, (usize, usize)) {
-    let path = match path.strip_suffix(".?").or(path.strip_suffix('?')) {
-        Some(p) => p.to_string(),
-        None => path,
-    };
-    let Some((list, index)) = tagged_element(&path) else {
+    let Some(list) = tagged_element(&path) else {
         return (path, at);
+    };
+    let found = |field: String| {
+        let at = super::locate(src, &field).unwrap_or(at);
+        (field, at)
     };
     if message.starts_with("unknown variant") || message.starts_with("missing field `type`") {
-        let field = format!("{path}.type");
-        let at = super::locate(src, &field).unwrap_or(at);
-        return (field, at);
+        return found(path::key(&path, "type"));
     }
-    let Ok(doc) = serde_json::from_str::<serde_json::Value>(src) else {
+    let b = src.as_bytes();
+    let Some(start) = super::locate::position(src, &path) else {
         return (path, at);
     };
-    let Some(serde_json::Value::Object(element)) = doc.get(list).and_then(|l| l.get(index)) else {
+    let Some(end) = super::locate::skip_value(b, start) else {
         return (path, at);
     };
-    for key in element.keys().filter(|k| *k != "type") {
-        let mut without = element.clone();
-        without.remove(key);
-        let result = if list == "objects" {
-            serde_json::from_value::<super::desc::ObjectDesc>(without.into()).map(|_| ())
+    let Ok(Value::Object(element)) = serde_json::from_str::<Value>(&src[start..end]) else {
+        return (path, at);
+    };
+    let tag = element.get("type").and_then(Value::as_str).unwrap_or("");
+    let Some(&(_, _, known)) = MEMBERS.iter().find(|m| m.0 == list && m.1 == tag) else {
+        return (path, at);
+    };
+    if message.starts_with("unknown field") {
+        let mut unknown = None;
+        super::locate::members(src, start, |name, _| {
+            if name != "type" && !known.contains(&name) {
+                unknown = Some(name.to_string());
+            }
+            unknown.is_none()
+        });
+        return match unknown {
+            Some(k) => found(path::key(&path, &k)),
+            None => (path, at),
+        };
+    }
+    let mut base = element;
+    base.retain(|k, _| k == "type" || known.contains(&k.as_str()));
+    let error_of = |v: serde_json::Map<String, Value>| {
+        let v = Value::Object(v);
+        let r = if list == "objects" {
+            serde_json::from_value::<super::desc::ObjectDesc>(v).map(|_| ())
         } else {
-            serde_json::from_value::<super::desc::LightDesc>(without.into()).map(|_| ())
+            serde_json::from_value::<super::desc::LightDesc>(v).map(|_| ())
         };
-        let culprit = match result {
-            Ok(()) => true,
-            Err(e) => e.to_string().starts_with(&format!("missing field `{key}`")),
-        };
-        if culprit && !message.starts_with("missing field") {
-            let field = format!("{path}.{key}");
-            let at = super::locate(src, &field).unwrap_or(at);
-            return (field, at);
+        r.err().map(|e| e.to_string())
+    };
+    let Some(original) = error_of(base.clone()) else {
+        return (path, at);
+    };
+    let mut order = Vec::new();
+    super::locate::members(src, start, |name, _| {
+        if known.contains(&name) {
+            order.push(name.to_string());
+        }
+        true
+    });
+    for key in order {
+        let mut without = base.clone();
+        without.remove(&key);
+        if error_of(without).as_ref() != Some(&original) {
+            return found(path::key(&path, &key));
         }
     }
     (path, at)
 }
 
-/// `("objects", i)` or `("lights", i)` when `path` is exactly such an element.
-fn tagged_element(path: &str) -> Option<(&'static str, usize)> {
-    for list in ["objects", "lights"] {
-        if let Some(i) = path
-            .strip_prefix(list)
-            .and_then(|r| r.strip_prefix('['))
-            .and_then(|r| r.strip_suffix(']'))
-            .and_then(|r| r.parse().ok())
-        {
-            return Some((list, i));
-        }
+/// `"objects"` or `"lights"` when `path` is exactly an element of one.
+fn tagged_element(path: &str) -> Option<&'static str> {
+    match path::parse(path)?.as_slice() {
+        [Seg::Key(list), Seg::Index(_)] => ["objects", "lights"].into_iter().find(|l| l == list),
+        _ => None,
     }
-    None
 }
 
 /// serde reports a missing field at the path of the object that lacks it (empty for the
@@ -112,9 +208,54 @@ pub(super) fn with_missing_field(path: String, message: &str) -> String {
     else {
         return path;
     };
-    if path.is_empty() {
-        field.to_string()
-    } else {
-        format!("{path}.{field}")
+    path::key(&path, field)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The names in serde's "expected one of `a`, `b`" for an unknown member of `json`.
+    fn expected<T: serde::de::DeserializeOwned>(json: &str) -> Vec<String> {
+        let e = serde_json::from_str::<T>(json)
+            .err()
+            .expect("unknown member");
+        let msg = e.to_string();
+        let list = &msg[msg.find("expected").expect("a list")..];
+        list.split('`')
+            .skip(1)
+            .step_by(2)
+            .map(str::to_string)
+            .collect()
+    }
+
+    #[test]
+    fn the_member_table_matches_the_serde_types() {
+        use crate::scene::desc::{LightDesc, ObjectDesc};
+        for (list, tag, known) in MEMBERS {
+            let json = format!("{{\"type\": \"{tag}\", \"zz\": 0}}");
+            let names = if list == "objects" {
+                expected::<ObjectDesc>(&json)
+            } else {
+                expected::<LightDesc>(&json)
+            };
+            let mut names: Vec<&str> = names.iter().map(String::as_str).collect();
+            let mut known = known.to_vec();
+            names.sort_unstable();
+            known.sort_unstable();
+            assert_eq!(names, known, "{tag}");
+        }
+    }
+
+    #[test]
+    fn reworded_messages_quote_the_users_string() {
+        let m = reword("unknown field `a\u{1b}`, expected one of `x`".into());
+        assert_eq!(m, "unknown field \"a\\u{1b}\", expected one of `x`");
+        let m = reword("unknown variant `co`, expected `x`ne`, expected one of `a`".into());
+        assert!(
+            m.starts_with("unknown variant \"co`, expected `x`ne\", expected"),
+            "{m}"
+        );
+        assert_eq!(reword("invalid type".into()), "invalid type");
     }
 }

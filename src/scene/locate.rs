@@ -3,48 +3,35 @@
 //! serde reports positions only for syntax and type errors; validation happens after parsing,
 //! so this small scanner walks the text again to point at the offending value.
 
-/// One step of a JSON path.
-#[derive(Debug, PartialEq)]
-enum Seg {
-    Key(String),
-    Index(usize),
-}
-
-fn parse_path(path: &str) -> Option<Vec<Seg>> {
-    let mut segs = Vec::new();
-    for part in path.split('.').filter(|p| !p.is_empty()) {
-        let (key, mut rest) = part.split_at(part.find('[').unwrap_or(part.len()));
-        if !key.is_empty() {
-            segs.push(Seg::Key(key.to_string()));
-        }
-        while let Some(stripped) = rest.strip_prefix('[') {
-            let end = stripped.find(']')?;
-            segs.push(Seg::Index(stripped[..end].parse().ok()?));
-            rest = &stripped[end + 1..];
-        }
-    }
-    Some(segs)
-}
+use super::path::{Seg, parse};
 
 /// 1-based line and column of the value at `path` in `src`, if it is there.
 #[must_use]
 pub fn locate(src: &str, path: &str) -> Option<(usize, usize)> {
+    position(src, path).map(|pos| line_col(src, pos))
+}
+
+/// Byte offset of the value at `path` in `src`. One walk along the path, skipping siblings:
+/// linear in the text.
+pub(super) fn position(src: &str, path: &str) -> Option<usize> {
     let b = src.as_bytes();
     let mut pos = ws(b, 0);
-    for seg in parse_path(path)? {
+    for seg in parse(path)? {
         pos = match seg {
-            Seg::Key(k) => member(b, pos, &k)?,
+            Seg::Key(k) => member(src, pos, &k)?,
             Seg::Index(i) => element(b, pos, i)?,
         };
     }
-    Some(line_col(src, pos))
+    Some(pos)
 }
 
-fn line_col(src: &str, pos: usize) -> (usize, usize) {
-    let before = &src[..pos.min(src.len())];
-    let line = before.matches('\n').count() + 1;
+/// 1-based line and byte column of byte `pos` of `src` (as serde_json counts).
+pub(super) fn line_col(src: &str, pos: usize) -> (usize, usize) {
+    let before = &src.as_bytes()[..pos.min(src.len())];
+    let line = before.iter().filter(|&&c| c == b'\n').count() + 1;
     let col = before
-        .rfind('\n')
+        .iter()
+        .rposition(|&c| c == b'\n')
         .map_or(before.len(), |i| before.len() - i - 1)
         + 1;
     (line, col)
@@ -58,28 +45,49 @@ fn ws(b: &[u8], mut pos: usize) -> usize {
 }
 
 /// Position of the value of member `key` of the object starting at `pos`.
-fn member(b: &[u8], pos: usize, key: &str) -> Option<usize> {
+fn member(src: &str, pos: usize, key: &str) -> Option<usize> {
+    let mut found = None;
+    members(src, pos, |name, at| {
+        if name == key {
+            found = Some(at);
+        }
+        found.is_none()
+    })?;
+    found
+}
+
+/// Call `f(name, value position)` for each member of the object starting at `pos`, in
+/// document order, while it returns true; `None` if the text there is not an object.
+pub(super) fn members(src: &str, pos: usize, mut f: impl FnMut(&str, usize) -> bool) -> Option<()> {
+    let b = src.as_bytes();
     if b.get(pos) != Some(&b'{') {
         return None;
     }
     let mut pos = ws(b, pos + 1);
     while b.get(pos) == Some(&b'"') {
         let end = skip_string(b, pos)?;
-        let name = std::str::from_utf8(&b[pos + 1..end - 1]).ok()?;
+        let raw = src.get(pos + 1..end - 1)?;
+        let decoded;
+        let name = if raw.contains('\\') {
+            decoded = serde_json::from_str::<String>(&src[pos..end]).ok()?;
+            decoded.as_str()
+        } else {
+            raw
+        };
         pos = ws(b, end);
         if b.get(pos) != Some(&b':') {
             return None;
         }
         pos = ws(b, pos + 1);
-        if name == key {
-            return Some(pos);
+        if !f(name, pos) {
+            return Some(());
         }
         pos = ws(b, skip_value(b, pos)?);
         if b.get(pos) == Some(&b',') {
             pos = ws(b, pos + 1);
         }
     }
-    None
+    Some(())
 }
 
 /// Position of element `index` of the array starting at `pos`.
@@ -115,7 +123,7 @@ fn skip_string(b: &[u8], mut pos: usize) -> Option<usize> {
 }
 
 /// Position just past the value starting at `pos`.
-fn skip_value(b: &[u8], pos: usize) -> Option<usize> {
+pub(super) fn skip_value(b: &[u8], pos: usize) -> Option<usize> {
     match b.get(pos)? {
         b'"' => skip_string(b, pos),
         b'{' | b'[' => {
@@ -163,6 +171,16 @@ mod tests {
         assert_eq!(locate(SRC, "objects[0].radius"), Some((3, 34)));
         assert_eq!(locate(SRC, "camera.fov_y"), Some((6, 23)));
         assert_eq!(locate(SRC, "objects[1]"), Some((4, 5)));
+    }
+
+    #[test]
+    fn keys_with_dots_brackets_and_escapes_are_found() {
+        let src = "{\"materials\": {\"a.b\": 1, \"x[0]\": 2, \"q\\\"\\n\": 3, \"e\\u001b\": 4}}";
+        assert_eq!(locate(src, r#"materials["a.b"]"#), Some((1, 23)));
+        assert_eq!(locate(src, r#"materials["x[0]"]"#), Some((1, 34)));
+        assert_eq!(locate(src, r#"materials["q\"\n"]"#), Some((1, 46)));
+        assert_eq!(locate(src, r#"materials["e\u001b"]"#), Some((1, 60)));
+        assert_eq!(locate(src, "materials.a"), None);
     }
 
     #[test]

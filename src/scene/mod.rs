@@ -8,6 +8,9 @@ mod generated;
 mod locate;
 mod mesh_object;
 mod packet;
+mod path;
+mod scan;
+mod suggest;
 mod transform;
 mod validate;
 

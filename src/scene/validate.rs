@@ -4,19 +4,21 @@ use super::check::Check;
 use super::desc::{
     CameraDesc, LightDesc, MaterialDesc, ObjectDesc, SceneDesc, Settings, TextureDesc,
 };
-use super::error::{bare_message, field_of_tagged, with_missing_field};
+use super::error::{bare_message, field_of_tagged, path_of, reword, with_missing_field};
 use super::mesh_object::MeshLoader;
 use super::{Accel, Camera, Light, LightKind, Material, Object, Scene, SceneError, Texture};
 use crate::geometry::Shape;
 use glam::DVec3;
+use std::collections::HashMap;
 
 pub(super) fn from_json(src: &str, load_mesh: MeshLoader) -> Result<Scene, SceneError> {
+    let src = crate::input::strip_bom(src);
+    super::scan::scan(src)?;
     let mut de = serde_json::Deserializer::from_str(src);
     let desc: SceneDesc = serde_path_to_error::deserialize(&mut de).map_err(|e| {
-        let path = e.path().to_string();
+        let path = path_of(e.path());
         let inner = e.inner();
-        let message = bare_message(inner);
-        let path = if path == "." { String::new() } else { path };
+        let message = reword(bare_message(inner));
         // serde_json counts columns from 0 before the first character of a line.
         let at = (inner.line(), inner.column().max(1));
         let (path, at) = field_of_tagged(src, with_missing_field(path, &message), &message, at);
@@ -47,9 +49,12 @@ pub fn validate(desc: &SceneDesc, src: &str, load_mesh: MeshLoader) -> Result<Sc
     for (name, m) in &desc.materials {
         materials.push(material(&ck, name, m)?);
     }
+    let index: HashMap<&str, usize> = (desc.materials.keys().enumerate())
+        .map(|(i, k)| (k.as_str(), i))
+        .collect();
     let mut objects = Vec::with_capacity(desc.objects.len());
     for (i, o) in desc.objects.iter().enumerate() {
-        objects.push(object(&ck, &desc.materials, i, o, load_mesh)?);
+        objects.push(object(&ck, &desc.materials, &index, i, o, load_mesh)?);
     }
     let mut lights = Vec::with_capacity(desc.lights.len());
     for (i, l) in desc.lights.iter().enumerate() {
@@ -106,7 +111,7 @@ fn camera(ck: &Check, c: &CameraDesc) -> Result<Camera, SceneError> {
 }
 
 fn material(ck: &Check, name: &str, m: &MaterialDesc) -> Result<Material, SceneError> {
-    let p = format!("materials.{name}");
+    let p = super::path::key("materials", name);
     let diffuse = match &m.diffuse {
         None => Texture::Solid(DVec3::ZERO),
         Some(TextureDesc::Solid(c)) => Texture::Solid(ck.color(&format!("{p}.diffuse"), *c)?),
@@ -143,19 +148,19 @@ fn material(ck: &Check, name: &str, m: &MaterialDesc) -> Result<Material, SceneE
 fn object(
     ck: &Check,
     materials: &std::collections::BTreeMap<String, MaterialDesc>,
+    index: &HashMap<&str, usize>,
     i: usize,
     o: &ObjectDesc,
     load_mesh: MeshLoader,
 ) -> Result<Object, SceneError> {
     let p = format!("objects[{i}]");
-    let Some(material) = materials.keys().position(|k| k == o.material()) else {
-        let known: Vec<&str> = materials.keys().map(String::as_str).collect();
+    let Some(&material) = index.get(o.material()) else {
+        let known = super::suggest::closest(o.material(), materials.keys().map(String::as_str));
         return ck.fail(
             format!("{p}.material"),
             format!(
-                "unknown material {:?} (defined: {})",
-                o.material(),
-                known.join(", ")
+                "unknown material {} (defined: {known})",
+                crate::input::quote(o.material()),
             ),
         );
     };
