@@ -18,6 +18,7 @@ pub mod gui;
 pub mod math;
 pub mod mesh;
 pub mod render;
+pub mod sampling;
 pub mod scene;
 pub mod text;
 pub mod trace;
