@@ -7,6 +7,7 @@
 #![warn(missing_docs)]
 
 pub mod acne;
+pub mod bsdf;
 pub mod bvh;
 pub mod check;
 pub mod codec;
