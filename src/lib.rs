@@ -16,6 +16,7 @@ pub mod diagram;
 pub mod effects;
 pub mod geometry;
 pub mod gui;
+pub mod lights;
 pub mod math;
 pub mod mesh;
 pub mod render;
