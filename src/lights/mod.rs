@@ -13,7 +13,7 @@ use crate::math::Rgb;
 use crate::sampling::warp::{
     orthonormal_basis, square_to_triangle_barycentrics, square_to_uniform_cone, uniform_cone_pdf,
 };
-use crate::scene::{Light, LightKind};
+use crate::scene::Light;
 use glam::{DVec2, DVec3};
 
 /// A direction towards a light and what arrives along it.
@@ -251,10 +251,6 @@ pub fn sample_directional_light(direction: DVec3, irradiance: Rgb) -> LightSampl
 #[must_use]
 pub fn sample_scene_light(light: &Light, p: DVec3) -> LightSample {
     let (direction, distance, radiance) = light.sample(p);
-    debug_assert!(matches!(
-        light.kind,
-        LightKind::Point { .. } | LightKind::Directional { .. }
-    ));
     LightSample {
         direction,
         distance,

@@ -3,6 +3,7 @@
 use super::*;
 use crate::sampling::SplitMix64;
 use crate::sampling::chi2::test_directions;
+use crate::scene::LightKind;
 use std::f64::consts::PI;
 
 /// Mean and standard error of `L max(0, n.wi) / pdf` over `n` samples (failures count 0).
