@@ -7,6 +7,7 @@
 #![warn(missing_docs)]
 
 pub mod analysis;
+pub mod bsdf;
 pub mod bvh;
 pub mod codec;
 pub mod diagram;
@@ -15,9 +16,11 @@ pub mod geometry;
 #[cfg(feature = "gui")]
 pub mod gui;
 pub mod input;
+pub mod lights;
 pub mod math;
 pub mod mesh;
 pub mod render;
+pub mod sampling;
 pub mod scene;
 pub mod text;
 pub mod trace;

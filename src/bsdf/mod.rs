@@ -1,0 +1,245 @@
+//! BSDFs for Monte Carlo: a [`Bsdf`] is a set of [`Lobe`]s in a local shading frame with
+//! `eval`, `sample` and `pdf`; non-delta lobes are combined (one-sample MIS over lobes, pbrt-v3
+//! `BSDF::Sample_f`, Mitsuba 3 `BlendBSDF`), a lobe is chosen in proportion to the luminance of
+//! its weight. Built from a scene [`Material`] as the Whitted tracer reads it: the diffuse albedo
+//! is a Lambert lobe, `reflectivity` a mirror (constant weight, no Fresnel), `transmissivity` a
+//! dielectric interface with exact Fresnel; a `roughness` above [`SMOOTH_ALPHA`] makes the
+//! latter two GGX lobes. See `docs/monte-carlo.md`.
+
+mod frame;
+mod interaction;
+mod lobe;
+mod microfacet;
+#[cfg(test)]
+mod tests;
+#[cfg(test)]
+mod tests_chi2;
+
+pub use frame::Frame;
+pub use interaction::SurfaceInteraction;
+pub use lobe::{Lobe, fr_dielectric};
+pub use microfacet::{Ggx, SMOOTH_ALPHA};
+
+use crate::math::Rgb;
+use crate::scene::Material;
+use glam::{DVec2, DVec3};
+use lobe::Draw;
+
+/// Most lobes a [`Bsdf`] holds.
+pub const MAX_LOBES: usize = 4;
+
+/// What kind of event a sample is.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum LobeKind {
+    /// Lambertian reflection.
+    Diffuse,
+    /// Mirror reflection (delta).
+    SpecularReflection,
+    /// Refraction through a smooth interface (delta).
+    SpecularTransmission,
+    /// Rough (GGX) reflection.
+    GlossyReflection,
+    /// Rough (GGX) refraction.
+    GlossyTransmission,
+}
+
+/// A sampled direction.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct BsdfSample {
+    /// The incident direction (towards the light), unit.
+    pub wi: DVec3,
+    /// The BSDF value `f(wo, wi)`; for a delta event its coefficient `weight / |cos wi|`.
+    pub value: Rgb,
+    /// The solid-angle pdf (over all non-delta lobes); for a delta event the probability of
+    /// having chosen it.
+    pub pdf: f64,
+    /// The event.
+    pub kind: LobeKind,
+    /// Whether `wi` came from a delta lobe (no MIS with light sampling possible).
+    pub delta: bool,
+}
+
+impl BsdfSample {
+    /// The path throughput factor `f |cos wi| / pdf` (0 when the pdf is 0).
+    #[must_use]
+    pub fn weight(&self, cos_wi: f64) -> Rgb {
+        if self.pdf > 0.0 {
+            self.value * (cos_wi.abs() / self.pdf)
+        } else {
+            Rgb::ZERO
+        }
+    }
+}
+
+/// Rec. 709 luminance, the lobe-selection weight.
+#[must_use]
+pub fn luminance(c: Rgb) -> f64 {
+    0.2126 * c.x + 0.7152 * c.y + 0.0722 * c.z
+}
+
+/// A BSDF: up to [`MAX_LOBES`] lobes, their selection probabilities and the shading frame.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Bsdf {
+    frame: Frame,
+    lobes: [Lobe; MAX_LOBES],
+    probs: [f64; MAX_LOBES],
+    len: usize,
+}
+
+impl Bsdf {
+    /// A BSDF of `lobes` in `frame`. Lobes whose weight has no positive luminance are dropped.
+    ///
+    /// # Panics
+    /// With more than [`MAX_LOBES`] lobes (a programming error).
+    #[must_use]
+    pub fn new(frame: Frame, lobes: &[Lobe]) -> Self {
+        assert!(lobes.len() <= MAX_LOBES, "at most {MAX_LOBES} lobes");
+        let mut out = Self {
+            frame,
+            lobes: [Lobe::Lambert { albedo: Rgb::ZERO }; MAX_LOBES],
+            probs: [0.0; MAX_LOBES],
+            len: 0,
+        };
+        let mut total = 0.0;
+        for lobe in lobes {
+            let w = luminance(lobe.weight());
+            if w > 0.0 && w.is_finite() {
+                out.lobes[out.len] = *lobe;
+                out.probs[out.len] = w;
+                out.len += 1;
+                total += w;
+            }
+        }
+        for p in &mut out.probs[..out.len] {
+            *p /= total;
+        }
+        out
+    }
+
+    /// The BSDF of `m` at `p` as the Whitted tracer reads the material: Lambert (diffuse),
+    /// mirror (`reflectivity`), dielectric (`transmissivity`, `eta = n_inside / n_outside`), the
+    /// last two GGX-rough when `roughness >= SMOOTH_ALPHA`. Index-matched transmission
+    /// (`eta = 1`) stays a smooth pass-through whatever the roughness (every microfacet sends
+    /// light straight on). The Blinn-Phong `specular` term has no lobe here.
+    #[must_use]
+    pub fn from_material(m: &Material, p: DVec3, frame: Frame, roughness: f64, eta: f64) -> Self {
+        let rough = roughness >= SMOOTH_ALPHA;
+        let ggx = Ggx::new(roughness);
+        let mut lobes = [Lobe::Lambert { albedo: Rgb::ZERO }; 3];
+        let mut n = 0;
+        if !m.diffuse.is_black() {
+            lobes[n] = Lobe::Lambert {
+                albedo: m.diffuse.at(p),
+            };
+            n += 1;
+        }
+        if m.reflectivity != Rgb::ZERO {
+            let weight = m.reflectivity;
+            lobes[n] = if rough {
+                Lobe::RoughMirror { weight, ggx }
+            } else {
+                Lobe::Mirror { weight }
+            };
+            n += 1;
+        }
+        if m.is_transmissive() {
+            let weight = m.transmissivity;
+            lobes[n] = if rough && (eta - 1.0).abs() > 1e-9 {
+                Lobe::RoughDielectric { weight, eta, ggx }
+            } else {
+                Lobe::Dielectric { weight, eta }
+            };
+            n += 1;
+        }
+        Self::new(frame, &lobes[..n])
+    }
+
+    /// The shading frame.
+    #[must_use]
+    pub fn frame(&self) -> &Frame {
+        &self.frame
+    }
+
+    /// The lobes and their selection probabilities.
+    pub fn lobes(&self) -> impl Iterator<Item = (&Lobe, f64)> {
+        self.lobes[..self.len]
+            .iter()
+            .zip(self.probs[..self.len].iter().copied())
+    }
+
+    /// Whether every lobe is a delta (no point in light sampling).
+    #[must_use]
+    pub fn is_delta(&self) -> bool {
+        self.lobes[..self.len].iter().all(Lobe::is_delta)
+    }
+
+    /// `f(wo, wi)` summed over the lobes, local frame.
+    #[must_use]
+    pub fn eval_local(&self, wo: DVec3, wi: DVec3) -> Rgb {
+        self.lobes[..self.len].iter().map(|l| l.eval(wo, wi)).sum()
+    }
+
+    /// The combined solid-angle pdf `sum_i p_i pdf_i(wo, wi)` of the non-delta lobes, local.
+    #[must_use]
+    pub fn pdf_local(&self, wo: DVec3, wi: DVec3) -> f64 {
+        self.lobes()
+            .map(|(l, p)| if l.is_delta() { 0.0 } else { p * l.pdf(wo, wi) })
+            .sum()
+    }
+
+    /// Sample `wi` for `wo` (local): `uc` chooses the lobe (and, rescaled, the lobe's own
+    /// event), `u` the direction. `None` when the sample carries nothing (a reflection below
+    /// the horizon, an exactly grazing delta event, an empty BSDF).
+    #[must_use]
+    pub fn sample_local(&self, wo: DVec3, uc: f64, u: DVec2) -> Option<BsdfSample> {
+        let mut lo = 0.0;
+        let mut chosen = None;
+        for (i, &p) in self.probs[..self.len].iter().enumerate() {
+            if uc < lo + p || i + 1 == self.len {
+                chosen = Some((i, ((uc - lo) / p).clamp(0.0, 1.0 - f64::EPSILON / 2.0)));
+                break;
+            }
+            lo += p;
+        }
+        let (i, uc) = chosen?;
+        match self.lobes[i].sample(wo, uc, u)? {
+            Draw::Delta(mut s) => {
+                s.pdf *= self.probs[i];
+                Some(s)
+            }
+            Draw::Direction(wi, kind) => {
+                let pdf = self.pdf_local(wo, wi);
+                let value = self.eval_local(wo, wi);
+                (pdf > 0.0 && pdf.is_finite() && value.is_finite()).then_some(BsdfSample {
+                    wi,
+                    value,
+                    pdf,
+                    kind,
+                    delta: false,
+                })
+            }
+        }
+    }
+
+    /// [`Self::eval_local`] for world directions.
+    #[must_use]
+    pub fn eval(&self, wo: DVec3, wi: DVec3) -> Rgb {
+        self.eval_local(self.frame.to_local(wo), self.frame.to_local(wi))
+    }
+
+    /// [`Self::pdf_local`] for world directions.
+    #[must_use]
+    pub fn pdf(&self, wo: DVec3, wi: DVec3) -> f64 {
+        self.pdf_local(self.frame.to_local(wo), self.frame.to_local(wi))
+    }
+
+    /// [`Self::sample_local`] for a world `wo`; `wi` is returned in world space.
+    #[must_use]
+    pub fn sample(&self, wo: DVec3, uc: f64, u: DVec2) -> Option<BsdfSample> {
+        let s = self.sample_local(self.frame.to_local(wo), uc, u)?;
+        Some(BsdfSample {
+            wi: self.frame.to_world(s.wi),
+            ..s
+        })
+    }
+}
