@@ -141,6 +141,25 @@ fn frames(c: &mut Criterion) {
         "nested {x},{y}: {} rays",
         session.doc.tree.as_ref().map_or(0, |t| t.nodes.len())
     );
+    // The parts of a selection's cost.
+    {
+        let doc = &session.doc;
+        let tree = doc.tree.as_ref().unwrap();
+        g.bench_function("nested_trace_pixel", |b| {
+            b.iter(|| black_box(raytree::trace_pixel(&doc.scene, x, y)))
+        });
+        let opts = raytree::gui::diagram_ui::diagram_options(doc, [1030, 300]);
+        g.bench_function("nested_diagram_build_display_list", |b| {
+            b.iter(|| {
+                let d = Diagram::build(&doc.scene, tree, &opts).unwrap();
+                black_box(display_list(&d, &Style::new(Theme::Dark)))
+            })
+        });
+        let d = Diagram::build(&doc.scene, tree, &opts).unwrap();
+        g.bench_function("nested_diagram_raster", |b| {
+            b.iter(|| black_box(raytree::diagram::to_pixmap(&d, &Style::new(Theme::Dark))))
+        });
+    }
     let mut app = InspectorApp::new(session);
     let ctx = egui::Context::default();
     let screen = egui::Rect::from_min_size(egui::Pos2::ZERO, egui::vec2(1560.0, 940.0));
@@ -183,8 +202,10 @@ fn frames(c: &mut Criterion) {
     g.finish();
 }
 
-/// Open every level of the selected tree (when the app can).
-fn expand_all(_app: &mut InspectorApp) {}
+/// Open every level of the selected tree (2144 rows).
+fn expand_all(app: &mut InspectorApp) {
+    app.expand_all();
+}
 
 criterion_group!(gui, benches, frames);
 criterion_main!(gui);
