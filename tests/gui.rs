@@ -564,9 +564,15 @@ fn the_hover_readout_legend_and_errors_stay_readable() {
         .session
         .apply(raytree::gui::Command::SetView(view));
     settle(&mut h);
-    let image = h.state().placement().unwrap().rect;
+    let place = h.state().placement().unwrap();
+    let legend = place.legend.expect("a legend");
     let diagram = h.get_by_label("Diagram").rect().top();
-    assert!(image.bottom() + 50.0 < diagram, "{image:?} vs {diagram}");
+    assert!(
+        !legend.intersects(place.rect),
+        "{legend:?} over {:?}",
+        place.rect
+    );
+    assert!(legend.bottom() <= diagram, "{legend:?} vs {diagram}");
     // An export error is shown whole, once.
     files.fail_writes("read-only file system");
     h.get_by_label("image PNG").click();

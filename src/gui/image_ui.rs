@@ -42,6 +42,8 @@ pub struct ImagePlacement {
     pub rect: Rect,
     /// Points per image pixel.
     pub zoom: f32,
+    /// The debug-view legend's strip, under the image (none without a debug view).
+    pub legend: Option<Rect>,
 }
 
 impl ImagePlacement {
@@ -80,6 +82,7 @@ pub fn image_ui(
     let place = ImagePlacement {
         rect: Rect::from_center_size(centre, vec2(w, h) * zoom),
         zoom,
+        legend: legend_strip,
     };
     let painter = ui.painter_at(area);
     painter.rect_filled(area, 0.0, Color32::from_gray(24));
