@@ -12,7 +12,7 @@ use crate::tree::NodeId;
 use egui::{
     Align2, Color32, ColorImage, FontId, Pos2, Shape, Stroke, TextureHandle, TextureOptions, pos2,
 };
-use std::sync::mpsc::{Receiver, TryRecvError, channel};
+use std::sync::mpsc::{Receiver, Sender, channel};
 
 /// What a cached display list was built from.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -24,6 +24,44 @@ struct Key {
     size: [u32; 2],
 }
 
+/// A figure to rasterise: the key it is for, the diagram, and whom to wake when it is done.
+type Job = (Key, Diagram, egui::Context);
+
+/// The rasteriser's thread: always draws the newest job waiting, sends back its pixels.
+struct Rasteriser {
+    jobs: Sender<Job>,
+    done: Receiver<(Key, ColorImage)>,
+}
+
+impl Rasteriser {
+    fn start() -> Option<Self> {
+        let (jobs, job_rx) = channel::<Job>();
+        let (tx, done) = channel();
+        std::thread::Builder::new()
+            .name("raytree-diagram".into())
+            .spawn(move || {
+                while let Ok(mut job) = job_rx.recv() {
+                    // Only the newest figure matters (arrow keys held down queue many).
+                    while let Ok(newer) = job_rx.try_recv() {
+                        job = newer;
+                    }
+                    let (key, d, ctx) = job;
+                    let pm = to_pixmap(&d, &Style::new(Theme::Dark));
+                    let img = ColorImage::from_rgba_premultiplied(
+                        [pm.width() as usize, pm.height() as usize],
+                        pm.data(),
+                    );
+                    if tx.send((key, img)).is_err() {
+                        return;
+                    }
+                    ctx.request_repaint();
+                }
+            })
+            .ok()?;
+        Some(Self { jobs, done })
+    }
+}
+
 /// The last diagram built, reused while nothing it depends on changes.
 pub struct DiagramCache {
     key: Option<Key>,
@@ -31,8 +69,9 @@ pub struct DiagramCache {
     prims: Result<Vec<Prim>, String>,
     /// The figure on screen and the key it was drawn for.
     texture: Option<(TextureHandle, Key)>,
-    /// The figure being drawn for a newer key.
-    pending: Option<(Key, Receiver<ColorImage>)>,
+    /// Whether the figure for `key` is still being drawn.
+    pending: bool,
+    rasteriser: Option<Rasteriser>,
 }
 
 impl Default for DiagramCache {
@@ -41,7 +80,8 @@ impl Default for DiagramCache {
             key: None,
             prims: Ok(Vec::new()),
             texture: None,
-            pending: None,
+            pending: false,
+            rasteriser: None,
         }
     }
 }
@@ -54,10 +94,10 @@ impl DiagramCache {
         Some((self.key?.size, self.prims.as_deref().ok()?))
     }
 
-    /// Build the figure for `key`: the display list now, the pixels on a thread.
+    /// Build the figure for `key`: the display list now, the pixels on the rasteriser's thread.
     fn rebuild(&mut self, ctx: &egui::Context, doc: &Document, key: Key) {
         self.key = Some(key);
-        self.pending = None;
+        self.pending = false;
         let built = doc
             .tree
             .as_ref()
@@ -74,48 +114,31 @@ impl DiagramCache {
             }
         };
         self.prims = Ok(display_list(&d, &Style::new(Theme::Dark)));
-        let (tx, rx) = channel();
-        let ctx = ctx.clone();
-        let spawned = std::thread::Builder::new()
-            .name("raytree-diagram".into())
-            .spawn(move || {
-                let pm = to_pixmap(&d, &Style::new(Theme::Dark));
-                let img = ColorImage::from_rgba_premultiplied(
-                    [pm.width() as usize, pm.height() as usize],
-                    pm.data(),
-                );
-                if tx.send(img).is_ok() {
-                    ctx.request_repaint();
-                }
-            });
-        if spawned.is_ok() {
-            self.pending = Some((key, rx));
+        if self.rasteriser.is_none() {
+            self.rasteriser = Rasteriser::start();
+        }
+        if let Some(r) = &self.rasteriser {
+            self.pending = r.jobs.send((key, d, ctx.clone())).is_ok();
         }
     }
 
-    /// Take a finished figure into the texture.
+    /// Take finished figures into the texture (only the current key's is shown).
     fn receive(&mut self, ctx: &egui::Context) {
-        let Some((key, rx)) = &self.pending else {
-            return;
-        };
-        let img = match rx.try_recv() {
-            Ok(img) => img,
-            Err(TryRecvError::Empty) => return,
-            Err(TryRecvError::Disconnected) => {
-                self.pending = None;
-                return;
+        let Some(r) = &self.rasteriser else { return };
+        while let Ok((key, img)) = r.done.try_recv() {
+            if Some(key) != self.key {
+                continue;
             }
-        };
-        let key = *key;
-        self.pending = None;
-        match &mut self.texture {
-            Some((t, k)) => {
-                t.set(img, TextureOptions::LINEAR);
-                *k = key;
-            }
-            None => {
-                let t = ctx.load_texture("raytree-diagram", img, TextureOptions::LINEAR);
-                self.texture = Some((t, key));
+            self.pending = false;
+            match &mut self.texture {
+                Some((t, k)) => {
+                    t.set(img, TextureOptions::LINEAR);
+                    *k = key;
+                }
+                None => {
+                    let t = ctx.load_texture("raytree-diagram", img, TextureOptions::LINEAR);
+                    self.texture = Some((t, key));
+                }
             }
         }
     }
@@ -225,7 +248,7 @@ pub fn diagram_ui(
         let uv = egui::Rect::from_min_max(pos2(0.0, 0.0), pos2(1.0, 1.0));
         painter.image(tex.id(), rect, uv, Color32::WHITE);
     }
-    if cache.pending.is_some() {
+    if cache.pending {
         painter.text(
             area.right_top() + egui::vec2(-8.0, 6.0),
             Align2::RIGHT_TOP,

@@ -204,12 +204,17 @@ fn overlay_shapes(
         };
         let out = if selected { &mut top } else { &mut shapes };
         let [a, b] = film.map(to_screen);
-        out.push(Shape::line_segment(
-            [a, b],
-            Stroke::new(width + 1.5, Color32::from_black_alpha(140)),
-        ));
+        // Faint shadow rays need no dark outline, and they start at their surface's hit point,
+        // which the bounce ray ending there already marks: half the shapes of a deep tree.
+        let shadow = seg.kind == crate::tree::RayKind::Shadow && !selected;
+        if !shadow {
+            out.push(Shape::line_segment(
+                [a, b],
+                Stroke::new(width + 1.5, Color32::from_black_alpha(140)),
+            ));
+        }
         out.push(Shape::line_segment([a, b], Stroke::new(width, colour)));
-        if film[0] == seg.film[0] {
+        if film[0] == seg.film[0] && !shadow {
             out.push(Shape::circle_filled(a, width, colour));
         }
         if seg.blocked && film[1] == seg.film[1] {
