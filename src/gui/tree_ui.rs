@@ -101,7 +101,8 @@ impl TreeView {
             *self = Self::default();
             return;
         };
-        if self.version != Some(doc.tree_version) {
+        // A different tree under the same version would index past its nodes: rebuild then too.
+        if self.version != Some(doc.tree_version) || self.open.len() != tree.nodes.len() {
             self.version = Some(doc.tree_version);
             let shape = (tree.pixel, tree.nodes.len());
             if self.shape != Some(shape) {
