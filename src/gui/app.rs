@@ -2,11 +2,15 @@
 
 use super::diagram_ui::{DiagramCache, diagram_ui};
 use super::document::{Command, Document};
-use super::image_ui::{ImagePlacement, image_ui};
+use super::image_ui::{ImagePlacement, OverlayCache, image_ui};
 use super::session::Session;
 use super::stats::{self, DebugView};
+use super::tree_ui::TreeView;
 use super::{settings_ui as settings, tree_ui};
 use egui::{Color32, ColorImage, Key, RichText, TextureHandle, TextureOptions};
+
+/// The colour of error messages.
+pub(crate) const ERROR: Color32 = Color32::from_rgb(255, 110, 110);
 
 /// Seconds between checks of the scene file's modification time.
 const POLL_SECONDS: f64 = 1.0;
@@ -20,6 +24,8 @@ pub struct InspectorApp {
     last_poll: f64,
     placement: Option<ImagePlacement>,
     diagram: DiagramCache,
+    tree_view: TreeView,
+    overlay: OverlayCache,
 }
 
 impl InspectorApp {
@@ -33,6 +39,42 @@ impl InspectorApp {
             last_poll: 0.0,
             placement: None,
             diagram: DiagramCache::default(),
+            tree_view: TreeView::default(),
+            overlay: OverlayCache::default(),
+        }
+    }
+
+    /// Where the image was drawn last frame (for tests).
+    #[must_use]
+    pub fn placement(&self) -> Option<ImagePlacement> {
+        self.placement
+    }
+
+    /// The diagram panel's display list as last drawn and its size (for tests: it must equal
+    /// a fresh build).
+    #[must_use]
+    pub fn diagram_display_list(&self) -> Option<([u32; 2], &[crate::diagram::paint::Prim])> {
+        self.diagram.display_list()
+    }
+
+    /// Rows the ray tree shows (its open levels).
+    #[must_use]
+    pub fn tree_rows(&self) -> usize {
+        self.tree_view.row_count()
+    }
+
+    /// Rays the overlay draws (one sample's, inside the image).
+    #[must_use]
+    pub fn overlay_rays(&self) -> usize {
+        self.overlay.rays
+    }
+
+    /// Open every level of the selected tree (as the "expand all below" button on the root).
+    pub fn expand_all(&mut self) {
+        if let Some(tree) = &self.session.doc.tree {
+            for s in &tree.samples {
+                self.tree_view.expand_below(tree, s.root);
+            }
         }
     }
 
@@ -58,9 +100,12 @@ impl InspectorApp {
         let doc = &self.session.doc;
         let mut cmds = Vec::new();
         egui::Panel::top("title").show(ui, |ui| title_ui(ui, doc));
+        // Fixed limits on every panel: content never widens them (long rows are cut or wrapped
+        // inside), so the image does not move under the cursor.
         egui::Panel::left("controls")
             .resizable(true)
             .default_size(290.0)
+            .size_range(240.0..=420.0)
             .show(ui, |ui| {
                 egui::ScrollArea::vertical().show(ui, |ui| {
                     section(ui, "Scene", |ui| settings::scene_ui(ui, doc, &mut cmds));
@@ -71,12 +116,15 @@ impl InspectorApp {
                     section(ui, "Export", |ui| settings::export_ui(ui, doc, &mut cmds));
                 });
             });
+        let tree_view = &mut self.tree_view;
         egui::Panel::right("tree")
             .resizable(true)
             .default_size(470.0)
+            .size_range(380.0..=640.0)
             .show(ui, |ui| {
+                ui.style_mut().wrap_mode = Some(egui::TextWrapMode::Wrap);
                 ui.heading("Ray tree");
-                tree_ui::tree_ui(ui, doc, &mut cmds);
+                tree_ui::tree_ui(ui, doc, tree_view, &mut cmds);
                 ui.separator();
                 egui::ScrollArea::vertical()
                     .id_salt("details-scroll")
@@ -89,7 +137,7 @@ impl InspectorApp {
                         egui::CollapsingHeader::new("Contribution breakdown")
                             .default_open(true)
                             .show(ui, |ui| {
-                                tree_ui::breakdown_ui(ui, doc, &mut cmds);
+                                tree_ui::breakdown_ui(ui, doc, tree_view, &mut cmds);
                             });
                     });
             });
@@ -97,11 +145,13 @@ impl InspectorApp {
         egui::Panel::bottom("diagram")
             .resizable(true)
             .default_size(330.0)
+            .size_range(200.0..=520.0)
             .show(ui, |ui| diagram_ui(ui, doc, cache, &mut cmds));
         let tex = self.texture.as_ref().map(TextureHandle::id);
         let mut placement = None;
+        let overlay = &mut self.overlay;
         egui::CentralPanel::default().show(ui, |ui| {
-            placement = Some(image_ui(ui, doc, tex, &mut cmds));
+            placement = Some(image_ui(ui, doc, tex, overlay, &mut cmds));
         });
         self.placement = placement;
         keys_ui(ui, doc, &mut cmds);
@@ -194,9 +244,14 @@ fn title_ui(ui: &mut egui::Ui, doc: &Document) {
                 );
             }
         }
-        if let Some(e) = &doc.error {
+        if let Some(e) = doc.error.as_ref().or(doc.export_error.as_ref()) {
+            // The whole message is in the left panel; here its first line, cut to fit.
             ui.separator();
-            ui.colored_label(Color32::from_rgb(255, 110, 110), first_line(e));
+            ui.add(
+                egui::Label::new(RichText::new(first_line(e)).color(ERROR))
+                    .truncate()
+                    .show_tooltip_when_elided(true),
+            );
         }
     });
 }

@@ -1,12 +1,18 @@
-//! The diagram panel: the selected pixel's cross-section (from [`crate::diagram`]) painted with
-//! egui's painter, the selected node highlighted, with a plane choice and spawn-point insets.
+//! The diagram panel: the selected pixel's cross-section (from [`crate::diagram`]), the
+//! selected node highlighted, with a plane choice and spawn-point insets. The figure is drawn by
+//! the PNG export's rasteriser (dark theme) into a texture, on a thread of its own, once per
+//! change: a frame paints one image instead of tessellating hundreds of rays and labels, and a
+//! click does not wait for the rasteriser (the previous figure stays, marked, until it is done).
 
 use super::document::{Command, Document};
 use crate::diagram::model::Anchor;
 use crate::diagram::paint::{Prim, Rgba};
-use crate::diagram::{Diagram, DiagramOptions, PlaneSpec, Style, Theme, display_list};
+use crate::diagram::{Diagram, DiagramOptions, PlaneSpec, Style, Theme, display_list, to_pixmap};
 use crate::tree::NodeId;
-use egui::{Align2, Color32, FontId, Pos2, Shape, Stroke, pos2};
+use egui::{
+    Align2, Color32, ColorImage, FontId, Pos2, Shape, Stroke, TextureHandle, TextureOptions, pos2,
+};
+use std::sync::mpsc::{Receiver, Sender, channel};
 
 /// What a cached display list was built from.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -18,10 +24,54 @@ struct Key {
     size: [u32; 2],
 }
 
+/// A figure to rasterise: the key it is for, the diagram, and whom to wake when it is done.
+type Job = (Key, Diagram, egui::Context);
+
+/// The rasteriser's thread: always draws the newest job waiting, sends back its pixels.
+struct Rasteriser {
+    jobs: Sender<Job>,
+    done: Receiver<(Key, ColorImage)>,
+}
+
+impl Rasteriser {
+    fn start() -> Option<Self> {
+        let (jobs, job_rx) = channel::<Job>();
+        let (tx, done) = channel();
+        std::thread::Builder::new()
+            .name("raytree-diagram".into())
+            .spawn(move || {
+                while let Ok(mut job) = job_rx.recv() {
+                    // Only the newest figure matters (arrow keys held down queue many).
+                    while let Ok(newer) = job_rx.try_recv() {
+                        job = newer;
+                    }
+                    let (key, d, ctx) = job;
+                    let pm = to_pixmap(&d, &Style::new(Theme::Dark));
+                    let img = ColorImage::from_rgba_premultiplied(
+                        [pm.width() as usize, pm.height() as usize],
+                        pm.data(),
+                    );
+                    if tx.send((key, img)).is_err() {
+                        return;
+                    }
+                    ctx.request_repaint();
+                }
+            })
+            .ok()?;
+        Some(Self { jobs, done })
+    }
+}
+
 /// The last diagram built, reused while nothing it depends on changes.
 pub struct DiagramCache {
     key: Option<Key>,
+    /// The display list of the figure for `key` (built at once; cheap).
     prims: Result<Vec<Prim>, String>,
+    /// The figure on screen and the key it was drawn for.
+    texture: Option<(TextureHandle, Key)>,
+    /// Whether the figure for `key` is still being drawn.
+    pending: bool,
+    rasteriser: Option<Rasteriser>,
 }
 
 impl Default for DiagramCache {
@@ -29,6 +79,67 @@ impl Default for DiagramCache {
         Self {
             key: None,
             prims: Ok(Vec::new()),
+            texture: None,
+            pending: false,
+            rasteriser: None,
+        }
+    }
+}
+
+impl DiagramCache {
+    /// The display list of the figure shown and its size (for tests: it must equal a fresh
+    /// build).
+    #[must_use]
+    pub fn display_list(&self) -> Option<([u32; 2], &[Prim])> {
+        Some((self.key?.size, self.prims.as_deref().ok()?))
+    }
+
+    /// Build the figure for `key`: the display list now, the pixels on the rasteriser's thread.
+    fn rebuild(&mut self, ctx: &egui::Context, doc: &Document, key: Key) {
+        self.key = Some(key);
+        self.pending = false;
+        let built = doc
+            .tree
+            .as_ref()
+            .ok_or_else(|| "select a pixel".to_string())
+            .and_then(|tree| {
+                Diagram::build(&doc.scene, tree, &diagram_options(doc, key.size))
+                    .map_err(|e| e.to_string())
+            });
+        let d = match built {
+            Ok(d) => d,
+            Err(e) => {
+                self.prims = Err(e);
+                return;
+            }
+        };
+        self.prims = Ok(display_list(&d, &Style::new(Theme::Dark)));
+        if self.rasteriser.is_none() {
+            self.rasteriser = Rasteriser::start();
+        }
+        if let Some(r) = &self.rasteriser {
+            self.pending = r.jobs.send((key, d, ctx.clone())).is_ok();
+        }
+    }
+
+    /// Take finished figures into the texture (only the current key's is shown).
+    fn receive(&mut self, ctx: &egui::Context) {
+        let Some(r) = &self.rasteriser else { return };
+        while let Ok((key, img)) = r.done.try_recv() {
+            if Some(key) != self.key {
+                continue;
+            }
+            self.pending = false;
+            match &mut self.texture {
+                Some((t, k)) => {
+                    t.set(img, TextureOptions::LINEAR);
+                    *k = key;
+                }
+                None => {
+                    let t = ctx.load_texture("raytree-diagram", img, TextureOptions::LINEAR);
+                    self.texture = Some((t, key));
+                }
+            }
         }
     }
 }
@@ -116,22 +227,35 @@ pub fn diagram_ui(
         size,
     };
     if cache.key != Some(key) {
-        cache.key = Some(key);
-        cache.prims = build_display_list(doc, size);
+        cache.rebuild(ui.ctx(), doc, key);
     }
+    cache.receive(ui.ctx());
     ui.allocate_rect(area, egui::Sense::hover());
     let painter = ui.painter_at(area);
-    match &cache.prims {
-        Ok(prims) => paint(&painter, area.min, prims),
-        Err(e) => {
-            painter.text(
-                area.center(),
-                Align2::CENTER_CENTER,
-                e,
-                FontId::proportional(14.0),
-                Color32::LIGHT_RED,
-            );
-        }
+    if let Err(e) = &cache.prims {
+        painter.text(
+            area.center(),
+            Align2::CENTER_CENTER,
+            e,
+            FontId::proportional(14.0),
+            Color32::LIGHT_RED,
+        );
+        return;
+    }
+    if let Some((tex, _)) = &cache.texture {
+        let [w, h] = tex.size();
+        let rect = egui::Rect::from_min_size(area.min, egui::vec2(w as f32, h as f32));
+        let uv = egui::Rect::from_min_max(pos2(0.0, 0.0), pos2(1.0, 1.0));
+        painter.image(tex.id(), rect, uv, Color32::WHITE);
+    }
+    if cache.pending {
+        painter.text(
+            area.right_top() + egui::vec2(-8.0, 6.0),
+            Align2::RIGHT_TOP,
+            "drawing…",
+            FontId::proportional(13.0),
+            Color32::from_gray(200),
+        );
     }
 }
 
@@ -141,12 +265,20 @@ fn colour(c: Rgba) -> Color32 {
 
 /// Paint a display list with its canvas origin at `origin` (one canvas pixel = one point).
 pub fn paint(painter: &egui::Painter, origin: Pos2, prims: &[Prim]) {
+    let mut shapes = Vec::new();
+    prim_shapes(origin, prims, &mut shapes);
+    painter.extend(shapes);
+    paint_texts(painter, origin, prims);
+}
+
+/// The lines, fills and circles of a display list as egui shapes (labels apart).
+fn prim_shapes(origin: Pos2, prims: &[Prim], out: &mut Vec<Shape>) {
     let at = |p: glam::DVec2| pos2(origin.x + p.x as f32, origin.y + p.y as f32);
     for prim in prims {
         match prim {
             Prim::Fill { points, color } => {
                 let pts = points.iter().map(|p| at(*p)).collect();
-                painter.add(Shape::convex_polygon(pts, colour(*color), Stroke::NONE));
+                out.push(Shape::convex_polygon(pts, colour(*color), Stroke::NONE));
             }
             Prim::Stroke {
                 points,
@@ -162,11 +294,9 @@ pub fn paint(painter: &egui::Painter, origin: Pos2, prims: &[Prim]) {
                 let stroke = Stroke::new(*width as f32, colour(*color));
                 match dash {
                     Some([d, g]) => {
-                        painter.extend(Shape::dashed_line(&pts, stroke, *d as f32, *g as f32))
+                        out.extend(Shape::dashed_line(&pts, stroke, *d as f32, *g as f32));
                     }
-                    None => {
-                        painter.add(Shape::line(pts, stroke));
-                    }
+                    None => out.push(Shape::line(pts, stroke)),
                 }
             }
             Prim::Circle {
@@ -175,34 +305,50 @@ pub fn paint(painter: &egui::Painter, origin: Pos2, prims: &[Prim]) {
                 fill,
                 stroke,
             } => {
-                let s = stroke.map_or(Stroke::NONE, |(c, w)| Stroke::new(w as f32, colour(c)));
-                let f = fill.map_or(Color32::TRANSPARENT, colour);
-                painter.add(Shape::circle_filled(at(*center), *radius as f32, f));
-                painter.add(Shape::circle_stroke(at(*center), *radius as f32, s));
+                if let Some(f) = fill {
+                    out.push(Shape::circle_filled(
+                        at(*center),
+                        *radius as f32,
+                        colour(*f),
+                    ));
+                }
+                if let Some((c, w)) = stroke {
+                    let s = Stroke::new(*w as f32, colour(*c));
+                    out.push(Shape::circle_stroke(at(*center), *radius as f32, s));
+                }
             }
-            Prim::Text {
-                pos,
+            Prim::Text { .. } => {}
+        }
+    }
+}
+
+/// The labels of a display list.
+fn paint_texts(painter: &egui::Painter, origin: Pos2, prims: &[Prim]) {
+    let at = |p: glam::DVec2| pos2(origin.x + p.x as f32, origin.y + p.y as f32);
+    for prim in prims {
+        if let Prim::Text {
+            pos,
+            text,
+            size,
+            color,
+            anchor,
+            ..
+        } = prim
+        {
+            let align = match anchor {
+                Anchor::Start => Align2::LEFT_BOTTOM,
+                Anchor::Middle => Align2::CENTER_BOTTOM,
+                Anchor::End => Align2::RIGHT_BOTTOM,
+            };
+            // The baseline is a little above the bottom of egui's text box.
+            let p = at(*pos) + egui::vec2(0.0, *size as f32 * 0.22);
+            painter.text(
+                p,
+                align,
                 text,
-                size,
-                color,
-                anchor,
-                ..
-            } => {
-                let align = match anchor {
-                    Anchor::Start => Align2::LEFT_BOTTOM,
-                    Anchor::Middle => Align2::CENTER_BOTTOM,
-                    Anchor::End => Align2::RIGHT_BOTTOM,
-                };
-                // The baseline is a little above the bottom of egui's text box.
-                let p = at(*pos) + egui::vec2(0.0, *size as f32 * 0.22);
-                painter.text(
-                    p,
-                    align,
-                    text,
-                    FontId::proportional(*size as f32),
-                    colour(*color),
-                );
-            }
+                FontId::proportional(*size as f32),
+                colour(*color),
+            );
         }
     }
 }

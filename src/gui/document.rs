@@ -94,12 +94,15 @@ pub struct Document {
     pub tree: Option<RayTree>,
     /// Selected node of `tree`.
     pub node: Option<NodeId>,
-    /// Bumped whenever `tree` is re-traced.
+    /// Bumped whenever `tree` is re-traced; it keeps counting across scene (re)loads, so a cache
+    /// keyed on it never mistakes a new scene's tree for the old one's.
     pub tree_version: u64,
     /// View options.
     pub view: ViewOptions,
     /// The last error (bad scene, failed export); the last good scene stays loaded.
     pub error: Option<String>,
+    /// The last failed export (shown whole under the export buttons).
+    pub export_error: Option<String>,
     /// The last informational message.
     pub status: String,
     /// Text of the "open scene" field.
@@ -148,6 +151,7 @@ impl Document {
             tree_version: 0,
             view: ViewOptions::default(),
             error: None,
+            export_error: None,
             status: String::new(),
             image_version: 0,
         }

@@ -1,16 +1,40 @@
 //! The image panel: zoom and pan, pixel grid, hover readout, selection, ray-path overlay and the
-//! debug-view legend.
+//! debug-view legend (in a strip below the image, never over it).
 
 use super::document::{Command, Document};
-use super::project::path_segments;
+use super::project::{clip_to_film, sample_segments};
 use super::stats::{self, DebugView};
 use super::style::{SELECTED, kind_colour, rgb};
 use crate::math::linear_to_srgb8;
-use egui::{Align2, Color32, FontId, Pos2, Rect, Sense, Stroke, StrokeKind, Vec2, pos2, vec2};
+use egui::epaint::{Mesh, TessellationOptions, Tessellator};
+use egui::{
+    Align2, Color32, FontId, Pos2, Rect, Sense, Shape, Stroke, StrokeKind, Vec2, pos2, vec2,
+};
+use std::sync::Arc;
 
 /// Zoom at which the pixel grid appears (screen points per pixel).
 const GRID_ZOOM: f32 = 8.0;
+/// Height of the legend strip under the image when a debug view is on (points).
+const LEGEND_HEIGHT: f32 = 58.0;
 
+/// What the overlay mesh was built from.
+#[derive(Clone, Copy, Debug, PartialEq)]
+struct OverlayKey {
+    tree_version: u64,
+    node: Option<crate::tree::NodeId>,
+    rect: Rect,
+    pixels_per_point: f32,
+}
+
+/// The ray overlay tessellated once per change (selection, node, zoom, pan): a frame adds one
+/// mesh instead of re-tessellating every ray.
+#[derive(Default)]
+pub struct OverlayCache {
+    key: Option<OverlayKey>,
+    mesh: Arc<Mesh>,
+    /// Rays drawn (segments inside the image).
+    pub rays: usize,
+}
 /// Where the image was drawn this frame (for tests and hit-testing).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct ImagePlacement {
@@ -18,6 +42,8 @@ pub struct ImagePlacement {
     pub rect: Rect,
     /// Points per image pixel.
     pub zoom: f32,
+    /// The debug-view legend's strip, under the image (none without a debug view).
+    pub legend: Option<Rect>,
 }
 
 impl ImagePlacement {
@@ -39,9 +65,15 @@ pub fn image_ui(
     ui: &mut egui::Ui,
     doc: &Document,
     texture: Option<egui::TextureId>,
+    overlay_cache: &mut OverlayCache,
     cmds: &mut Vec<Command>,
 ) -> ImagePlacement {
-    let area = ui.available_rect_before_wrap();
+    let mut area = ui.available_rect_before_wrap();
+    let legend_strip = (doc.view.debug != DebugView::Off).then(|| {
+        let strip = Rect::from_min_max(pos2(area.min.x, area.max.y - LEGEND_HEIGHT), area.max);
+        area.max.y -= LEGEND_HEIGHT;
+        strip
+    });
     let resp = ui.allocate_rect(area, Sense::click_and_drag());
     let (w, h) = (doc.image.width as f32, doc.image.height as f32);
     let fit = (area.width() / w).min(area.height() / h).max(1e-3);
@@ -50,6 +82,7 @@ pub fn image_ui(
     let place = ImagePlacement {
         rect: Rect::from_center_size(centre, vec2(w, h) * zoom),
         zoom,
+        legend: legend_strip,
     };
     let painter = ui.painter_at(area);
     painter.rect_filled(area, 0.0, Color32::from_gray(24));
@@ -61,7 +94,7 @@ pub fn image_ui(
         grid(&painter, place, area, doc);
     }
     if doc.view.overlay {
-        overlay(&painter, place, doc);
+        overlay(ui, &painter, place, area, doc, overlay_cache);
     }
     if let Some([x, y]) = doc.selection {
         let r = Rect::from_min_size(
@@ -77,10 +110,10 @@ pub fn image_ui(
     }
     interact(ui, &resp, place, fit, doc, cmds);
     if let Some(p) = resp.hover_pos() {
-        hover_readout(&painter, area, place.film_of(p), doc);
+        hover_readout(ui, area, place.film_of(p), doc);
     }
-    if doc.view.debug != DebugView::Off {
-        legend(&painter, area, doc);
+    if let Some(strip) = legend_strip {
+        legend(&ui.painter_at(strip), strip, doc);
     }
     place
 }
@@ -106,10 +139,60 @@ fn grid(painter: &egui::Painter, place: ImagePlacement, area: Rect, doc: &Docume
     }
 }
 
-fn overlay(painter: &egui::Painter, place: ImagePlacement, doc: &Document) {
+/// The selected sample's rays (the sample holding the selected node), projected and clipped to
+/// the image; a shadow ray stopped by an opaque blocker ends there with a cross.
+fn overlay(
+    ui: &egui::Ui,
+    painter: &egui::Painter,
+    place: ImagePlacement,
+    area: Rect,
+    doc: &Document,
+    cache: &mut OverlayCache,
+) {
     let Some(tree) = &doc.tree else { return };
+    let key = OverlayKey {
+        tree_version: doc.tree_version,
+        node: doc.node,
+        rect: place.rect,
+        pixels_per_point: ui.ctx().pixels_per_point(),
+    };
+    if cache.key != Some(key) {
+        cache.key = Some(key);
+        let shapes = overlay_shapes(place, doc, tree);
+        cache.rays = shapes.1;
+        let mut tess = Tessellator::new(
+            key.pixels_per_point,
+            TessellationOptions::default(),
+            [1, 1],
+            Vec::new(),
+        );
+        let mut mesh = Mesh::default();
+        for shape in shapes.0 {
+            tess.tessellate_shape(shape, &mut mesh);
+        }
+        cache.mesh = Arc::new(mesh);
+    }
+    painter
+        .with_clip_rect(place.rect.intersect(area))
+        .add(Shape::Mesh(Arc::clone(&cache.mesh)));
+}
+
+/// The overlay's shapes (selected ray last, on top) and the number of rays drawn.
+fn overlay_shapes(
+    place: ImagePlacement,
+    doc: &Document,
+    tree: &crate::tree::RayTree,
+) -> (Vec<Shape>, usize) {
     let to_screen = |p: [f64; 2]| place.rect.min + vec2(p[0] as f32, p[1] as f32) * place.zoom;
-    for seg in path_segments(&doc.scene.camera, tree) {
+    let (w, h) = (f64::from(doc.image.width), f64::from(doc.image.height));
+    let mut shapes = Vec::new();
+    let mut top = Vec::new();
+    let mut rays = 0;
+    for seg in sample_segments(&doc.scene.camera, tree, doc.node) {
+        let Some(film) = clip_to_film(seg.film, w, h) else {
+            continue;
+        };
+        rays += 1;
         let selected = doc.node == Some(seg.node);
         // Shadow rays are many and long: draw them faint so the bounce path stays readable.
         let (width, colour) = match (selected, seg.kind) {
@@ -119,14 +202,37 @@ fn overlay(painter: &egui::Painter, place: ImagePlacement, doc: &Document) {
             }
             (false, k) => (1.5, kind_colour(k)),
         };
-        let [a, b] = seg.film.map(to_screen);
-        painter.line_segment(
-            [a, b],
-            Stroke::new(width + 1.5, Color32::from_black_alpha(140)),
-        );
-        painter.line_segment([a, b], Stroke::new(width, colour));
-        painter.circle_filled(a, width, colour);
+        let out = if selected { &mut top } else { &mut shapes };
+        let [a, b] = film.map(to_screen);
+        // Faint shadow rays need no dark outline, and they start at their surface's hit point,
+        // which the bounce ray ending there already marks: half the shapes of a deep tree.
+        let shadow = seg.kind == crate::tree::RayKind::Shadow && !selected;
+        if !shadow {
+            out.push(Shape::line_segment(
+                [a, b],
+                Stroke::new(width + 1.5, Color32::from_black_alpha(140)),
+            ));
+        }
+        out.push(Shape::line_segment([a, b], Stroke::new(width, colour)));
+        if film[0] == seg.film[0] && !shadow {
+            out.push(Shape::circle_filled(a, width, colour));
+        }
+        if seg.blocked && film[1] == seg.film[1] {
+            // The blocker: a cross where the shadow ray stops.
+            let mark = Stroke::new(2.0, kind_colour(seg.kind));
+            let r = 4.0;
+            out.push(Shape::line_segment(
+                [b + vec2(-r, -r), b + vec2(r, r)],
+                mark,
+            ));
+            out.push(Shape::line_segment(
+                [b + vec2(-r, r), b + vec2(r, -r)],
+                mark,
+            ));
+        }
     }
+    shapes.extend(top);
+    (shapes, rays)
 }
 
 fn interact(
@@ -176,7 +282,9 @@ fn interact(
     }
 }
 
-fn hover_readout(painter: &egui::Painter, area: Rect, film: Vec2, doc: &Document) {
+/// The hovered pixel's values in a box at the top left of the image area (an egui area, so the
+/// box is laid out around its text).
+fn hover_readout(ui: &egui::Ui, area: Rect, film: Vec2, doc: &Document) {
     if film.x < 0.0
         || film.y < 0.0
         || film.x >= doc.image.width as f32
@@ -189,7 +297,7 @@ fn hover_readout(painter: &egui::Painter, area: Rect, film: Vec2, doc: &Document
     let s = c.to_array().map(linear_to_srgb8);
     let st = doc.stats_at(x, y);
     let text = format!(
-        "pixel {x}, {y}\nlinear {}\nsRGB {} {} {}\ndepth {}  rays {}  TIR {}  self-hits {}  leaks {}  cut {:.3}\nBVH nodes + primitive tests {}",
+        "pixel {x}, {y}\nlinear {}\nsRGB {} {} {}\ndepth {}  rays {}  TIR {}\nself-hits {}  leaks {}  cut {:.3}\nBVH nodes + primitive tests {}",
         rgb(c),
         s[0],
         s[1],
@@ -202,18 +310,32 @@ fn hover_readout(painter: &egui::Painter, area: Rect, film: Vec2, doc: &Document
         st.cut,
         st.traversal
     );
-    let pos = area.left_top() + vec2(8.0, 8.0);
-    let galley = painter.layout_no_wrap(text, FontId::monospace(12.0), Color32::WHITE);
-    let bg = Rect::from_min_size(pos, galley.size()).expand(5.0);
-    painter.rect_filled(bg, 4.0, Color32::from_black_alpha(190));
-    painter.galley(pos, galley, Color32::WHITE);
+    egui::Area::new(ui.make_persistent_id("hover-readout"))
+        .order(egui::Order::Foreground)
+        .fixed_pos(area.left_top() + vec2(8.0, 8.0))
+        .interactable(false)
+        .show(ui.ctx(), |ui| {
+            egui::Frame::new()
+                .fill(Color32::from_black_alpha(200))
+                .corner_radius(4.0)
+                .inner_margin(6.0)
+                .show(ui, |ui| {
+                    ui.add(
+                        egui::Label::new(
+                            egui::RichText::new(text)
+                                .font(FontId::monospace(12.0))
+                                .color(Color32::WHITE),
+                        )
+                        .extend(),
+                    );
+                });
+        });
 }
 
 fn legend(painter: &egui::Painter, area: Rect, doc: &Document) {
     let view = doc.view.debug;
     let (_, max) = stats::range(view, &doc.stats);
-    let bar = Rect::from_min_size(area.left_bottom() + vec2(12.0, -40.0), vec2(240.0, 14.0));
-    painter.rect_filled(bar.expand(24.0), 4.0, Color32::from_black_alpha(190));
+    let bar = Rect::from_min_size(area.left_top() + vec2(12.0, 20.0), vec2(240.0, 14.0));
     let steps = 48;
     for i in 0..steps {
         let t = (i as f32 + 0.5) / steps as f32;

@@ -43,6 +43,9 @@ impl Session {
         match path {
             Some(p) => {
                 if s.open(&p).is_err() {
+                    // Keep the name in the field, so fixing the file is one Open away.
+                    s.doc.path_field = p.display().to_string();
+                    s.doc.status = format!("{} did not load: built-in scene shown", p.display());
                     s.rerender();
                 }
             }
@@ -86,8 +89,12 @@ impl Session {
             Ok((scene, source)) => {
                 let view = self.doc.view;
                 let selection = self.doc.selection;
+                let versions = (self.doc.tree_version, self.doc.image_version);
                 self.doc = Document::new(scene, source);
                 self.doc.view = view;
+                // Versions keep counting: caches keyed on them must see a new document.
+                self.doc.tree_version = versions.0;
+                self.doc.image_version = versions.1 + 1;
                 self.doc.status = format!("loaded {}", path.display());
                 self.rerender();
                 if let Some([x, y]) = selection {
@@ -221,16 +228,22 @@ impl Session {
             ExportKind::DiagramSvg | ExportKind::DiagramPng => diagram_bytes(doc, kind),
         };
         let result = bytes.and_then(|b| {
-            self.files
-                .write(Path::new(&name), &b)
-                .map_err(|e| format!("cannot write {name}: {e}"))
+            self.files.write(Path::new(&name), &b).map_err(|e| {
+                // The file hook may already name the file (the binary's does).
+                let e = e.to_string();
+                if e.contains(&name) {
+                    e
+                } else {
+                    format!("cannot write {name}: {e}")
+                }
+            })
         });
         match result {
             Ok(()) => {
-                self.doc.error = None;
+                self.doc.export_error = None;
                 self.doc.status = format!("wrote {name}");
             }
-            Err(e) => self.doc.error = Some(e),
+            Err(e) => self.doc.export_error = Some(e),
         }
     }
 

@@ -1,5 +1,6 @@
 //! The left panel: scene file, tracer settings, view options and exports.
 
+use super::app::ERROR;
 use super::document::{Command, Document};
 use super::export::ExportKind;
 use super::stats::DebugView;
@@ -7,7 +8,7 @@ use super::style::{SELECTED, dot, kind_colour};
 use crate::math::FresnelModel;
 use crate::scene::{OffsetStrategy, ShadowMode};
 use crate::tree::RayKind;
-use egui::{Color32, RichText, Slider};
+use egui::{RichText, Slider};
 
 /// Scene file field, open and reload.
 pub fn scene_ui(ui: &mut egui::Ui, doc: &Document, cmds: &mut Vec<Command>) {
@@ -28,7 +29,7 @@ pub fn scene_ui(ui: &mut egui::Ui, doc: &Document, cmds: &mut Vec<Command>) {
         }
     });
     if let Some(e) = &doc.error {
-        ui.colored_label(Color32::from_rgb(255, 110, 110), e);
+        ui.add(egui::Label::new(RichText::new(e).color(ERROR)).wrap());
     }
 }
 
@@ -59,10 +60,19 @@ pub fn settings_ui(ui: &mut egui::Ui, doc: &Document, cmds: &mut Vec<Command>) {
                 ui.selectable_value(&mut s.offset.strategy, o, offset_label(o));
             }
         });
+    // From 0 (no offset at all: the acne of docs/numerics.md) on a log scale whose first step
+    // above 0 is 1e-9; the value field takes any number typed, 0 included.
     ui.add(
-        Slider::new(&mut s.offset.epsilon, 1e-9..=1e-1)
+        Slider::new(&mut s.offset.epsilon, 0.0..=1e-1)
             .logarithmic(true)
-            .custom_formatter(|v, _| format!("{v:.0e}"))
+            .smallest_positive(1e-9)
+            .custom_formatter(|v, _| {
+                if v == 0.0 {
+                    "0".into()
+                } else {
+                    format!("{v:.0e}")
+                }
+            })
             .text("epsilon"),
     );
     egui::ComboBox::from_label("Fresnel")
@@ -169,7 +179,9 @@ pub fn export_ui(ui: &mut egui::Ui, doc: &Document, cmds: &mut Vec<Command>) {
             }
         }
     });
-    if !doc.status.is_empty() {
-        ui.small(&doc.status);
+    if let Some(e) = &doc.export_error {
+        ui.add(egui::Label::new(RichText::new(e).color(ERROR)).wrap());
+    } else if !doc.status.is_empty() {
+        ui.add(egui::Label::new(RichText::new(&doc.status).small()).wrap());
     }
 }

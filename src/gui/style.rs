@@ -44,6 +44,27 @@ pub fn num(v: f64) -> String {
     }
 }
 
+/// A weight as `raytree trace` prints it: 4 decimals (a rounding residue such as 4.3e-30
+/// reads 0.0000, as in `trace`).
+#[must_use]
+pub fn weight(v: f64) -> String {
+    format!("{v:.4}")
+}
+
+/// An amount that may be small but matter (a contribution to the pixel): 4 decimals from 1e-3
+/// on, 3 significant digits below, and `0` below 5e-10, which no 8-bit or 16-bit image can
+/// show (products of Fresnel and BRDF factors leave residues like 4.3e-30 there).
+#[must_use]
+pub fn amount(v: f64) -> String {
+    if v.abs() < 5e-10 {
+        "0".into()
+    } else if (1e-3..1e5).contains(&v.abs()) {
+        format!("{v:.4}")
+    } else {
+        format!("{v:.2e}")
+    }
+}
+
 /// A vector `(x, y, z)`.
 #[must_use]
 pub fn vec3(v: glam::DVec3) -> String {
