@@ -17,6 +17,7 @@ pub mod gui;
 pub mod math;
 pub mod mesh;
 pub mod render;
+pub mod sampler;
 pub mod scene;
 pub mod text;
 pub mod trace;
@@ -27,5 +28,8 @@ pub use render::{
     render_with, trace_pixel,
 };
 pub use scene::{Scene, SceneError, Settings};
-pub use trace::{DiagnosticRecorder, NoopRecorder, RayCounts, Recorder, Tracer, TreeRecorder};
+pub use trace::{
+    DiagnosticRecorder, Integrator, NoopRecorder, RayCounts, Recorder, SceneIntegrator, Tracer,
+    TreeRecorder, Whitted,
+};
 pub use tree::{NodeId, RayKind, RayNode, RayTree};

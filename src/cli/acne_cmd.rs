@@ -122,7 +122,12 @@ fn is_replaceable(dir: &Path) -> bool {
 /// Run the sweep and write report.md, report.json, heatmap-<strategy>.png and plot.png.
 pub fn run(a: &AcneArgs) -> Result<()> {
     let cfg = config(a)?;
-    let loaded = load(a.scene.as_deref(), &Overrides::default())?;
+    let overrides = Overrides {
+        integrator: a.integrator.clone(),
+        seed: a.seed,
+        ..Overrides::default()
+    };
+    let loaded = load(a.scene.as_deref(), &overrides)?;
     let out = StagedDir::create(&a.output)?;
     let total = cfg.strategies.len() * cfg.epsilons.len() * cfg.scales.len();
     let bar = ProgressBar::with_draw_target(Some(total as u64), ProgressDrawTarget::stderr())

@@ -62,6 +62,12 @@ pub struct Overrides {
     /// Stop rays whose throughput falls below this (0 = off).
     #[arg(long, allow_negative_numbers = true)]
     pub min_weight: Option<f64>,
+    /// Integrator (only whitted exists; path is not built yet).
+    #[arg(long, value_name = "whitted")]
+    pub integrator: Option<String>,
+    /// Seed of the per-pixel sample positions (0 = the default positions).
+    #[arg(long)]
+    pub seed: Option<u64>,
 }
 
 /// `raytree render`.
@@ -120,6 +126,12 @@ pub struct AcneArgs {
     /// earlier report.
     #[arg(short, long, default_value = "acne-report")]
     pub output: PathBuf,
+    /// Integrator (only whitted exists; path is not built yet).
+    #[arg(long, value_name = "whitted")]
+    pub integrator: Option<String>,
+    /// Seed of the per-pixel sample positions (0 = the default positions).
+    #[arg(long)]
+    pub seed: Option<u64>,
 }
 
 /// `raytree effects`.

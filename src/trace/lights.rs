@@ -1,0 +1,172 @@
+//! The light-sampling kernel: one [`LightSample`] per light and shading point, produced by one
+//! function per light kind, and the unshadowed contribution every light loop of the tracer
+//! (the recursion's shadow rays in `local.rs`, the direct-only single rays and packets in
+//! `direct_only.rs`) computes from it. Adding a light kind (area lights) means adding one arm to
+//! [`Light::sample`].
+//!
+//! The estimator of one light's direct light at a point is `f * L * cos / pdf` (the lecture's
+//! local term for delta lights, where `pdf` is the formal 1 and `L` is the irradiance `E`
+//! arriving on a surface facing the light: the Dirac delta of a point or directional light
+//! cancels in the integral, pbrt-v4 section 12.1).
+
+use super::local::{SurfaceInteraction, cos_to_light};
+use super::{RayCounts, Tracer};
+use crate::math::{Ray, Rgb};
+use crate::scene::{Light, LightKind, OffsetStrategy};
+use glam::DVec3;
+
+/// One sample of a light as seen from a shading point.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct LightSample {
+    /// Unit direction from the shading point towards the sampled light point.
+    pub direction: DVec3,
+    /// Distance to the sampled point (infinite for directional lights).
+    pub distance: f64,
+    /// Unshadowed radiance arriving along `direction`; for delta lights (`delta`) the
+    /// irradiance on a surface facing the light.
+    pub radiance: Rgb,
+    /// Probability density of `direction` per unit solid angle (1 for delta lights, whose
+    /// distribution is a Dirac delta that cancels in the estimator).
+    pub pdf: f64,
+    /// A point or directional light: one sample is exact, and no BSDF sample can hit it.
+    pub delta: bool,
+}
+
+impl LightSample {
+    /// What the sample adds before the BSDF and cosine: `radiance / pdf`, or the irradiance
+    /// itself for a delta light (no division, so the delta lights' bits are the historical ones).
+    #[inline(always)]
+    #[must_use]
+    pub fn value(&self) -> Rgb {
+        if self.delta {
+            self.radiance
+        } else {
+            self.radiance / self.pdf
+        }
+    }
+}
+
+impl Light {
+    /// Sample this light from shading point `p`; `u` is a 2D sample in `[0, 1)^2` (unused by the
+    /// delta lights, which have one direction each).
+    #[inline(always)]
+    #[must_use]
+    pub fn sample(&self, p: DVec3, u: (f64, f64)) -> LightSample {
+        let _ = u;
+        match self.kind {
+            LightKind::Point {
+                position,
+                intensity,
+            } => sample_point(position, intensity, p),
+            LightKind::Directional {
+                direction,
+                irradiance,
+            } => sample_directional(direction, irradiance),
+        }
+    }
+}
+
+/// A point light of radiant intensity `intensity` at `position`: irradiance `I / r^2` from
+/// `p` (the lecture's inverse-square law).
+#[inline(always)]
+fn sample_point(position: DVec3, intensity: Rgb, p: DVec3) -> LightSample {
+    let to = position - p;
+    let r2 = to.length_squared();
+    let r = r2.sqrt();
+    LightSample {
+        direction: to / r,
+        distance: r,
+        radiance: intensity / r2,
+        pdf: 1.0,
+        delta: true,
+    }
+}
+
+/// A directional light travelling along `direction` with irradiance `irradiance`.
+#[inline(always)]
+fn sample_directional(direction: DVec3, irradiance: Rgb) -> LightSample {
+    LightSample {
+        direction: -direction,
+        distance: f64::INFINITY,
+        radiance: irradiance,
+        pdf: 1.0,
+        delta: true,
+    }
+}
+
+/// The 2D sample the Whitted integrator passes to [`Light::sample`]: it has only delta lights,
+/// which ignore it. (Area lights will take theirs from the pixel sampler.)
+pub(super) const DELTA_U: (f64, f64) = (0.5, 0.5);
+
+/// A light's shadow ray from a surface it faces, and the light's sample.
+pub(super) struct Unshadowed {
+    /// The shadow ray (offset by the configured strategy).
+    pub ray: Ray,
+    /// How far it may go.
+    pub seg: f64,
+    /// The light's sample.
+    pub ls: LightSample,
+    /// The cosine at which the surface sees it (> 0).
+    pub cos: f64,
+}
+
+impl Tracer<'_> {
+    /// The lights the plan keeps, with their indices: the loop of every light loop.
+    #[inline(always)]
+    pub(super) fn lights_on(&self) -> impl Iterator<Item = (usize, &Light)> + '_ {
+        let plan = &self.plan;
+        self.scene
+            .lights
+            .iter()
+            .enumerate()
+            .filter(move |(i, _)| plan.light_on(*i))
+    }
+
+    /// Sample `light` from `si` and the cosine at which the surface sees the sample
+    /// ([`cos_to_light`]).
+    #[inline(always)]
+    pub(super) fn sample_light(
+        &self,
+        light: &Light,
+        si: &SurfaceInteraction,
+    ) -> (LightSample, f64) {
+        let ls = light.sample(si.p, DELTA_U);
+        let cos = cos_to_light(si.n, si.ns, ls.direction);
+        (ls, cos)
+    }
+
+    /// The unrecorded light-loop body shared by the direct-only single rays and packets: the
+    /// light sampled from `si`, and unless it is behind the surface its shadow ray (counted).
+    /// `strategy` is a constant in the callers' loops.
+    #[inline(always)]
+    pub(super) fn unshadowed(
+        &self,
+        strategy: OffsetStrategy,
+        si: &SurfaceInteraction,
+        light: &Light,
+        counts: &mut RayCounts,
+    ) -> Option<Unshadowed> {
+        let (ls, cos) = self.sample_light(light, si);
+        if cos <= 0.0 {
+            return None;
+        }
+        counts.shadow += 1;
+        let from = (si.object, si.triangle);
+        let (ray, seg) = self.shadow_ray(strategy, from, si.p, si.n, ls.direction, ls.distance);
+        Some(Unshadowed { ray, seg, ls, cos })
+    }
+
+    /// What an unblocked [`Unshadowed`] adds at `si` (diffuse albedo `albedo`):
+    /// `brdf * cos * value`, the recorded path's `weight * (value * Rgb::ONE)` bit for bit.
+    #[inline(always)]
+    pub(super) fn unshadowed_add<const SPECULAR: bool>(
+        si: &SurfaceInteraction,
+        albedo: Rgb,
+        u: &Unshadowed,
+    ) -> Rgb {
+        let wi = u.ls.direction;
+        let (_, weight) =
+            Self::light_weight(SPECULAR, si.material, albedo, si.ns, (wi, si.wo), u.cos);
+        weight * u.ls.value()
+    }
+}
