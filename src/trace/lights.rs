@@ -170,3 +170,58 @@ impl Tracer<'_> {
         weight * u.ls.value()
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn light(kind: LightKind) -> Light {
+        Light {
+            name: "l".into(),
+            kind,
+        }
+    }
+
+    #[test]
+    fn point_light_sample_is_the_inverse_square_law() {
+        let l = light(LightKind::Point {
+            position: DVec3::new(1.0, 4.0, -2.0),
+            intensity: Rgb::new(8.0, 16.0, 32.0),
+        });
+        let p = DVec3::new(1.0, 0.0, 1.0);
+        let ls = l.sample(p, DELTA_U);
+        // |(0, 4, -3)| = 5.
+        assert_eq!(ls.distance, 5.0);
+        assert!((ls.direction - DVec3::new(0.0, 0.8, -0.6)).length() < 1e-15);
+        assert_eq!(ls.radiance, Rgb::new(8.0, 16.0, 32.0) / 25.0);
+        assert!(ls.delta && ls.pdf == 1.0);
+        assert_eq!(ls.value(), ls.radiance);
+        // Delta lights ignore the 2D sample.
+        assert_eq!(l.sample(p, (0.0, 0.999)), ls);
+    }
+
+    #[test]
+    fn directional_light_sample_points_against_travel() {
+        let l = light(LightKind::Directional {
+            direction: DVec3::new(0.0, -1.0, 0.0),
+            irradiance: Rgb::splat(2.0),
+        });
+        let ls = l.sample(DVec3::new(3.0, 1.0, 7.0), DELTA_U);
+        assert_eq!(ls.direction, DVec3::Y);
+        assert!(ls.distance.is_infinite() && ls.delta);
+        assert_eq!(ls.value(), Rgb::splat(2.0));
+    }
+
+    /// A non-delta sample's value is radiance over pdf (the Monte Carlo estimator's weight).
+    #[test]
+    fn area_sample_value_divides_by_the_pdf() {
+        let ls = LightSample {
+            direction: DVec3::Z,
+            distance: 2.0,
+            radiance: Rgb::splat(3.0),
+            pdf: 4.0,
+            delta: false,
+        };
+        assert_eq!(ls.value(), Rgb::splat(0.75));
+    }
+}
