@@ -63,7 +63,13 @@ impl StratifiedJitter {
     pub fn new(spp: u32, seed: u64) -> Self {
         Self {
             spp: spp.max(1),
-            seed_mix: splitmix64(seed) ^ splitmix64(0),
+            // Branch-free would hash twice per construction, and `render_pixel_with` builds one
+            // per pixel; at seed 0 the mix is 0 by definition.
+            seed_mix: if seed == 0 {
+                0
+            } else {
+                splitmix64(seed) ^ splitmix64(0)
+            },
             key: 0,
             sample: 0,
             dim: 0,
