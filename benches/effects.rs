@@ -45,7 +45,8 @@ fn ray_cast(scene: &Scene, film: &Film, x: u32, y: u32) -> Rgb {
     let mut color = scene.ambient * albedo;
     let eps = scene.settings.offset.epsilon;
     for light in &scene.lights {
-        let (wi, dist, e) = light.sample(p);
+        let ls = light.sample(p, (0.5, 0.5));
+        let (wi, dist, e) = (ls.direction, ls.distance, ls.radiance);
         let cos = n.dot(wi);
         if cos > 0.0 {
             let shadow = raytree::math::Ray::new(p + eps * n, wi, 0.0);

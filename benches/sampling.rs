@@ -7,7 +7,7 @@ use glam::{DVec2, DVec3};
 use raytree::bsdf::{Bsdf, Frame, Ggx, Lobe};
 use raytree::lights::{PlanarEmitter, sample_sphere};
 use raytree::math::Rgb;
-use raytree::sampling::{PixelFilter, PixelSampler, SplitMix64, warp};
+use raytree::sampling::{PixelFilter, SobolSampler, SplitMix64, warp};
 use std::hint::black_box;
 use std::time::Duration;
 
@@ -31,7 +31,7 @@ fn bench(c: &mut Criterion) {
         b.iter(|| {
             let mut acc = DVec2::ZERO;
             for i in 0..BATCH as u32 {
-                acc += PixelSampler::new(7, (i & 63, i >> 6), i).next_2d();
+                acc += SobolSampler::new(7, (i & 63, i >> 6), i).next_2d();
             }
             black_box(acc)
         });

@@ -31,5 +31,8 @@ pub use render::{
     render_with, trace_pixel,
 };
 pub use scene::{Scene, SceneError, Settings};
-pub use trace::{DiagnosticRecorder, NoopRecorder, RayCounts, Recorder, Tracer, TreeRecorder};
+pub use trace::{
+    DiagnosticRecorder, Integrator, NoopRecorder, RayCounts, Recorder, SceneIntegrator, Tracer,
+    TreeRecorder, Whitted,
+};
 pub use tree::{NodeId, RayKind, RayNode, RayTree};

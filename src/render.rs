@@ -1,15 +1,20 @@
-//! Pixels: stratified samples, the parallel render, and re-tracing one pixel into a tree.
+//! Pixels: samples from a [`PixelSampler`], the parallel render, and re-tracing one pixel into
+//! a tree.
 //!
-//! One code path: [`render_pixel`] is generic over the recorder; the image uses
-//! [`NoopRecorder`], the tree [`TreeRecorder`], so a recorded pixel equals the rendered one bit
-//! for bit.
+//! One code path: [`render_pixel`] is generic over the integrator, the sampler and the
+//! recorder; the image uses [`NoopRecorder`], the tree [`TreeRecorder`], so a recorded pixel
+//! equals the rendered one bit for bit.
 
 use crate::bvh::TraversalCost;
 use crate::bvh::wide::PACKET;
 use crate::geometry::Shape;
 use crate::math::Rgb;
+use crate::sampling::{PixelSampler, StratifiedJitter};
 use crate::scene::Scene;
-use crate::trace::{DiagnosticRecorder, NoopRecorder, RayCounts, Recorder, Tracer, TreeRecorder};
+use crate::trace::{
+    DiagnosticRecorder, Integrator, NoopRecorder, RayCounts, Recorder, SceneIntegrator,
+    TreeRecorder,
+};
 use crate::tree::{RayTree, SampleRecord, TREE_SCHEMA};
 use rayon::prelude::*;
 
@@ -69,41 +74,21 @@ pub struct DiagnosticMap {
     pub leaks: Vec<u32>,
 }
 
-/// SplitMix64 (Steele, Lea, Flood 2014): a tiny, well-mixed hash for per-pixel seeds.
-fn splitmix64(mut z: u64) -> u64 {
-    z = z.wrapping_add(0x9E37_79B9_7F4A_7C15);
-    z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
-    z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
-    z ^ (z >> 31)
-}
-
-fn unit(h: u64) -> f64 {
-    (h >> 11) as f64 * (1.0 / (1u64 << 53) as f64)
-}
-
-/// Film position of sample `s` of pixel (x, y): the centre for one sample, otherwise jittered
-/// stratified on a `cols x rows` grid, seeded by the pixel and sample so it is reproducible.
+/// Film position of sample `s` of pixel (x, y) at seed 0: [`StratifiedJitter`]'s film offset
+/// (the centre for one sample, otherwise jittered stratified) added to the pixel's corner.
 #[must_use]
 pub fn sample_position(x: u32, y: u32, s: u32, spp: u32) -> (f64, f64) {
-    if spp <= 1 {
-        return (f64::from(x) + 0.5, f64::from(y) + 0.5);
-    }
-    jittered(x, y, s, spp)
+    let mut sampler = StratifiedJitter::new(spp, 0);
+    film_position(&mut sampler, x, y, s)
 }
 
-/// The stratified position of [`sample_position`] for `spp > 1`. Out of line, so its square
-/// root and `ceil` are not hoisted into one-sample renders.
-#[inline(never)]
-fn jittered(x: u32, y: u32, s: u32, spp: u32) -> (f64, f64) {
-    let cols = f64::from(spp).sqrt().ceil() as u32;
-    let rows = spp.div_ceil(cols);
-    let seed =
-        splitmix64((u64::from(y) << 32 | u64::from(x)) ^ (u64::from(s) << 48).rotate_left(7));
-    let jx = unit(seed);
-    let jy = unit(splitmix64(seed));
-    let sx = (f64::from(s % cols) + jx) / f64::from(cols);
-    let sy = (f64::from(s / cols) + jy) / f64::from(rows);
-    (f64::from(x) + sx, f64::from(y) + sy)
+/// Start sample `s` of pixel (x, y) in `sampler` and return its film position: the pixel's
+/// corner plus the sampler's first 2D value.
+#[inline(always)]
+fn film_position<S: PixelSampler>(sampler: &mut S, x: u32, y: u32, s: u32) -> (f64, f64) {
+    sampler.start_sample((x, y), s);
+    let (u, v) = sampler.next_2d();
+    (f64::from(x) + u, f64::from(y) + v)
 }
 
 /// Trace every sample of pixel (x, y) into `rec`; returns the pixel radiance (box filter).
@@ -115,24 +100,42 @@ pub fn render_pixel<R: Recorder>(
     counts: &mut RayCounts,
     on_sample: impl FnMut(SampleRecord),
 ) -> Rgb {
-    render_pixel_with(&Tracer::new(scene), x, y, rec, counts, on_sample)
+    render_pixel_with(&SceneIntegrator::new(scene), x, y, rec, counts, on_sample)
 }
 
-/// [`render_pixel`] with a prepared tracer (and so a chosen effect plan).
-pub fn render_pixel_with<R: Recorder>(
-    tracer: &Tracer,
+/// [`render_pixel`] with a prepared integrator (and so a chosen effect plan) and the scene's
+/// default sampler ([`StratifiedJitter`] with the settings' `spp` and `seed`).
+pub fn render_pixel_with<I: Integrator, R: Recorder>(
+    integrator: &I,
+    x: u32,
+    y: u32,
+    rec: &mut R,
+    counts: &mut RayCounts,
+    on_sample: impl FnMut(SampleRecord),
+) -> Rgb {
+    let mut sampler = StratifiedJitter::for_settings(&integrator.scene().settings);
+    render_pixel_sampled(integrator, &mut sampler, x, y, rec, counts, on_sample)
+}
+
+/// [`render_pixel_with`] drawing every sample from `sampler` (the sampler seam): sample `s`
+/// starts with [`PixelSampler::start_sample`], its film position is the pixel corner plus the
+/// first [`PixelSampler::next_2d`], and the integrator draws its further dimensions.
+pub fn render_pixel_sampled<I: Integrator, S: PixelSampler, R: Recorder>(
+    integrator: &I,
+    sampler: &mut S,
     x: u32,
     y: u32,
     rec: &mut R,
     counts: &mut RayCounts,
     mut on_sample: impl FnMut(SampleRecord),
 ) -> Rgb {
-    let scene = tracer.scene();
+    let scene = integrator.scene();
     let spp = scene.settings.spp.max(1);
     let mut sum = Rgb::ZERO;
     for s in 0..spp {
-        let (fx, fy) = sample_position(x, y, s, spp);
-        let (l, root) = tracer.trace_camera(tracer.film().ray(fx, fy), rec, counts);
+        let (fx, fy) = film_position(sampler, x, y, s);
+        let ray = integrator.film().ray(fx, fy);
+        let (l, root) = integrator.camera_radiance(ray, sampler, rec, counts);
         sum += l;
         if let Some(root) = root {
             on_sample(SampleRecord {
@@ -177,12 +180,26 @@ pub fn trace_pixel(scene: &Scene, x: u32, y: u32) -> Option<RayTree> {
 /// are written black and counted; [`RenderStats::first_nonfinite`] names the first so its tree
 /// can be inspected.
 pub fn render(scene: &Scene, progress: &(dyn Fn(u32) + Sync)) -> (Image, RenderStats) {
-    render_with(&Tracer::new(scene), progress)
+    render_with(&SceneIntegrator::new(scene), progress)
 }
 
-/// [`render`] with a prepared tracer (and so a chosen effect plan).
-pub fn render_with(tracer: &Tracer, progress: &(dyn Fn(u32) + Sync)) -> (Image, RenderStats) {
-    let (image, stats, _) = render_recorded::<NoopRecorder>(tracer, progress);
+/// [`render`] with a prepared integrator (and so a chosen effect plan) and the scene's default
+/// sampler.
+pub fn render_with<I: Integrator>(
+    integrator: &I,
+    progress: &(dyn Fn(u32) + Sync),
+) -> (Image, RenderStats) {
+    let sampler = StratifiedJitter::for_settings(&integrator.scene().settings);
+    render_sampled(integrator, &sampler, progress)
+}
+
+/// [`render_with`] drawing samples from copies of `sampler` (one per row or band).
+pub fn render_sampled<I: Integrator, S: PixelSampler>(
+    integrator: &I,
+    sampler: &S,
+    progress: &(dyn Fn(u32) + Sync),
+) -> (Image, RenderStats) {
+    let (image, stats, _) = render_recorded::<NoopRecorder, _, _>(integrator, sampler, progress);
     (image, stats)
 }
 
@@ -192,25 +209,41 @@ pub fn render_diagnosed(
     scene: &Scene,
     progress: &(dyn Fn(u32) + Sync),
 ) -> (Image, RenderStats, DiagnosticMap) {
-    render_recorded::<DiagnosticRecorder>(&Tracer::new(scene), progress)
+    let integrator = SceneIntegrator::new(scene);
+    let sampler = StratifiedJitter::for_settings(&scene.settings);
+    render_recorded::<DiagnosticRecorder, _, _>(&integrator, &sampler, progress)
 }
 
 /// Rows `rows` of the image without recording, in parallel over rayon's pool: linear radiance
 /// (row-major, non-finite values as traced) and the rays traced. The same code path and so the
 /// same pixels as [`render_with`] (for scenes with meshes, bands of 8 rows from `rows.start`
 /// traced as 8x8 packets); the inspector shows its image with it before it gathers statistics.
-pub fn render_rows(tracer: &Tracer, rows: std::ops::Range<u32>) -> (Vec<Rgb>, RayCounts) {
-    let scene = tracer.scene();
+pub fn render_rows<I: Integrator>(
+    integrator: &I,
+    rows: std::ops::Range<u32>,
+) -> (Vec<Rgb>, RayCounts) {
+    let scene = integrator.scene();
     let w = scene.camera.width;
-    let parts: Vec<(Vec<Rgb>, RayCounts)> = if uses_packets::<NoopRecorder>(scene) {
-        packet_bands::<NoopRecorder>(tracer, rows, &|_| {})
+    let sampler = StratifiedJitter::for_settings(&scene.settings);
+    let parts: Vec<(Vec<Rgb>, RayCounts)> = if uses_packets::<NoopRecorder, I>(integrator) {
+        packet_bands::<NoopRecorder, I, _>(integrator, &sampler, rows, &|_| {})
     } else {
         rows.into_par_iter()
             .map(|y| {
                 let mut counts = RayCounts::default();
+                let mut sampler = sampler;
                 let row = (0..w)
                     .map(|x| {
-                        render_pixel_with(tracer, x, y, &mut NoopRecorder, &mut counts, |_| {})
+                        let rec = &mut NoopRecorder;
+                        render_pixel_sampled(
+                            integrator,
+                            &mut sampler,
+                            x,
+                            y,
+                            rec,
+                            &mut counts,
+                            |_| {},
+                        )
                     })
                     .collect();
                 (row, counts)
@@ -228,8 +261,9 @@ pub fn render_rows(tracer: &Tracer, rows: std::ops::Range<u32>) -> (Vec<Rgb>, Ra
 
 /// Rows `rows` in bands of [`TILE`] rows from `rows.start`, in parallel, each traced by
 /// [`render_band`]; `on_band` is called with each band's row count as it finishes.
-fn packet_bands<R: Recorder + Default>(
-    tracer: &Tracer,
+fn packet_bands<R: Recorder + Default, I: Integrator, S: PixelSampler>(
+    integrator: &I,
+    sampler: &S,
     rows: std::ops::Range<u32>,
     on_band: &(dyn Fn(u32) + Sync),
 ) -> Vec<(Vec<Rgb>, RayCounts)> {
@@ -238,18 +272,20 @@ fn packet_bands<R: Recorder + Default>(
         .into_par_iter()
         .map(|y0| {
             let n = TILE.min(rows.end - y0);
-            let band = render_band::<R>(tracer, y0, n);
+            let band = render_band::<R, I, S>(integrator, sampler.clone(), y0, n);
             on_band(n);
             band
         })
         .collect()
 }
 
-/// Whether a render with recorder `R` traces camera rays as packets: nothing is recorded and
-/// the scene has a mesh.
-fn uses_packets<R: Recorder>(scene: &Scene) -> bool {
+/// Whether a render with recorder `R` traces camera rays as packets: nothing is recorded, the
+/// integrator takes packets and the scene has a mesh.
+fn uses_packets<R: Recorder, I: Integrator>(integrator: &I) -> bool {
+    let scene = integrator.scene();
     !R::RECORDS
         && !R::DIAGNOSE
+        && integrator.traces_packets()
         && scene.camera.width > 0
         && scene
             .objects
@@ -259,16 +295,17 @@ fn uses_packets<R: Recorder>(scene: &Scene) -> bool {
 
 type Row = (Vec<Rgb>, Vec<(u32, u32)>, RayCounts);
 
-fn render_recorded<R: Recorder + Default>(
-    tracer: &Tracer,
+fn render_recorded<R: Recorder + Default, I: Integrator, S: PixelSampler>(
+    integrator: &I,
+    sampler: &S,
     progress: &(dyn Fn(u32) + Sync),
 ) -> (Image, RenderStats, DiagnosticMap) {
-    let scene = tracer.scene();
+    let scene = integrator.scene();
     let (w, h) = (scene.camera.width, scene.camera.height);
     let done = std::sync::atomic::AtomicU32::new(0);
-    let rows: Vec<Row> = if uses_packets::<R>(scene) {
+    let rows: Vec<Row> = if uses_packets::<R, I>(integrator) {
         let on_band = |n| progress(done.fetch_add(n, std::sync::atomic::Ordering::Relaxed) + n);
-        packet_bands::<R>(tracer, 0..h, &on_band)
+        packet_bands::<R, I, S>(integrator, sampler, 0..h, &on_band)
             .into_iter()
             .flat_map(|(band, counts)| {
                 let rows: Vec<Row> = band
@@ -289,10 +326,13 @@ fn render_recorded<R: Recorder + Default>(
                 let mut counts = RayCounts::default();
                 let mut diag = Vec::new();
                 let mut rec = R::default();
+                let mut sampler = sampler.clone();
                 let row = (0..w)
                     .map(|x| {
                         let before = counts;
-                        let l = render_pixel_with(tracer, x, y, &mut rec, &mut counts, |_| {});
+                        let (rec, n) = (&mut rec, &mut counts);
+                        let l =
+                            render_pixel_sampled(integrator, &mut sampler, x, y, rec, n, |_| {});
                         if R::DIAGNOSE {
                             let self_hits = counts.self_hits - before.self_hits;
                             let leaks = counts.leaks - before.leaks;
@@ -346,19 +386,21 @@ const TILE: u32 = 8;
 /// Rows `y0..y0 + rows` (at most [`TILE`]) without recording, a tile of camera rays at a time
 /// through [`Scene::intersect_packet`]: the pixels (row-major) and the ray counts. Each pixel
 /// sums its samples in the same order as [`render_pixel_with`], and each ray's hit is its single
-/// ray's, so the pixels are [`render_pixel_with`]'s bit for bit.
-fn render_band<R: Recorder + Default>(
-    tracer: &Tracer,
+/// ray's, so the pixels are [`render_pixel_sampled`]'s bit for bit (the integrator takes
+/// packets only when it draws nothing from the sampler past the film offset).
+fn render_band<R: Recorder + Default, I: Integrator, S: PixelSampler>(
+    integrator: &I,
+    mut sampler: S,
     y0: u32,
     rows: u32,
 ) -> (Vec<Rgb>, RayCounts) {
-    let scene = tracer.scene();
+    let scene = integrator.scene();
     let w = scene.camera.width;
     let spp = scene.settings.spp.max(1);
     let mut counts = RayCounts::default();
     let mut rec = R::default();
     let mut band = vec![Rgb::ZERO; (w * rows) as usize];
-    let film = tracer.film();
+    let film = integrator.film();
     let mut rays = Vec::with_capacity(PACKET);
     let mut hits = [None; PACKET];
     let mut cost = [TraversalCost::default(); PACKET];
@@ -369,7 +411,7 @@ fn render_band<R: Recorder + Default>(
             rays.clear();
             for dy in 0..rows {
                 for dx in 0..cols {
-                    let (fx, fy) = sample_position(x0 + dx, y0 + dy, s, spp);
+                    let (fx, fy) = film_position(&mut sampler, x0 + dx, y0 + dy, s);
                     rays.push(film.ray(fx, fy));
                 }
             }
@@ -377,7 +419,8 @@ fn render_band<R: Recorder + Default>(
             scene.intersect_packet(&rays, &mut hits, &mut cost);
             let n = rays.len();
             let found = (&hits[..n], &cost[..n]);
-            tracer.trace_camera_packet(&rays, found, &mut radiance[..n], &mut rec, &mut counts);
+            let out = &mut radiance[..n];
+            integrator.camera_packet_radiance(&rays, found, out, &mut rec, &mut counts);
             for (i, &l) in radiance[..n].iter().enumerate() {
                 let (dx, dy) = (i as u32 % cols, i as u32 / cols);
                 band[(dy * w + x0 + dx) as usize] += l;
@@ -388,25 +431,4 @@ fn render_band<R: Recorder + Default>(
         *p /= f64::from(spp);
     }
     (band, counts)
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    #[test]
-    fn samples_are_stratified_and_inside_the_pixel() {
-        for spp in [2, 4, 5, 16] {
-            let cols = f64::from(spp).sqrt().ceil() as u32;
-            for s in 0..spp {
-                let (fx, fy) = sample_position(3, 7, s, spp);
-                assert!((3.0..4.0).contains(&fx) && (7.0..8.0).contains(&fy));
-                let cx = ((fx - 3.0) * f64::from(cols)).floor() as u32;
-                assert_eq!(cx, s % cols);
-            }
-        }
-        assert_eq!(sample_position(3, 7, 0, 1), (3.5, 7.5));
-        assert_eq!(sample_position(3, 7, 2, 4), sample_position(3, 7, 2, 4));
-        assert_ne!(sample_position(3, 7, 2, 4), sample_position(4, 7, 2, 4));
-    }
 }

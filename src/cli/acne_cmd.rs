@@ -59,7 +59,12 @@ fn config(a: &AcneArgs) -> Result<AcneConfig> {
 /// each atomically, and nothing is written unless the whole sweep succeeded).
 pub fn run(a: &AcneArgs) -> Result<()> {
     let cfg = config(a)?;
-    let loaded = load(a.scene.as_deref(), &Overrides::default())?;
+    let overrides = Overrides {
+        integrator: a.integrator.clone(),
+        seed: a.seed,
+        ..Overrides::default()
+    };
+    let loaded = load(a.scene.as_deref(), &overrides)?;
     let inputs = Inputs::new(loaded.inputs.iter().map(|p| p.as_path()));
     let dir = OutDir::create(&a.output)?;
     let mut names = vec!["report.md".to_string(), "report.json".to_string()];

@@ -74,6 +74,12 @@ pub struct Overrides {
     /// 4096, or half the address-space limit (`ulimit -v`) when that is smaller].
     #[arg(long, value_name = "MIB")]
     pub max_memory: Option<u64>,
+    /// Integrator (only whitted exists; path is not built yet).
+    #[arg(long, value_name = "whitted")]
+    pub integrator: Option<String>,
+    /// Seed of the per-pixel sample positions (0 = the default positions).
+    #[arg(long)]
+    pub seed: Option<u64>,
 }
 
 /// `raytree render`.
@@ -132,6 +138,12 @@ pub struct AcneArgs {
     /// earlier report.
     #[arg(short, long, default_value = "acne-report")]
     pub output: PathBuf,
+    /// Integrator (only whitted exists; path is not built yet).
+    #[arg(long, value_name = "whitted")]
+    pub integrator: Option<String>,
+    /// Seed of the per-pixel sample positions (0 = the default positions).
+    #[arg(long)]
+    pub seed: Option<u64>,
 }
 
 /// `raytree effects`.

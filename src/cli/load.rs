@@ -164,6 +164,13 @@ pub fn apply(scene: &mut Scene, o: &Overrides) -> Result<()> {
     if let Some(v) = o.max_rays {
         s.max_rays = v;
     }
+    if let Some(v) = &o.integrator {
+        s.integrator = raytree::scene::IntegratorKind::from_name(v)
+            .map_err(|msg| anyhow!("--integrator: {msg}"))?;
+    }
+    if let Some(v) = o.seed {
+        s.seed = v;
+    }
     raytree::scene::check_settings(s).map_err(|(path, msg)| {
         let flag = path.rsplit('.').next().unwrap_or(&path).replace('_', "-");
         anyhow!("--{flag}: {msg}")

@@ -40,6 +40,7 @@ impl SignumOrOne for f64 {
     }
 }
 
+#[inline]
 pub(super) fn sphere_hit(center: DVec3, radius: f64, ray: &Ray, t_max: f64) -> Option<ShapeHit> {
     let (t0, t1) = sphere_roots(center, radius, ray)?;
     let t = if accept(t0, ray.t_min, t_max) {

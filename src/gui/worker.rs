@@ -11,7 +11,7 @@ use super::stats::{PixelStats, StatsRecorder};
 use crate::math::Rgb;
 use crate::render::{render_pixel_with, render_rows};
 use crate::scene::Scene;
-use crate::trace::{RayCounts, Tracer};
+use crate::trace::{RayCounts, SceneIntegrator};
 use rayon::prelude::*;
 use std::sync::Arc;
 use std::sync::atomic::{AtomicU64, Ordering};
@@ -169,7 +169,7 @@ impl Drop for Worker {
 
 fn run_job(job: &Job, current: &AtomicU64, tx: &Sender<Delivery>, repaint: &Repaint) {
     let scene = &*job.scene;
-    let tracer = Tracer::new(scene);
+    let tracer = SceneIntegrator::new(scene);
     let (w, h) = (scene.camera.width, scene.camera.height);
     let cancelled = || current.load(Ordering::SeqCst) != job.generation;
     let send = |d: Delivery| {

@@ -13,7 +13,6 @@ use crate::math::Rgb;
 use crate::sampling::warp::{
     orthonormal_basis, square_to_triangle_barycentrics, square_to_uniform_cone, uniform_cone_pdf,
 };
-use crate::scene::Light;
 use glam::{DVec2, DVec3};
 
 /// A direction towards a light and what arrives along it.
@@ -33,8 +32,22 @@ pub struct LightSample {
 }
 
 impl LightSample {
+    /// What the sample adds before the BSDF and cosine, as the tracer's light loops use it:
+    /// the irradiance itself for a delta light (no division, so the delta lights' bits are the
+    /// historical ones), otherwise [`LightSample::weight`].
+    #[inline(always)]
+    #[must_use]
+    pub fn value(&self) -> Rgb {
+        if self.delta {
+            self.radiance
+        } else {
+            self.weight()
+        }
+    }
+
     /// The direct-light estimator's factor `radiance / pdf` (the light's irradiance for a delta
     /// light); multiply by `f |cos|` and visibility.
+    #[inline(always)]
     #[must_use]
     pub fn weight(&self) -> Rgb {
         if self.pdf > 0.0 {
@@ -220,6 +233,7 @@ impl PlanarEmitter {
 }
 
 /// A point light as a delta sample: irradiance `intensity / r^2` along the direction to it.
+#[inline(always)]
 #[must_use]
 pub fn sample_point_light(p: DVec3, position: DVec3, intensity: Rgb) -> LightSample {
     let to = position - p;
@@ -235,26 +249,13 @@ pub fn sample_point_light(p: DVec3, position: DVec3, intensity: Rgb) -> LightSam
 }
 
 /// A directional light (travelling along `direction`) as a delta sample.
+#[inline(always)]
 #[must_use]
 pub fn sample_directional_light(direction: DVec3, irradiance: Rgb) -> LightSample {
     LightSample {
         direction: -direction,
         distance: f64::INFINITY,
         radiance: irradiance,
-        pdf: 1.0,
-        delta: true,
-    }
-}
-
-/// The scene's point or directional light seen from `p`, through [`Light::sample`] (the
-/// formulas the Whitted tracer uses).
-#[must_use]
-pub fn sample_scene_light(light: &Light, p: DVec3) -> LightSample {
-    let (direction, distance, radiance) = light.sample(p);
-    LightSample {
-        direction,
-        distance,
-        radiance,
         pdf: 1.0,
         delta: true,
     }

@@ -3,7 +3,7 @@
 use super::*;
 use crate::sampling::SplitMix64;
 use crate::sampling::chi2::test_directions;
-use crate::scene::LightKind;
+use crate::scene::{Light, LightKind};
 use std::f64::consts::PI;
 
 /// Mean and standard error of `L max(0, n.wi) / pdf` over `n` samples (failures count 0).
@@ -263,7 +263,7 @@ fn delta_lights_match_the_scene_lights() {
             intensity: Rgb::splat(32.0),
         },
     };
-    let s = sample_scene_light(&light, p);
+    let s = light.sample(p, (0.5, 0.5));
     assert_eq!(
         s,
         sample_point_light(p, DVec3::new(1.0, 6.0, 3.0), Rgb::splat(32.0))
@@ -277,7 +277,7 @@ fn delta_lights_match_the_scene_lights() {
         },
     };
     assert_eq!(
-        sample_scene_light(&sun, p),
+        sun.sample(p, (0.5, 0.5)),
         sample_directional_light(-DVec3::Y, Rgb::ONE)
     );
 }

@@ -1,13 +1,16 @@
-//! Monte Carlo building blocks: a deterministic per-pixel sampler, warps from the unit square
+//! Monte Carlo building blocks: the per-pixel sampler seam ([`PixelSampler`]) with the default
+//! [`StratifiedJitter`] and an Owen-scrambled Sobol sampler ([`SobolSampler`]), warps from the unit square
 //! with their pdfs, and importance-sampled pixel filters. See `docs/monte-carlo.md`.
 
 #[cfg(test)]
 pub(crate) mod chi2;
 mod filter;
 mod sobol;
+mod stratified;
 #[cfg(test)]
 mod tests;
 pub mod warp;
 
 pub use filter::PixelFilter;
-pub use sobol::{PixelSampler, SplitMix64, mix64, nested_uniform_scramble, pixel_key, sample_2d};
+pub use sobol::{SobolSampler, SplitMix64, mix64, nested_uniform_scramble, pixel_key, sample_2d};
+pub use stratified::{PixelSampler, StratifiedJitter, splitmix64, unit};

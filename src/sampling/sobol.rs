@@ -5,7 +5,7 @@
 //! Every value is a pure function of (seed, pixel, sample index, dimension): re-tracing one pixel
 //! reproduces the render bit for bit, whatever order pixels and samples are visited in.
 //!
-//! Each call to [`PixelSampler::next_2d`] takes one *dimension pair* and returns the first two
+//! Each call to [`SobolSampler::next_2d`] takes one *dimension pair* and returns the first two
 //! Sobol dimensions of a shuffled index, each Owen-scrambled with its own seed ("padding", Burley
 //! section 4). Shuffling the index by a nested uniform scramble keeps the first `2^m` samples of a
 //! pixel an aligned block of `2^m` Sobol points, hence a (0, m, 2)-net in every pair.
@@ -99,7 +99,7 @@ pub fn pixel_key(seed: u64, (x, y): (u32, u32)) -> u64 {
 }
 
 /// The 2D point of dimension pair `pair` of sample `index` of `pixel` under `seed`, in
-/// `[0, 1)^2`. Stateless: what [`PixelSampler`] returns for its `pair`-th 2D draw.
+/// `[0, 1)^2`. Stateless: what [`SobolSampler`] returns for its `pair`-th 2D draw.
 #[must_use]
 pub fn sample_2d(seed: u64, pixel: (u32, u32), index: u32, pair: u32) -> DVec2 {
     let (x, y) = sobol_pair_bits(pixel_key(seed, pixel), index, pair);
@@ -111,17 +111,19 @@ pub fn sample_2d(seed: u64, pixel: (u32, u32), index: u32, pair: u32) -> DVec2 {
 /// `next_1d` also takes a whole pair (its first coordinate), so that the dimensions a draw uses
 /// depend only on how many draws came before it, not on whether they were 1D or 2D.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub struct PixelSampler {
+pub struct SobolSampler {
+    seed: u64,
     key: u64,
     index: u32,
     pair: u32,
 }
 
-impl PixelSampler {
+impl SobolSampler {
     /// The stream of sample `index` of `pixel` under `seed`, starting at dimension pair 0.
     #[must_use]
     pub fn new(seed: u64, pixel: (u32, u32), index: u32) -> Self {
         Self {
+            seed,
             key: pixel_key(seed, pixel),
             index,
             pair: 0,
@@ -185,6 +187,24 @@ impl SplitMix64 {
     }
 }
 
+/// The Sobol sampler behind the render's sampler seam: each camera sample restarts the
+/// sample's stream at dimension pair 0, and a 1D draw takes a whole pair, as
+/// [`SobolSampler::next_1d`] does.
+impl super::PixelSampler for SobolSampler {
+    fn start_sample(&mut self, pixel: (u32, u32), index: u32) {
+        *self = Self::new(self.seed, pixel, index);
+    }
+
+    fn next_1d(&mut self) -> f64 {
+        SobolSampler::next_1d(self)
+    }
+
+    fn next_2d(&mut self) -> (f64, f64) {
+        let u = SobolSampler::next_2d(self);
+        (u.x, u.y)
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -243,8 +263,8 @@ mod tests {
 
     #[test]
     fn sampler_is_deterministic_bit_for_bit_and_matches_the_stateless_form() {
-        let mut a = PixelSampler::new(42, (12, 34), 5);
-        let mut b = PixelSampler::new(42, (12, 34), 5);
+        let mut a = SobolSampler::new(42, (12, 34), 5);
+        let mut b = SobolSampler::new(42, (12, 34), 5);
         for pair in 0..20 {
             let (pa, pb) = (a.next_2d(), b.next_2d());
             assert_eq!(pa.x.to_bits(), pb.x.to_bits());
@@ -252,7 +272,7 @@ mod tests {
             assert_eq!(pa, sample_2d(42, (12, 34), 5, pair));
         }
         assert_eq!(
-            PixelSampler::new(42, (12, 34), 5).at_pair(3).next_2d(),
+            SobolSampler::new(42, (12, 34), 5).at_pair(3).next_2d(),
             sample_2d(42, (12, 34), 5, 3)
         );
     }
@@ -272,7 +292,7 @@ mod tests {
 
     #[test]
     fn values_lie_in_the_half_open_unit_square() {
-        let mut s = PixelSampler::new(u64::MAX, (u32::MAX, u32::MAX), u32::MAX);
+        let mut s = SobolSampler::new(u64::MAX, (u32::MAX, u32::MAX), u32::MAX);
         for _ in 0..1000 {
             let p = s.next_2d();
             assert!((0.0..1.0).contains(&p.x) && (0.0..1.0).contains(&p.y));

@@ -144,3 +144,23 @@ proptest::proptest! {
         proptest::prop_assert!((w.length() - 1.0).abs() < 1e-12 && w.z >= 0.0);
     }
 }
+
+/// Through the render's seam the Sobol sampler gives the same stream as built directly.
+#[test]
+fn the_sobol_sampler_through_the_seam_restarts_each_sample() {
+    use super::{PixelSampler, SobolSampler};
+    let mut seam = SobolSampler::new(9, (0, 0), 0);
+    for (pixel, index) in [((3, 4), 0), ((3, 4), 5), ((100, 7), 2)] {
+        seam.start_sample(pixel, index);
+        let mut direct = SobolSampler::new(9, pixel, index);
+        for _ in 0..6 {
+            let (x, y) = PixelSampler::next_2d(&mut seam);
+            let d = direct.next_2d();
+            assert_eq!((x.to_bits(), y.to_bits()), (d.x.to_bits(), d.y.to_bits()));
+        }
+        assert_eq!(
+            PixelSampler::next_1d(&mut seam).to_bits(),
+            direct.next_1d().to_bits()
+        );
+    }
+}

@@ -22,7 +22,7 @@ use glam::DVec3;
 use std::borrow::Cow;
 
 pub use accel::{Accel, traversal_cost_image};
-pub use desc::{OffsetDesc, OffsetStrategy, SceneDesc, Settings, ShadowMode};
+pub use desc::{IntegratorKind, OffsetDesc, OffsetStrategy, SceneDesc, Settings, ShadowMode};
 pub use error::SceneError;
 pub use generated::icosphere_scene;
 pub use locate::locate;
@@ -232,29 +232,6 @@ pub struct Light {
     pub name: String,
     /// The emitter.
     pub kind: LightKind,
-}
-
-impl Light {
-    /// Unit direction from `p` to the light, the distance to it, and the unshadowed irradiance
-    /// on a surface facing it.
-    #[must_use]
-    pub fn sample(&self, p: DVec3) -> (DVec3, f64, Rgb) {
-        match self.kind {
-            LightKind::Point {
-                position,
-                intensity,
-            } => {
-                let to = position - p;
-                let r2 = to.length_squared();
-                let r = r2.sqrt();
-                (to / r, r, intensity / r2)
-            }
-            LightKind::Directional {
-                direction,
-                irradiance,
-            } => (-direction, f64::INFINITY, irradiance),
-        }
-    }
 }
 
 /// A validated scene, ready to trace.

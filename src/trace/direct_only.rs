@@ -6,13 +6,12 @@
 //! monomorphised on the plan's highlight flag and the offset strategy, so it holds no branch on
 //! either and no call but the shadow query.
 
-use super::local::cos_to_light;
+use super::local::SurfaceInteraction;
 use super::{MediaStack, RayCounts, Tracer};
 use crate::bvh::TraversalCost;
 use crate::bvh::wide::PACKET;
 use crate::math::{Ray, Rgb};
-use crate::scene::{Hit, Material, OffsetStrategy};
-use glam::DVec3;
+use crate::scene::{Hit, OffsetStrategy};
 
 /// [`OffsetStrategy`] as a const-generic parameter.
 const NORMAL: u8 = 0;
@@ -29,14 +28,9 @@ const fn strategy(s: u8) -> OffsetStrategy {
     }
 }
 
-/// The shading inputs of one hit.
+/// The shading inputs of one hit: its interaction and diffuse albedo.
 struct At<'h> {
-    hit: &'h Hit,
-    m: &'h Material,
-    p: DVec3,
-    n: DVec3,
-    ns: DVec3,
-    wo: DVec3,
+    si: SurfaceInteraction<'h>,
     albedo: Rgb,
 }
 
@@ -109,26 +103,16 @@ impl Tracer<'_> {
     /// The shading inputs of `hit` on `ray` and its radiance without lights, or only the
     /// radiance when no light can add to it ([`Tracer::trace_direct_only`]'s first half).
     #[inline(always)]
-    fn shading_at<'h>(&'h self, ray: &Ray, hit: &'h Hit) -> (Rgb, Option<At<'h>>) {
-        let scene = self.scene;
-        let m = scene.material_of(hit.object);
-        let s = self.surface(ray, hit, m, &MediaStack::AIR);
-        let albedo = m.diffuse.at(s.p);
-        let emitted = if s.entering { m.emission } else { Rgb::ZERO };
-        let total = emitted + scene.ambient * albedo;
+    fn shading_at(&self, ray: &Ray, hit: &Hit) -> (Rgb, Option<At<'_>>) {
+        let si = self.surface(ray, hit, &MediaStack::AIR);
+        let m = si.material;
+        let albedo = m.diffuse.at(si.p);
+        let emitted = if si.entering { m.emission } else { Rgb::ZERO };
+        let total = emitted + self.scene.ambient * albedo;
         if m.diffuse.is_black() && m.specular == Rgb::ZERO {
             return (total, None);
         }
-        let at = At {
-            hit,
-            m,
-            p: s.p,
-            n: s.n,
-            ns: s.ns,
-            wo: -ray.direction,
-            albedo,
-        };
-        (total, Some(at))
+        (total, Some(At { si, albedo }))
     }
 
     /// [`Tracer::trace_direct_packet`] for one plan and offset strategy.
@@ -153,26 +137,17 @@ impl Tracer<'_> {
         let mut shadows = Vec::with_capacity(n);
         let (mut of, mut seg, mut add) = ([0usize; PACKET], [0.0; PACKET], [Rgb::ZERO; PACKET]);
         let mut blocked = [false; PACKET];
-        for (l, light) in scene.lights.iter().enumerate() {
-            if !self.plan.light_on(l) {
-                continue;
-            }
+        for (_, light) in self.lights_on() {
             shadows.clear();
             for (i, at) in ats.iter().enumerate() {
                 let Some(at) = at else { continue };
-                let (wi, dist, irradiance) = light.sample(at.p);
-                let cos = cos_to_light(at.n, at.ns, wi);
-                if cos <= 0.0 {
+                let Some(u) = self.unshadowed(strategy(STRATEGY), &at.si, light, counts) else {
                     continue;
-                }
-                counts.shadow += 1;
-                let from = (at.hit.object, at.hit.triangle);
+                };
                 let k = shadows.len();
-                let (ray, len) = self.shadow_ray(strategy(STRATEGY), from, at.p, at.n, wi, dist);
-                let (_, weight) =
-                    Self::light_weight(SPECULAR, at.m, at.albedo, at.ns, (wi, at.wo), cos);
-                (of[k], seg[k], add[k]) = (i, len, weight * irradiance);
-                shadows.push(ray);
+                let add_k = Self::unshadowed_add::<SPECULAR>(&at.si, at.albedo, &u);
+                (of[k], seg[k], add[k]) = (i, u.seg, add_k);
+                shadows.push(u.ray);
             }
             let k = shadows.len();
             scene.occluded_packet(&shadows, &seg[..k], &mut blocked[..k]);
@@ -194,26 +169,17 @@ impl Tracer<'_> {
         mut total: Rgb,
         counts: &mut RayCounts,
     ) -> Rgb {
-        let scene = self.scene;
-        let from = (at.hit.object, at.hit.triangle);
-        for (i, light) in scene.lights.iter().enumerate() {
-            if !self.plan.light_on(i) {
+        for (_, light) in self.lights_on() {
+            let Some(u) = self.unshadowed(strategy(STRATEGY), &at.si, light, counts) else {
+                continue;
+            };
+            if self
+                .scene
+                .occluded(&u.ray, u.seg, &mut TraversalCost::default())
+            {
                 continue;
             }
-            let (wi, dist, irradiance) = light.sample(at.p);
-            let cos = cos_to_light(at.n, at.ns, wi);
-            if cos <= 0.0 {
-                continue;
-            }
-            counts.shadow += 1;
-            let (shadow, seg) = self.shadow_ray(strategy(STRATEGY), from, at.p, at.n, wi, dist);
-            if scene.occluded(&shadow, seg, &mut TraversalCost::default()) {
-                continue;
-            }
-            let (_, weight) =
-                Self::light_weight(SPECULAR, at.m, at.albedo, at.ns, (wi, at.wo), cos);
-            // `weight * (irradiance * Rgb::ONE)` in the general path: the same bits.
-            total += weight * irradiance;
+            total += Self::unshadowed_add::<SPECULAR>(&at.si, at.albedo, &u);
         }
         total
     }

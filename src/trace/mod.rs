@@ -4,6 +4,8 @@
 pub mod bound;
 pub mod diagnose;
 mod direct_only;
+mod integrator;
+mod lights;
 mod local;
 mod media;
 pub mod offset;
@@ -11,6 +13,9 @@ mod recorder;
 mod recursive;
 mod shadow;
 
+pub use integrator::{Integrator, SceneIntegrator, Whitted};
+pub use lights::LightSample;
+pub use local::SurfaceInteraction;
 pub use media::{MediaStack, Medium};
 pub use recorder::{DiagnosticRecorder, NoopRecorder, Recorder, TreeRecorder};
 

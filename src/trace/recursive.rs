@@ -1,12 +1,12 @@
 //! The recursion of the lecture's `trace(ray, objects, lights)`: closest hit, Beer's law on the
 //! segment, local shading, and the reflected and refracted rays of each hit.
 
-use super::local::{Local, Surface};
-use super::{MediaStack, PathState, RayCounts, Recorder, Secondary, Spawn, Tracer};
+use super::local::{Local, SurfaceInteraction};
+use super::{PathState, RayCounts, Recorder, Secondary, Spawn, Tracer};
 use crate::bvh::TraversalCost;
 use crate::math::{self, Fresnel, Ray, Rgb, beer, reflect, refract};
 use crate::mesh::shading;
-use crate::scene::{Hit, Material};
+use crate::scene::Hit;
 use crate::tree::{Attenuation, EndReason, HitInfo, Interface, NodeId, RayKind, RayNode};
 use glam::DVec3;
 
@@ -100,17 +100,18 @@ impl Tracer<'_> {
         counts: &mut RayCounts,
     ) -> Rgb {
         let scene = self.scene;
-        let m = scene.material_of(hit.object);
         let d = ray.direction;
-        let s = self.surface(ray, hit, m, state.media);
-        let Surface {
+        let si = self.surface(ray, hit, state.media);
+        let SurfaceInteraction {
             p,
             entering,
             n,
             ns,
             smooth,
             cos_i,
-        } = s;
+            material: m,
+            ..
+        } = si;
         rec.update(id, |node| {
             node.hit = Some(HitInfo {
                 t: hit.t,
@@ -129,7 +130,7 @@ impl Tracer<'_> {
             emitted,
             ambient,
             total: local,
-        } = self.local((hit, &s), -d, m, id, state.depth, rec, counts);
+        } = self.local(&si, (id, state.depth), rec, counts);
         rec.update(id, |node| {
             node.emitted = emitted;
             node.ambient = ambient;
@@ -148,7 +149,7 @@ impl Tracer<'_> {
         let mut reflect_w = m.reflectivity;
         let mut refraction = None;
         if self.plan.refraction && m.is_transmissive() {
-            let (event, dir) = self.interface(d, ns, cos_i, hit.object, m, entering, *state.media);
+            let (event, dir) = self.interface(&si, ns, cos_i);
             let f = event.fresnel;
             reflect_w += m.transmissivity * f.r;
             if let Some(dir) = dir {
@@ -212,22 +213,14 @@ impl Tracer<'_> {
         total
     }
 
-    /// `ns`, or the geometric `n` where refracting with `ns` would cross to the wrong side of
-    /// the surface (mesh::shading rule).
-    #[allow(clippy::too_many_arguments)]
-    pub(super) fn consistent_shading_normal(
-        &self,
-        d: DVec3,
-        n: DVec3,
-        ns: DVec3,
-        object: usize,
-        m: &Material,
-        entering: bool,
-        media: &MediaStack,
-    ) -> DVec3 {
-        if ns != n && self.plan.refraction && m.is_transmissive() {
+    /// `ns`, or the geometric normal `si.n` where refracting with `ns` would cross to the wrong
+    /// side of the surface (mesh::shading rule).
+    pub(super) fn consistent_shading_normal(&self, si: &SurfaceInteraction, ns: DVec3) -> DVec3 {
+        let n = si.n;
+        if ns != n && self.plan.refraction && si.material.is_transmissive() {
+            let d = -si.wo;
             let cos = (-d.dot(ns)).clamp(0.0, 1.0);
-            let (_, t) = self.interface(d, ns, cos, object, m, entering, *media);
+            let (_, t) = self.interface(si, ns, cos);
             if t.is_some_and(|t| !shading::refraction_consistent(n, t)) {
                 return n;
             }
@@ -281,19 +274,16 @@ impl Tracer<'_> {
         acc.total += spawn.weight * l;
     }
 
-    /// n1, n2, Snell and Fresnel at a transmissive hit; the refracted direction unless TIR.
-    #[allow(clippy::too_many_arguments)]
+    /// n1, n2, Snell and Fresnel at transmissive `si` with shading normal `n` (incident side)
+    /// and incidence cosine `cos_i`; the refracted direction unless TIR.
     fn interface(
         &self,
-        d: DVec3,
+        si: &SurfaceInteraction,
         n: DVec3,
         cos_i: f64,
-        object: usize,
-        m: &Material,
-        entering: bool,
-        media: MediaStack,
     ) -> (Interface, Option<DVec3>) {
-        let (n1, n2) = if entering {
+        let (d, object, m, media) = (-si.wo, si.object, si.material, si.media);
+        let (n1, n2) = if si.entering {
             let n1 = media.ior();
             (n1, m.ior.unwrap_or(n1))
         } else {

@@ -1,0 +1,207 @@
+//! The per-pixel sampler seam: where every sample position (and, for stochastic integrators,
+//! every random number of a camera sample) comes from.
+//!
+//! A sampler is deterministic in (seed, pixel, sample index, dimension): the render and the
+//! re-trace of one pixel ask it the same questions in the same order and get the same bits, so
+//! a recorded tree equals its rendered pixel. [`render_pixel_sampled`](crate::render) calls
+//! [`PixelSampler::start_sample`] before each camera sample and takes the film offset inside
+//! the pixel as the sample's first [`PixelSampler::next_2d`]; integrators draw further
+//! dimensions from the same sampler. [`StratifiedJitter`] is the default, today's positions bit
+//! for bit at seed 0.
+
+/// A source of sample values in `[0, 1)`, restarted for each (pixel, sample index).
+///
+/// Implementations must be deterministic: after `start_sample(pixel, index)` the sequence of
+/// `next_1d`/`next_2d` answers depends only on the sampler's configuration (seed, samples per
+/// pixel), the pixel, the index and the position in the sequence (the dimension).
+pub trait PixelSampler: Clone + Send + Sync {
+    /// Start sample `index` of pixel `(x, y)`: the next value is dimension 0.
+    fn start_sample(&mut self, pixel: (u32, u32), index: u32);
+    /// The next dimension, in `[0, 1)`.
+    fn next_1d(&mut self) -> f64;
+    /// The next two dimensions, in `[0, 1)^2`.
+    fn next_2d(&mut self) -> (f64, f64);
+}
+
+/// SplitMix64 (Steele, Lea, Flood 2014): a tiny, well-mixed hash for per-pixel seeds.
+#[must_use]
+pub fn splitmix64(mut z: u64) -> u64 {
+    z = z.wrapping_add(0x9E37_79B9_7F4A_7C15);
+    z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
+    z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
+    z ^ (z >> 31)
+}
+
+/// The top 53 bits of `h` as a double in `[0, 1)`.
+#[must_use]
+pub fn unit(h: u64) -> f64 {
+    (h >> 11) as f64 * (1.0 / (1u64 << 53) as f64)
+}
+
+/// The default sampler: the film offset of sample `s` is the pixel centre for one sample per
+/// pixel, otherwise jittered stratified on a `cols x rows` grid (`cols = ceil(sqrt(spp))`),
+/// jittered by a SplitMix64 hash of (pixel, sample, seed); further dimensions are independent
+/// uniform values from a counter-based hash of (pixel, sample, seed, dimension).
+///
+/// The seed enters as `key ^ (splitmix64(seed) ^ splitmix64(0))`, which is `key` for seed 0:
+/// seed 0 gives exactly the positions raytree has always used.
+#[derive(Clone, Copy, Debug)]
+pub struct StratifiedJitter {
+    spp: u32,
+    seed_mix: u64,
+    /// The current sample's hash key (pixel, index, seed).
+    key: u64,
+    /// The current sample index.
+    sample: u32,
+    /// The next dimension (0 and 1 are the film offset).
+    dim: u32,
+}
+
+impl StratifiedJitter {
+    /// A sampler for `spp` samples per pixel (at least 1) and `seed`.
+    #[must_use]
+    pub fn new(spp: u32, seed: u64) -> Self {
+        Self {
+            spp: spp.max(1),
+            // Branch-free would hash twice per construction, and `render_pixel_with` builds one
+            // per pixel; at seed 0 the mix is 0 by definition.
+            seed_mix: if seed == 0 {
+                0
+            } else {
+                splitmix64(seed) ^ splitmix64(0)
+            },
+            key: 0,
+            sample: 0,
+            dim: 0,
+        }
+    }
+
+    /// The sampler of `settings` (its `spp` and `seed`).
+    #[must_use]
+    pub fn for_settings(settings: &crate::Settings) -> Self {
+        Self::new(settings.spp, settings.seed)
+    }
+
+    /// A dimension after the film offset: a fresh hash of (key, dimension).
+    #[inline]
+    fn hashed(&mut self) -> f64 {
+        self.dim = self.dim.max(2);
+        let h = splitmix64(self.key ^ splitmix64(u64::from(self.dim) << 40));
+        self.dim += 1;
+        unit(h)
+    }
+}
+
+impl PixelSampler for StratifiedJitter {
+    #[inline]
+    fn start_sample(&mut self, (x, y): (u32, u32), s: u32) {
+        self.key = ((u64::from(y) << 32 | u64::from(x)) ^ (u64::from(s) << 48).rotate_left(7))
+            ^ self.seed_mix;
+        self.sample = s;
+        self.dim = 0;
+    }
+
+    /// Dimensions past the film offset (a 1D request at dimension 0 skips the film offset).
+    #[inline]
+    fn next_1d(&mut self) -> f64 {
+        self.hashed()
+    }
+
+    /// The film offset inside the pixel at dimension 0, hashed pairs after it.
+    #[inline]
+    fn next_2d(&mut self) -> (f64, f64) {
+        if self.dim == 0 {
+            self.dim = 2;
+            if self.spp <= 1 {
+                return (0.5, 0.5);
+            }
+            return jittered(self.key, self.sample, self.spp);
+        }
+        (self.hashed(), self.hashed())
+    }
+}
+
+/// The stratified film offset for `spp > 1`. Out of line, so its square root and `ceil` are
+/// not hoisted into one-sample renders.
+#[inline(never)]
+fn jittered(key: u64, s: u32, spp: u32) -> (f64, f64) {
+    let cols = f64::from(spp).sqrt().ceil() as u32;
+    let rows = spp.div_ceil(cols);
+    let seed = splitmix64(key);
+    let jx = unit(seed);
+    let jy = unit(splitmix64(seed));
+    let sx = (f64::from(s % cols) + jx) / f64::from(cols);
+    let sy = (f64::from(s / cols) + jy) / f64::from(rows);
+    (sx, sy)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn draw(spp: u32, seed: u64, pixel: (u32, u32), s: u32) -> [f64; 5] {
+        let mut sm = StratifiedJitter::new(spp, seed);
+        sm.start_sample(pixel, s);
+        let (a, b) = sm.next_2d();
+        let c = sm.next_1d();
+        let (d, e) = sm.next_2d();
+        [a, b, c, d, e]
+    }
+
+    #[test]
+    fn offsets_are_stratified_and_in_the_unit_square() {
+        for spp in [2, 4, 5, 16] {
+            let cols = f64::from(spp).sqrt().ceil() as u32;
+            for s in 0..spp {
+                let v = draw(spp, 0, (3, 7), s);
+                assert!(v.iter().all(|u| (0.0..1.0).contains(u)), "{v:?}");
+                assert_eq!((v[0] * f64::from(cols)).floor() as u32, s % cols);
+            }
+        }
+        assert_eq!(draw(1, 0, (3, 7), 0)[..2], [0.5, 0.5]);
+        assert_eq!(draw(1, 9, (3, 7), 0)[..2], [0.5, 0.5]);
+    }
+
+    #[test]
+    fn deterministic_and_different_per_pixel_sample_dimension_and_seed() {
+        let a = draw(4, 0, (3, 7), 2);
+        assert_eq!(a, draw(4, 0, (3, 7), 2));
+        assert_ne!(a, draw(4, 0, (4, 7), 2));
+        assert_ne!(a, draw(4, 0, (3, 7), 1));
+        assert_ne!(a, draw(4, 1, (3, 7), 2));
+        // Later dimensions differ from each other (no repeated hash).
+        assert!(a[2] != a[3] && a[3] != a[4] && a[2] != a[4]);
+        // At one sample per pixel the seed changes the later dimensions only.
+        let (b, c) = (draw(1, 0, (3, 7), 0), draw(1, 5, (3, 7), 0));
+        assert_eq!(b[..2], c[..2]);
+        assert_ne!(b[2..], c[2..]);
+    }
+
+    /// Seed 0 is the historical position formula, written out independently.
+    #[test]
+    fn seed_zero_is_the_historical_jitter() {
+        let (x, y, s, spp) = (5u32, 11u32, 3u32, 9u32);
+        let seed =
+            splitmix64((u64::from(y) << 32 | u64::from(x)) ^ (u64::from(s) << 48).rotate_left(7));
+        let want = (
+            (f64::from(s % 3) + unit(seed)) / 3.0,
+            (f64::from(s / 3) + unit(splitmix64(seed))) / 3.0,
+        );
+        assert_eq!(draw(spp, 0, (x, y), s)[..2], [want.0, want.1]);
+        assert_ne!(draw(spp, 1, (x, y), s)[..2], [want.0, want.1]);
+    }
+
+    /// Later dimensions are uniform: a coarse histogram over many samples.
+    #[test]
+    fn later_dimensions_fill_the_unit_interval() {
+        let mut bins = [0u32; 10];
+        for s in 0..4000 {
+            let v = draw(16, 3, (s % 13, s / 13), s);
+            for u in &v[2..] {
+                bins[(u * 10.0) as usize] += 1;
+            }
+        }
+        // 1200 expected per bin; 6 sigma is about 200.
+        assert!(bins.iter().all(|&b| (1000..1400).contains(&b)), "{bins:?}");
+    }
+}

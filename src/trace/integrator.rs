@@ -1,0 +1,193 @@
+//! The integrator seam: what the render loop, the inspector's worker and every command ask of
+//! "the thing that computes a camera ray's radiance", so that an integrator added later (the
+//! path tracer) appears in all of them.
+//!
+//! [`Integrator`] is the interface (generic methods, so it is used through generics, never as a
+//! trait object: the recorder stays a generic parameter and costs nothing when off).
+//! [`SceneIntegrator`] is the one a scene's `settings.integrator` chooses; today its only arm is
+//! [`Whitted`], the lecture's recursion ([`Tracer`]).
+
+use super::{RayCounts, Recorder, Tracer};
+use crate::bvh::TraversalCost;
+use crate::effects::EffectPlan;
+use crate::math::{Ray, Rgb};
+use crate::sampling::PixelSampler;
+use crate::scene::{Film, Hit, IntegratorKind, Scene};
+use crate::tree::NodeId;
+
+/// The Whitted integrator: [`Tracer`] under its integrator name.
+pub type Whitted<'a> = Tracer<'a>;
+
+/// Computes the radiance along camera rays of one scene.
+pub trait Integrator: Sync {
+    /// Which integrator this is (the `settings.integrator` name).
+    fn kind(&self) -> IntegratorKind;
+
+    /// The scene traced.
+    fn scene(&self) -> &Scene;
+
+    /// The scene camera's image plane (camera rays).
+    fn film(&self) -> &Film<'_>;
+
+    /// Radiance along camera `ray`, recording into `rec` and counting into `counts`; random
+    /// numbers come from `sampler`, already started at this camera sample with its film offset
+    /// drawn. Returns the root node when `rec` records.
+    fn camera_radiance<R: Recorder, S: PixelSampler>(
+        &self,
+        ray: Ray,
+        sampler: &mut S,
+        rec: &mut R,
+        counts: &mut RayCounts,
+    ) -> (Rgb, Option<NodeId>);
+
+    /// Whether the render may trace camera rays as packets through
+    /// [`Integrator::camera_packet_radiance`]: true only for integrators that draw nothing from
+    /// the sampler past the film offset (a packet holds rays of 64 different pixels).
+    fn traces_packets(&self) -> bool;
+
+    /// The radiance of a packet of camera rays (at most [`crate::bvh::wide::PACKET`]) whose
+    /// closest hits and traversal costs are known (from [`Scene::intersect_packet`]), into
+    /// `out`: bit for bit what [`Integrator::camera_radiance`] gives each ray. Called only when
+    /// [`Integrator::traces_packets`].
+    fn camera_packet_radiance<R: Recorder>(
+        &self,
+        rays: &[Ray],
+        found: (&[Option<Hit>], &[TraversalCost]),
+        out: &mut [Rgb],
+        rec: &mut R,
+        counts: &mut RayCounts,
+    );
+}
+
+impl Integrator for Tracer<'_> {
+    fn kind(&self) -> IntegratorKind {
+        IntegratorKind::Whitted
+    }
+
+    #[inline]
+    fn scene(&self) -> &Scene {
+        Tracer::scene(self)
+    }
+
+    #[inline]
+    fn film(&self) -> &Film<'_> {
+        Tracer::film(self)
+    }
+
+    /// Whitted ray tracing is deterministic past the film offset: `sampler` is not used.
+    #[inline]
+    fn camera_radiance<R: Recorder, S: PixelSampler>(
+        &self,
+        ray: Ray,
+        _sampler: &mut S,
+        rec: &mut R,
+        counts: &mut RayCounts,
+    ) -> (Rgb, Option<NodeId>) {
+        self.trace_camera(ray, rec, counts)
+    }
+
+    #[inline]
+    fn traces_packets(&self) -> bool {
+        true
+    }
+
+    #[inline]
+    fn camera_packet_radiance<R: Recorder>(
+        &self,
+        rays: &[Ray],
+        found: (&[Option<Hit>], &[TraversalCost]),
+        out: &mut [Rgb],
+        rec: &mut R,
+        counts: &mut RayCounts,
+    ) {
+        self.trace_camera_packet(rays, found, out, rec, counts);
+    }
+}
+
+/// The integrator a scene's `settings.integrator` names, ready to trace. Every command builds
+/// this one, so a new [`IntegratorKind`] is one more arm here and nothing else in the commands.
+#[derive(Clone, Copy, Debug)]
+pub enum SceneIntegrator<'a> {
+    /// `"whitted"`.
+    Whitted(Whitted<'a>),
+}
+
+impl<'a> SceneIntegrator<'a> {
+    /// The integrator of `scene.settings.integrator` with the effects the scene calls for.
+    #[must_use]
+    pub fn new(scene: &'a Scene) -> Self {
+        Self::with_plan(scene, EffectPlan::for_scene(scene))
+    }
+
+    /// The integrator of `scene.settings.integrator` with an explicit effect plan.
+    #[must_use]
+    pub fn with_plan(scene: &'a Scene, plan: EffectPlan) -> Self {
+        match scene.settings.integrator {
+            IntegratorKind::Whitted => Self::Whitted(Tracer::with_plan(scene, plan)),
+        }
+    }
+
+    /// The Whitted tracer, when that is the integrator.
+    #[must_use]
+    pub fn whitted(&self) -> Option<&Whitted<'a>> {
+        match self {
+            Self::Whitted(t) => Some(t),
+        }
+    }
+}
+
+impl Integrator for SceneIntegrator<'_> {
+    fn kind(&self) -> IntegratorKind {
+        match self {
+            Self::Whitted(t) => t.kind(),
+        }
+    }
+
+    #[inline]
+    fn scene(&self) -> &Scene {
+        match self {
+            Self::Whitted(t) => Integrator::scene(t),
+        }
+    }
+
+    #[inline]
+    fn film(&self) -> &Film<'_> {
+        match self {
+            Self::Whitted(t) => Integrator::film(t),
+        }
+    }
+
+    #[inline]
+    fn camera_radiance<R: Recorder, S: PixelSampler>(
+        &self,
+        ray: Ray,
+        sampler: &mut S,
+        rec: &mut R,
+        counts: &mut RayCounts,
+    ) -> (Rgb, Option<NodeId>) {
+        match self {
+            Self::Whitted(t) => t.camera_radiance(ray, sampler, rec, counts),
+        }
+    }
+
+    #[inline]
+    fn traces_packets(&self) -> bool {
+        match self {
+            Self::Whitted(t) => t.traces_packets(),
+        }
+    }
+
+    #[inline]
+    fn camera_packet_radiance<R: Recorder>(
+        &self,
+        rays: &[Ray],
+        found: (&[Option<Hit>], &[TraversalCost]),
+        out: &mut [Rgb],
+        rec: &mut R,
+        counts: &mut RayCounts,
+    ) {
+        match self {
+            Self::Whitted(t) => t.camera_packet_radiance(rays, found, out, rec, counts),
+        }
+    }
+}
