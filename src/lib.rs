@@ -16,8 +16,10 @@ pub mod geometry;
 #[cfg(feature = "gui")]
 pub mod gui;
 pub mod input;
+pub mod interaction;
 pub mod lights;
 pub mod math;
+pub mod media;
 pub mod mesh;
 pub mod render;
 pub mod sampling;

@@ -7,7 +7,6 @@
 //! latter two GGX lobes. See `docs/monte-carlo.md`.
 
 mod frame;
-mod interaction;
 mod lobe;
 mod microfacet;
 #[cfg(test)]
@@ -16,7 +15,6 @@ mod tests;
 mod tests_chi2;
 
 pub use frame::Frame;
-pub use interaction::SurfaceInteraction;
 pub use lobe::{Lobe, fr_dielectric};
 pub use microfacet::{Ggx, SMOOTH_ALPHA};
 
@@ -121,6 +119,13 @@ impl Bsdf {
     /// last two GGX-rough when `roughness >= SMOOTH_ALPHA`. Index-matched transmission
     /// (`eta = 1`) stays a smooth pass-through whatever the roughness (every microfacet sends
     /// light straight on). The Blinn-Phong `specular` term has no lobe here.
+    #[must_use]
+    /// (Built from a surface interaction: its material, point, outward shading frame and eta.)
+    pub fn at(si: &crate::interaction::SurfaceInteraction, roughness: f64) -> Self {
+        Self::from_material(si.material, si.p, si.frame(), roughness, si.eta())
+    }
+
+    /// The BSDF of material `m` at `p` in `frame` for GGX `roughness` and relative index `eta`.
     #[must_use]
     pub fn from_material(m: &Material, p: DVec3, frame: Frame, roughness: f64, eta: f64) -> Self {
         let rough = roughness >= SMOOTH_ALPHA;

@@ -299,22 +299,34 @@ fn surface_interaction_eta_follows_the_media_stack() {
         .iter()
         .find(|m| m.ior.is_some())
         .expect("glass");
-    let mut si = SurfaceInteraction {
+    let air = crate::media::MediaStack::AIR;
+    let inside = air.entered(3, glass.ior.unwrap());
+    let si = |entering: bool, media| crate::interaction::SurfaceInteraction {
         p: DVec3::ZERO,
+        wo: DVec3::Z,
+        entering,
         n: DVec3::Z,
         ns: DVec3::Z,
-        uv: None,
+        smooth: None,
+        cos_i: 1.0,
         object: 3,
+        triangle: None,
         material: glass,
-        entering: true,
-        media: crate::trace::MediaStack::AIR,
+        media,
     };
     let ior = glass.ior.unwrap();
-    assert!((si.eta() - ior).abs() < 1e-15);
-    si.entering = false;
-    si.media = crate::trace::MediaStack::AIR.entered(3, ior);
-    assert!((si.eta() - ior).abs() < 1e-15);
-    assert_eq!(si.frame().n, DVec3::Z);
+    assert!((si(true, &air).eta() - ior).abs() < 1e-15);
+    assert!((si(false, &inside).eta() - ior).abs() < 1e-15);
+    // The frame's z is the outward shading normal from either side.
+    assert_eq!(si(true, &air).frame().n, DVec3::Z);
+    assert_eq!(si(false, &inside).frame().n, -DVec3::Z);
+    // Bsdf::at reads the interaction as from_material is given it by hand.
+    let wo = DVec3::new(0.3, 0.1, 0.9).normalize();
+    let wi = DVec3::new(-0.2, 0.4, 0.8).normalize();
+    let by_hand = Bsdf::from_material(glass, DVec3::ZERO, si(false, &inside).frame(), 0.3, ior);
+    let at = Bsdf::at(&si(false, &inside), 0.3);
+    assert_eq!(at.eval(wo, wi), by_hand.eval(wo, wi));
+    assert_eq!(at.pdf(wo, wi), by_hand.pdf(wo, wi));
 }
 
 fn any_lobe() -> impl Strategy<Value = Lobe> {

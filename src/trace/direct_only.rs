@@ -6,10 +6,10 @@
 //! monomorphised on the plan's highlight flag and the offset strategy, so it holds no branch on
 //! either and no call but the shadow query.
 
-use super::local::SurfaceInteraction;
 use super::{MediaStack, RayCounts, Tracer};
 use crate::bvh::TraversalCost;
 use crate::bvh::wide::PACKET;
+use crate::interaction::SurfaceInteraction;
 use crate::math::{Ray, Rgb};
 use crate::scene::{Hit, OffsetStrategy};
 

@@ -9,8 +9,9 @@
 //! arriving on a surface facing the light: the Dirac delta of a point or directional light
 //! cancels in the integral, pbrt-v4 section 12.1).
 
-use super::local::{SurfaceInteraction, cos_to_light};
+use super::local::cos_to_light;
 use super::{RayCounts, Tracer};
+use crate::interaction::SurfaceInteraction;
 use crate::math::{Ray, Rgb};
 use crate::scene::{Light, LightKind, OffsetStrategy};
 use glam::DVec3;

@@ -4,50 +4,14 @@
 
 use super::{RayCounts, Recorder, Tracer, offset, shadow};
 use crate::bvh::TraversalCost;
+use crate::interaction::SurfaceInteraction;
 use crate::math::{Ray, Rgb};
+use crate::media::MediaStack;
 use crate::mesh::shading;
 use crate::scene::{Hit, Light, Material, OffsetStrategy};
-use crate::trace::MediaStack;
 use crate::tree::EndReason;
 use crate::tree::{NodeId, RayKind, RayNode, ShadowInfo};
 use glam::DVec3;
-
-/// A hit as shading sees it, built once per hit ([`Tracer::surface`]) and passed to local
-/// shading, the light loops, the dielectric split and the recorder.
-#[derive(Clone, Copy, Debug)]
-pub struct SurfaceInteraction<'a> {
-    /// The hit point.
-    pub p: DVec3,
-    /// Unit direction back along the incoming ray (towards its origin).
-    pub wo: DVec3,
-    /// The ray arrives on the outward side of the surface.
-    pub entering: bool,
-    /// Geometric normal on the incident side: decides sides and offsets.
-    pub n: DVec3,
-    /// Shading normal on the incident side: lighting, mirror and Snell (mesh::shading rule).
-    pub ns: DVec3,
-    /// The interpolated normal of a smooth mesh, as stored (`None` for flat surfaces).
-    pub smooth: Option<DVec3>,
-    /// Cosine of the incidence angle against `ns`.
-    pub cos_i: f64,
-    /// Index into [`crate::Scene::objects`] of the surface hit.
-    pub object: usize,
-    /// For meshes: the stored triangle hit.
-    pub triangle: Option<u32>,
-    /// The surface's material.
-    pub material: &'a Material,
-    /// The media the incoming ray travels through (innermost on top).
-    pub media: &'a MediaStack,
-}
-
-impl SurfaceInteraction<'_> {
-    /// The surface as the offset strategies name it: object and stored triangle.
-    #[inline(always)]
-    #[must_use]
-    pub fn from(&self) -> (usize, Option<u32>) {
-        (self.object, self.triangle)
-    }
-}
 
 /// The local term at a hit and its parts.
 #[derive(Clone, Copy, Debug)]

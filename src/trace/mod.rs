@@ -7,16 +7,15 @@ mod direct_only;
 mod integrator;
 mod lights;
 mod local;
-mod media;
 pub mod offset;
 mod recorder;
 mod recursive;
 mod shadow;
 
+pub use crate::interaction::SurfaceInteraction;
+pub use crate::media::{MediaStack, Medium};
 pub use integrator::{Integrator, SceneIntegrator, Whitted};
 pub use lights::LightSample;
-pub use local::SurfaceInteraction;
-pub use media::{MediaStack, Medium};
 pub use recorder::{DiagnosticRecorder, NoopRecorder, Recorder, TreeRecorder};
 
 use crate::bvh::TraversalCost;

@@ -1,9 +1,10 @@
 //! The recursion of the lecture's `trace(ray, objects, lights)`: closest hit, Beer's law on the
 //! segment, local shading, and the reflected and refracted rays of each hit.
 
-use super::local::{Local, SurfaceInteraction};
+use super::local::Local;
 use super::{PathState, RayCounts, Recorder, Secondary, Spawn, Tracer};
 use crate::bvh::TraversalCost;
+use crate::interaction::SurfaceInteraction;
 use crate::math::{self, Fresnel, Ray, Rgb, beer, reflect, refract};
 use crate::mesh::shading;
 use crate::scene::Hit;
