@@ -1,6 +1,7 @@
 //! Render throughput (Mrays/s), the cost of the recorder hooks, and one pixel's tree.
 //!
-//! Run: `cargo bench --bench render`. Figures are in README.md ("Performance").
+//! Run: `cargo bench --bench render`. Figures are in README.md ("Performance"); throughput is
+//! reported there as a ratio to a plain ray caster from `cargo bench --bench baseline`.
 
 use criterion::{Criterion, Throughput, criterion_group, criterion_main};
 use raytree::tree::{NodeId, RayNode};

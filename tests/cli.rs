@@ -284,6 +284,28 @@ fn effects_cost_and_compare() {
         text.contains("[off] refraction (Snell)") && text.contains("[on ] reflection"),
         "{text}"
     );
+    assert!(
+        text.contains("ray tree: linear")
+            && text.contains("facing mirrors: front mirror and back mirror can see each other"),
+        "{text}"
+    );
+    let o = raytree(
+        &["effects", &fixture("nested.json"), "--max-depth", "16"],
+        d,
+    );
+    let text = String::from_utf8_lossy(&o.stdout);
+    assert!(
+        text.contains("ray tree: exponential")
+            && text.contains("nested: glass ball (dielectric) is inside water tank (dielectric)")
+            && text.contains("x fewer) on a 16x9 sample of pixel centres"),
+        "{text}"
+    );
+    let o = raytree(&["effects", &fixture("diffuse.json")], d);
+    let text = String::from_utf8_lossy(&o.stdout);
+    assert!(
+        text.contains("ray tree: bounded") && !text.contains("what the cut saves"),
+        "{text}"
+    );
     let o = raytree(
         &[
             "cost",
@@ -299,7 +321,11 @@ fn effects_cost_and_compare() {
     );
     assert!(o.status.success(), "{}", stderr(&o));
     let csv = std::fs::read_to_string(d.join("rep/cost.csv")).unwrap();
-    assert_eq!(csv.lines().count(), 1 + 4 + 3 + 2 + 4 + 2, "{csv}");
+    assert_eq!(csv.lines().count(), 1 + 4 + 3 + 2 + 4 + 3, "{csv}");
+    assert!(
+        csv.lines().any(|l| l.starts_with("min_weight,auto (")),
+        "the automatic cut has a row: {csv}"
+    );
     assert!(
         csv.lines().any(|l| l.ends_with(",true")),
         "a Pareto front exists"

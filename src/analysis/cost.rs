@@ -6,6 +6,7 @@ use crate::math::{Rgb, linear_to_srgb};
 use crate::render::{Image, render};
 use crate::scene::{OffsetStrategy, Scene, Settings};
 use crate::trace::RayCounts;
+use crate::trace::bound::auto_min_weight;
 use serde::Serialize;
 use std::time::Instant;
 
@@ -68,8 +69,8 @@ pub struct Sweep {
     pub spps: Vec<u32>,
     /// Offset strategies.
     pub offsets: Vec<OffsetStrategy>,
-    /// Min weights.
-    pub min_weights: Vec<f64>,
+    /// Min weights; `None` is the automatic cut (the default, `crate::trace::bound`).
+    pub min_weights: Vec<Option<f64>>,
     /// Reference max depth.
     pub reference_depth: u32,
     /// Reference samples per pixel (for the spp axis).
@@ -80,7 +81,7 @@ pub struct Sweep {
 
 impl Sweep {
     /// The full sweep of the issue: depth 0..16, every Fresnel model, 1/4/16 spp, every offset
-    /// strategy, and min_weight from off to coarse.
+    /// strategy, and min_weight from off to coarse with the automatic cut beside them.
     #[must_use]
     pub fn full() -> Self {
         Self {
@@ -93,7 +94,14 @@ impl Sweep {
             spps: vec![1, 4, 16],
             offsets: OffsetStrategy::ALL.to_vec(),
             // 1 / (255 * 12.92): the smallest linear step visible in 8-bit sRGB near black.
-            min_weights: vec![0.0, 3.0e-4, 1.0e-3, 1.0e-2, 5.0e-2],
+            min_weights: vec![
+                Some(0.0),
+                None,
+                Some(3.0e-4),
+                Some(1.0e-3),
+                Some(1.0e-2),
+                Some(5.0e-2),
+            ],
             reference_depth: 32,
             reference_spp: 64,
             repeats: 5,
@@ -106,16 +114,17 @@ impl Sweep {
         Self {
             depths: vec![0, 1, 4, 16],
             spps: vec![1, 4],
-            min_weights: vec![0.0, 1.0e-2],
+            min_weights: vec![Some(0.0), None, Some(1.0e-2)],
             reference_spp: 16,
             repeats: 3,
             ..Self::full()
         }
     }
 
-    /// The settings of every row, as `(axis, value label, settings)`, from `base`.
+    /// The settings of every row, as `(axis, value label, settings)`, from `base`. The
+    /// automatic min_weight row is labelled `auto (w)` with the cut it takes on `scene`.
     #[must_use]
-    pub fn settings(&self, base: &Settings) -> Vec<(String, String, Settings)> {
+    pub fn settings(&self, scene: &Scene, base: &Settings) -> Vec<(String, String, Settings)> {
         let mut out = Vec::new();
         let mut push =
             |axis: &str, value: String, s: Settings| out.push((axis.to_string(), value, s));
@@ -148,14 +157,15 @@ impl Sweep {
             push("offset", o.name().to_string(), s);
         }
         for &w in &self.min_weights {
-            push(
-                "min_weight",
-                format!("{w:e}"),
-                Settings {
-                    min_weight: Some(w),
-                    ..*base
-                },
-            );
+            let s = Settings {
+                min_weight: w,
+                ..*base
+            };
+            let label = match w {
+                Some(w) => format!("{w:e}"),
+                None => format!("auto ({:.1e})", auto_min_weight(scene, &s)),
+            };
+            push("min_weight", label, s);
         }
         out
     }
@@ -216,6 +226,10 @@ pub struct CostReport {
     pub reference: Settings,
     /// Reference samples per pixel for the spp axis.
     pub reference_spp: u32,
+    /// The base every row changes one setting of (min_weight `None`: the automatic cut).
+    pub base: Settings,
+    /// The automatic cut at the base settings.
+    pub base_min_weight: f64,
     /// Rows in sweep order.
     pub rows: Vec<CostRow>,
 }
@@ -249,17 +263,18 @@ fn with_settings(scene: &Scene, s: Settings) -> Scene {
 
 /// Run the sweep. `progress(done, total)` is called after each render.
 pub fn run(scene: &Scene, sweep: &Sweep, progress: &dyn Fn(usize, usize)) -> CostReport {
-    // The base differs from the reference only in depth, so each axis shows its own error
-    // (the offset axis keeps the scene's epsilon for the strategies that use one).
+    // The base is the default (the automatic min_weight) at depth 16; it differs from the
+    // exhaustive reference in depth and the cut, so each axis shows its own error (the offset
+    // axis keeps the scene's epsilon for the strategies that use one).
     let mut base = Settings {
         max_depth: 16,
         fresnel: FresnelModel::Exact,
         spp: 1,
-        min_weight: Some(0.0),
+        min_weight: None,
         ..scene.settings
     };
     base.offset.strategy = OffsetStrategy::Robust;
-    let configs = sweep.settings(&base);
+    let configs = sweep.settings(scene, &base);
     let repeats = sweep.repeats.max(1) as usize;
     let total = 2 + configs.len() * repeats;
     let mut done = 0;
@@ -311,6 +326,8 @@ pub fn run(scene: &Scene, sweep: &Sweep, progress: &dyn Fn(usize, usize)) -> Cos
         size: [scene.camera.width, scene.camera.height],
         reference,
         reference_spp: sweep.reference_spp,
+        base,
+        base_min_weight: auto_min_weight(scene, &base),
         rows,
     }
 }
@@ -349,6 +366,35 @@ mod tests {
         assert_eq!(m.max, 0.3);
         assert_eq!(m.off_8bit, 0.5);
         assert!(compare(&a, &img(&[Rgb::ZERO])).is_none());
+    }
+
+    #[test]
+    fn the_sweep_has_an_auto_min_weight_row_and_an_exhaustive_reference() {
+        let mut scene = Scene::default_scene();
+        scene.camera = scene.camera.with_size(32, 18);
+        let sweep = Sweep {
+            depths: vec![],
+            fresnels: vec![],
+            spps: vec![],
+            offsets: vec![],
+            repeats: 1,
+            reference_spp: 1,
+            ..Sweep::quick()
+        };
+        let r = run(&scene, &sweep, &|_, _| {});
+        assert_eq!(r.reference.min_weight, Some(0.0));
+        assert_eq!(r.base.min_weight, None);
+        let auto = crate::trace::bound::auto_min_weight(&scene, &r.base);
+        assert!(auto > 0.0 && auto == r.base_min_weight);
+        let values: Vec<&str> = r.rows.iter().map(|row| row.value.as_str()).collect();
+        assert_eq!(values, ["0e0", &format!("auto ({auto:.1e})"), "1e-2"]);
+        let [exhaustive, auto_row, coarse] = &r.rows[..] else {
+            unreachable!()
+        };
+        assert_eq!(auto_row.settings.min_weight, None);
+        // The cut traces fewer rays than the exhaustive tree at depth 16, more than 1e-2.
+        assert!(auto_row.rays.total < exhaustive.rays.total, "{r:?}");
+        assert!(auto_row.rays.total > coarse.rays.total, "{r:?}");
     }
 
     #[test]

@@ -4,4 +4,5 @@
 
 pub mod acne;
 pub mod cost;
+pub mod growth;
 pub mod invariants;

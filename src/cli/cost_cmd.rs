@@ -64,12 +64,13 @@ pub fn run(a: &CostArgs) -> Result<()> {
 
 fn markdown(r: &CostReport, label: &str) -> String {
     let mut s = format!(
-        "Cost sweep of {label} at {}x{}. Reference: max depth {}, exact Fresnel, offset {}, no min weight; 1 spp (pixel centres) for every axis but spp, {} spp for the spp axis. Each row changes one setting of the base (depth 16, exact Fresnel, 1 spp, min weight 0, robust offset); the offset rows use the scene's epsilon {:e}.\n\n",
+        "Cost sweep of {label} at {}x{}. Reference: max depth {}, exact Fresnel, offset {}, no min weight (the exhaustive tree); 1 spp (pixel centres) for every axis but spp, {} spp for the spp axis. Each row changes one setting of the base, the default settings at depth 16 (exact Fresnel, 1 spp, the automatic min weight {:.1e}, robust offset); the offset rows use the scene's epsilon {:e}.\n\n",
         r.size[0],
         r.size[1],
         r.reference.max_depth,
         r.reference.offset.strategy.name(),
         r.reference_spp,
+        r.base_min_weight,
         r.rows
             .first()
             .map_or(0.0, |row| row.settings.offset.epsilon),

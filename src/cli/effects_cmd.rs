@@ -1,12 +1,14 @@
-//! `raytree effects`: the effect plan with a reason for each line.
+//! `raytree effects`: the effect plan with a reason for each line, how the ray tree grows with
+//! max depth, and what the automatic cut saves on a 16x9 sample of pixels.
 
 use super::args::EffectsArgs;
 use super::load::load;
 use super::say::sayln;
 use anyhow::Result;
+use raytree::analysis::growth::{Growth, cut_savings, tree_growth};
 use raytree::effects::EffectPlan;
 
-/// Print which effects the tracer will run for the scene and why.
+/// Print which effects the tracer will run for the scene and why, then the tree's growth.
 pub fn run(a: &EffectsArgs) -> Result<()> {
     let loaded = load(a.scene.as_deref(), &a.overrides)?;
     let plan = EffectPlan::for_scene(&loaded.scene);
@@ -18,6 +20,16 @@ pub fn run(a: &EffectsArgs) -> Result<()> {
             l.effect,
             l.reason
         )?;
+    }
+    let growth = tree_growth(&loaded.scene);
+    sayln!("ray tree: {}", growth.summary())?;
+    for r in &growth.reasons {
+        sayln!("  - {r}")?;
+    }
+    if growth.growth != Growth::Bounded
+        && let Some(s) = cut_savings(&loaded.scene, 16, 9, &|| false)
+    {
+        sayln!("what the cut saves: {}", s.sentence())?;
     }
     Ok(())
 }

@@ -74,6 +74,8 @@ pub struct Progress {
     pub stats_rows: u32,
     /// Seconds of the last finished statistics pass.
     pub stats_seconds: Option<f64>,
+    /// How the ray tree grows and what the automatic cut saves (after the statistics).
+    pub growth: Option<String>,
 }
 
 /// Everything the panels show.
@@ -137,6 +139,7 @@ impl Document {
                 rays: 0,
                 stats_rows: 0,
                 stats_seconds: None,
+                growth: None,
             },
             path_field: source
                 .path

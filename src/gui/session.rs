@@ -143,6 +143,7 @@ impl Session {
         self.doc.progress.seconds = None;
         self.doc.progress.stats_rows = 0;
         self.doc.progress.stats_seconds = None;
+        self.doc.progress.growth = None;
     }
 
     fn select(&mut self, [x, y]: [u32; 2]) {
@@ -313,6 +314,7 @@ impl Session {
                 self.doc.progress.stats_rows = self.doc.image.height;
                 self.doc.progress.stats_seconds = Some(seconds);
             }
+            Delivery::Growth { line, .. } => self.doc.progress.growth = Some(line),
         }
         true
     }

@@ -31,6 +31,9 @@ pub fn scene_ui(ui: &mut egui::Ui, doc: &Document, cmds: &mut Vec<Command>) {
     if let Some(e) = &doc.error {
         ui.add(egui::Label::new(RichText::new(e).color(ERROR)).wrap());
     }
+    if let Some(g) = &doc.progress.growth {
+        ui.add(egui::Label::new(RichText::new(g).small()).wrap());
+    }
 }
 
 /// How each offset strategy places a secondary ray's origin.

@@ -64,6 +64,14 @@ pub enum Delivery {
         /// Wall-clock seconds of the statistics pass.
         seconds: f64,
     },
+    /// How the scene's ray tree grows and what the automatic cut saves (issue 18), measured
+    /// after the statistics.
+    Growth {
+        /// The job this belongs to.
+        generation: u64,
+        /// One line for the statistics.
+        line: String,
+    },
 }
 
 impl Delivery {
@@ -74,7 +82,8 @@ impl Delivery {
             Delivery::Band { generation, .. }
             | Delivery::Done { generation, .. }
             | Delivery::Stats { generation, .. }
-            | Delivery::StatsDone { generation, .. } => *generation,
+            | Delivery::StatsDone { generation, .. }
+            | Delivery::Growth { generation, .. } => *generation,
         }
     }
 }
@@ -271,9 +280,28 @@ fn run_job(job: &Job, current: &AtomicU64, tx: &Sender<Delivery>, repaint: &Repa
     {
         return;
     }
-    send(Delivery::StatsDone {
+    if !send(Delivery::StatsDone {
         generation: job.generation,
         seconds,
+    }) {
+        return;
+    }
+    // 3. The tree's growth and, where it grows, the rays of the automatic cut against the
+    // exhaustive tree on a 16x9 sample (cancelled between pixels like the passes above).
+    let growth = crate::analysis::growth::tree_growth(scene);
+    let mut line = format!("ray tree {}", growth.growth.word());
+    if let Some(r) = growth.reasons.first() {
+        line += &format!(" ({r})");
+    }
+    if growth.growth != crate::analysis::growth::Growth::Bounded {
+        match crate::analysis::growth::cut_savings(scene, 16, 9, &cancelled) {
+            Some(c) => line += &format!("; {}", c.sentence()),
+            None => return,
+        }
+    }
+    send(Delivery::Growth {
+        generation: job.generation,
+        line,
     });
 }
 
@@ -356,6 +384,7 @@ mod tests {
                         assert_eq!(generation, g);
                         break;
                     }
+                    Delivery::Growth { .. } => unreachable!("comes after the statistics"),
                 }
             }
             (pixels, stats, rays.expect("the image is reported done"))
@@ -365,5 +394,40 @@ mod tests {
         assert_eq!(a.1, b.1);
         assert_eq!(a.2, b.2);
         assert_eq!(a.0, crate::render(&scene, &|_| {}).0.pixels);
+    }
+
+    #[test]
+    fn after_the_statistics_the_tree_growth_and_what_the_cut_saves() {
+        let nested = include_str!("../../fixtures/nested.json");
+        for (json, want) in [
+            (nested, "ray tree exponential"),
+            (
+                include_str!("../../fixtures/diffuse.json"),
+                "ray tree bounded",
+            ),
+        ] {
+            let mut scene = Scene::from_json(json).unwrap();
+            scene.camera = scene.camera.with_size(64, 36);
+            let w = Worker::new(Arc::new(|| {}));
+            let g = w.start(Arc::new(scene), true);
+            let mut stats_done = false;
+            let line = loop {
+                match w.recv().unwrap() {
+                    Delivery::StatsDone { .. } => stats_done = true,
+                    Delivery::Growth { generation, line } => {
+                        assert_eq!(generation, g);
+                        break line;
+                    }
+                    _ => {}
+                }
+            };
+            assert!(stats_done, "{line}");
+            assert!(line.starts_with(want), "{line}");
+            assert_eq!(
+                line.contains("x fewer) on a 16x9 sample"),
+                json == nested,
+                "{line}"
+            );
+        }
     }
 }
