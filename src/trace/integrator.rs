@@ -86,9 +86,10 @@ impl Integrator for Tracer<'_> {
         self.trace_camera(ray, sampler, rec, counts)
     }
 
+    /// Packets only without area lights (their shadow rays draw from the pixel's sampler).
     #[inline]
     fn traces_packets(&self) -> bool {
-        true
+        !self.plan().area_lights
     }
 
     #[inline]

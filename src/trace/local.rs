@@ -71,7 +71,7 @@ impl Tracer<'_> {
         &self,
         si: &SurfaceInteraction,
         (id, depth): (Option<NodeId>, u32),
-        _sampler: &mut S,
+        sampler: &mut S,
         rec: &mut R,
         counts: &mut RayCounts,
     ) -> Local {
@@ -83,6 +83,9 @@ impl Tracer<'_> {
         if !m.diffuse.is_black() || m.specular != Rgb::ZERO {
             for (i, light) in self.lights_on() {
                 total += self.direct((i, light), (si, albedo), (id, depth), rec, counts);
+            }
+            if self.plan.area_lights {
+                total += self.area_direct(si, albedo, (id, depth), sampler, rec, counts);
             }
         }
         Local {
@@ -256,6 +259,7 @@ impl Tracer<'_> {
             irradiance,
             blockers,
             transmittance,
+            area: None,
         }
     }
 }

@@ -1,6 +1,7 @@
 //! The Whitted tracer, exactly as the lecture's `trace(ray, objects, lights)` recursion, with a
 //! [`Recorder`] hook that sees every ray.
 
+mod area;
 pub mod bound;
 pub mod diagnose;
 mod direct_only;
@@ -133,7 +134,8 @@ impl<'a> Tracer<'a> {
     /// A tracer with an explicit plan (e.g. [`EffectPlan::everything`] for comparisons).
     #[must_use]
     pub fn with_plan(scene: &'a Scene, plan: EffectPlan) -> Self {
-        let direct_only = plan.direct_only();
+        // Area lights draw from the pixel's sampler: not on the direct-only path.
+        let direct_only = plan.direct_only() && !plan.area_lights;
         Self {
             scene,
             plan,
