@@ -35,6 +35,9 @@ pub struct EffectPlan {
     pub recursion: bool,
     /// More than one sample per pixel. Explanation only.
     pub supersampling: bool,
+    /// Emissive spheres, quads and triangles are sampled as area lights
+    /// (`settings.light_samples` is set, something is shaded, and such an emitter exists).
+    pub area_lights: bool,
 }
 
 /// One line of the plan: an effect, whether it runs, and why.
@@ -69,6 +72,7 @@ impl EffectPlan {
             lights: u64::MAX,
             recursion: s.max_depth > 0,
             supersampling: s.spp > 1,
+            area_lights: s.light_samples.is_some(),
         }
     }
 
@@ -109,6 +113,9 @@ impl EffectPlan {
             lights,
             recursion: s.max_depth > 0 && (reflection || transmissive),
             supersampling: s.spp > 1,
+            area_lights: s.light_samples.is_some()
+                && shaded
+                && (0..scene.objects.len()).any(|i| scene.area_light(i).is_some()),
         }
     }
 
@@ -223,6 +230,21 @@ impl EffectPlan {
                 self.supersampling,
                 format!("spp {}", s.spp),
             ),
+            line("area lights", self.area_lights, {
+                let emitters: Vec<&str> = (0..scene.objects.len())
+                    .filter(|&i| scene.area_light(i).is_some())
+                    .map(|i| scene.objects[i].name.as_str())
+                    .collect();
+                let list = if emitters.is_empty() {
+                    "no emissive sphere, quad or triangle".to_string()
+                } else {
+                    format!("emissive: {}", emitters.join(", "))
+                };
+                match s.light_samples {
+                    Some(n) => format!("{list}; {n} shadow rays per light per hit"),
+                    None => format!("{list}; settings.light_samples absent (seen, not sampled)"),
+                }
+            }),
         ];
         let unused: Vec<&str> = (0..scene.materials.len())
             .filter(|&m| !scene.material_used(m))

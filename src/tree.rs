@@ -191,6 +191,30 @@ pub struct ShadowInfo {
     pub blockers: Vec<Blocker>,
     /// Product of the blockers' factors.
     pub transmittance: Rgb,
+    /// For a shadow ray towards an area light (an emissive object): the sampled point and its
+    /// pdf. Absent for point and directional lights (and in trees written before area lights).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub area: Option<AreaSample>,
+}
+
+/// One shadow ray's sample of an area light (`ShadowInfo::area`). For such a ray
+/// `ShadowInfo::light` is `scene.lights.len() + object` (no index of `scene.lights`),
+/// `light_name` the object's name, `irradiance` the estimator's `radiance / pdf`, and the
+/// node's `weight` is `brdf * cos / light_samples`.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct AreaSample {
+    /// The emissive object (index into the scene's objects).
+    pub object: usize,
+    /// The sampled point on it.
+    pub point: DVec3,
+    /// Unit direction from the shaded point to `point`.
+    pub direction: DVec3,
+    /// Solid-angle pdf of `direction`.
+    pub pdf: f64,
+    /// Emitted radiance arriving along `direction` when unoccluded.
+    pub radiance: Rgb,
+    /// Which of the `light_samples` samples of this light at this hit (from 0).
+    pub sample: u32,
 }
 
 /// One ray of the tree.

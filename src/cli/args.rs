@@ -80,6 +80,10 @@ pub struct Overrides {
     /// Seed of the per-pixel sample positions (0 = the default positions).
     #[arg(long)]
     pub seed: Option<u64>,
+    /// Shadow rays per area light (emissive sphere, quad, triangle) per hit; turns area
+    /// lights on.
+    #[arg(long, value_name = "N")]
+    pub light_samples: Option<u32>,
 }
 
 /// `raytree render`.

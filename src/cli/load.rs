@@ -171,6 +171,9 @@ pub fn apply(scene: &mut Scene, o: &Overrides) -> Result<()> {
     if let Some(v) = o.seed {
         s.seed = v;
     }
+    if let Some(v) = o.light_samples {
+        s.light_samples = Some(v);
+    }
     raytree::scene::check_settings(s).map_err(|(path, msg)| {
         let flag = path.rsplit('.').next().unwrap_or(&path).replace('_', "-");
         anyhow!("--{flag}: {msg}")

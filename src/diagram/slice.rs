@@ -64,6 +64,14 @@ pub fn slice(shape: &Shape, frame: &PlaneFrame) -> Option<PlaneSlice> {
                 _ => Some(PlaneSlice::Polygon(convex_order(pts))),
             }
         }
+        Shape::Quad { vertices, .. } => {
+            let pts = cut_edges(&vertices, &[(0, 1), (1, 2), (2, 3), (3, 0)], frame);
+            match pts.len() {
+                0 | 1 => None,
+                2 => Some(PlaneSlice::Segment(pts[0], pts[1])),
+                _ => Some(PlaneSlice::Polygon(convex_order(pts))),
+            }
+        }
         Shape::Box { min, max } => {
             let corner = |i: usize| {
                 DVec3::new(

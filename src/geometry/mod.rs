@@ -39,6 +39,15 @@ pub enum Shape {
         /// Unit normal.
         normal: DVec3,
     },
+    /// A one-sided-normal parallelogram (`quad` in the scene file): corners `p, p + u,
+    /// p + u + v, p + v`; the normal is `u x v`, normalized. Intersected as the two triangles
+    /// `(0, 1, 2)` and `(0, 2, 3)` by the watertight test, so no ray slips through the diagonal.
+    Quad {
+        /// Corners in order.
+        vertices: [DVec3; 4],
+        /// Unit normal.
+        normal: DVec3,
+    },
     /// An axis-aligned box.
     Box {
         /// Lower corner.
@@ -87,6 +96,10 @@ impl Shape {
                 let t = triangle_t(&vertices, ray)?;
                 accept(t, ray.t_min, t_max).then_some(ShapeHit { t, normal })
             }
+            Shape::Quad { vertices, normal } => {
+                let t = quad_t(&vertices, ray)?;
+                accept(t, ray.t_min, t_max).then_some(ShapeHit { t, normal })
+            }
             Shape::Box { min, max } => {
                 let (t0, t1) = slab_interval(min, max, ray)?;
                 let t = if accept(t0, ray.t_min, t_max) {
@@ -133,6 +146,7 @@ impl Shape {
                 })
             }
             Shape::Triangle { vertices, .. } => triangle_t(&vertices, &whole).map(|t| (t, t)),
+            Shape::Quad { vertices, .. } => quad_t(&vertices, &whole).map(|t| (t, t)),
             Shape::Box { min, max } => slab_interval(min, max, &whole),
             // The span from the first to the last crossing (exact chords: `Mesh::segment_inside`).
             Shape::Mesh(ref m) => {
@@ -152,10 +166,21 @@ impl Shape {
                 vertices: [a, b, c],
                 ..
             } => Some((a.min(b).min(c), a.max(b).max(c))),
+            Shape::Quad {
+                vertices: [a, b, c, d],
+                ..
+            } => Some((a.min(b).min(c).min(d), a.max(b).max(c).max(d))),
             Shape::Box { min, max } => Some((min, max)),
             Shape::Mesh(ref m) => Some((m.bounds().min, m.bounds().max)),
         }
     }
+}
+
+/// The watertight ray-parallelogram test: the parallelogram's two triangles `(0, 1, 2)` and
+/// `(0, 2, 3)` (a plane hit exactly on the shared diagonal is found by at least one).
+#[inline]
+fn quad_t(v: &[DVec3; 4], ray: &Ray) -> Option<f64> {
+    triangle_t(&[v[0], v[1], v[2]], ray).or_else(|| triangle_t(&[v[0], v[2], v[3]], ray))
 }
 
 #[cfg(test)]

@@ -44,6 +44,16 @@ impl Shape {
                 let q = p - (p - a).dot(normal) * normal;
                 (q, gamma(16) * (a.abs() + b.abs() + c.abs() + p.abs()))
             }
+            Shape::Quad {
+                vertices: [a, b, c, d],
+                normal,
+            } => {
+                let q = p - (p - a).dot(normal) * normal;
+                (
+                    q,
+                    gamma(16) * (a.abs() + b.abs() + c.abs() + d.abs() + p.abs()),
+                )
+            }
             Shape::Box { min, max } => {
                 let mut q = p;
                 for i in 0..3 {
@@ -79,7 +89,7 @@ impl Shape {
         match *self {
             Shape::Sphere { radius, .. } => SELF_HIT_FRACTION * radius,
             Shape::Box { min, max } => SELF_HIT_FRACTION * (max - min).min_element(),
-            Shape::Plane { .. } | Shape::Triangle { .. } => f64::INFINITY,
+            Shape::Plane { .. } | Shape::Triangle { .. } | Shape::Quad { .. } => f64::INFINITY,
             Shape::Mesh(ref m) => {
                 let b = m.bounds();
                 SELF_HIT_FRACTION * (b.max - b.min).max_element()

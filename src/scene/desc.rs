@@ -146,6 +146,21 @@ pub enum ObjectDesc {
         #[serde(default)]
         name: Option<String>,
     },
+    /// A parallelogram `corner + s edge_u + t edge_v`, `s, t` in `[0, 1]`; its front (outer
+    /// side, where emission leaves) is where `edge_u x edge_v` points.
+    Quad {
+        /// First corner.
+        corner: Triple,
+        /// First edge.
+        edge_u: Triple,
+        /// Second edge (not parallel to `edge_u`).
+        edge_v: Triple,
+        /// Material name.
+        material: String,
+        /// Display name.
+        #[serde(default)]
+        name: Option<String>,
+    },
     /// An axis-aligned box.
     Box {
         /// Lower corner.
@@ -206,6 +221,7 @@ impl ObjectDesc {
             ObjectDesc::Sphere { material, .. }
             | ObjectDesc::Plane { material, .. }
             | ObjectDesc::Triangle { material, .. }
+            | ObjectDesc::Quad { material, .. }
             | ObjectDesc::Box { material, .. }
             | ObjectDesc::Mesh { material, .. } => material,
         }
@@ -218,6 +234,7 @@ impl ObjectDesc {
             ObjectDesc::Sphere { name, .. }
             | ObjectDesc::Plane { name, .. }
             | ObjectDesc::Triangle { name, .. }
+            | ObjectDesc::Quad { name, .. }
             | ObjectDesc::Box { name, .. }
             | ObjectDesc::Mesh { name, .. } => name.as_deref(),
         }
@@ -230,6 +247,7 @@ impl ObjectDesc {
             ObjectDesc::Sphere { .. } => "sphere",
             ObjectDesc::Plane { .. } => "plane",
             ObjectDesc::Triangle { .. } => "triangle",
+            ObjectDesc::Quad { .. } => "quad",
             ObjectDesc::Box { .. } => "box",
             ObjectDesc::Mesh { .. } => "mesh",
         }
@@ -409,6 +427,11 @@ pub struct Settings {
     /// Per-sample ray budget (camera, secondary and shadow rays): a sample that reaches it
     /// spawns no more secondary rays (the safety net of the exhaustive tree).
     pub max_rays: u64,
+    /// Shadow rays per area light (emissive sphere, quad or triangle) per diffuse hit in the
+    /// Whitted integrator (soft shadows). Absent: emissive objects are only seen (by camera,
+    /// mirror and refracted rays), not sampled as lights, as before area lights existed.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub light_samples: Option<u32>,
 }
 
 /// Default [`Settings::tolerance`]: half an 8-bit display step.
@@ -429,6 +452,7 @@ impl Default for Settings {
             min_weight: None,
             tolerance: DEFAULT_TOLERANCE,
             max_rays: DEFAULT_MAX_RAYS,
+            light_samples: None,
         }
     }
 }

@@ -225,6 +225,40 @@ pub enum LightKind {
     },
 }
 
+/// The sampling geometry of an area light ([`Scene::area_light`]).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum AreaEmitter {
+    /// Sampled uniformly in the cone it subtends.
+    Sphere {
+        /// Centre.
+        center: DVec3,
+        /// Radius.
+        radius: f64,
+    },
+    /// A quad or triangle, sampled uniformly by area.
+    Planar(crate::lights::PlanarEmitter),
+}
+
+impl AreaEmitter {
+    /// A [`crate::lights::LightSample`] towards this emitter (radiance `emission`) from `p`,
+    /// `None` where `p` cannot see its outer side.
+    #[must_use]
+    pub fn sample(
+        &self,
+        p: DVec3,
+        emission: Rgb,
+        u: (f64, f64),
+    ) -> Option<crate::lights::LightSample> {
+        let u = glam::DVec2::new(u.0, u.1);
+        match *self {
+            AreaEmitter::Sphere { center, radius } => {
+                crate::lights::sample_sphere(p, center, radius, emission, u)
+            }
+            AreaEmitter::Planar(e) => e.sample(p, emission, u),
+        }
+    }
+}
+
 /// A named light.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Light {
@@ -327,6 +361,30 @@ impl Scene {
             (Shape::Mesh(m), Some(t)) => Cow::Owned(Shape::mesh_triangle(m, t as usize)),
             (shape, _) => Cow::Borrowed(shape),
         }
+    }
+
+    /// Object `i` as an area light, when its material emits and its shape can be sampled
+    /// (sphere by its cone, quad and triangle by area; meshes, boxes and planes are not
+    /// sampled): the sampler and the emitted radiance.
+    #[must_use]
+    pub fn area_light(&self, i: usize) -> Option<(AreaEmitter, Rgb)> {
+        let emission = self.material_of(i).emission;
+        if emission.max_element() <= 0.0 {
+            return None;
+        }
+        let e = match self.objects[i].shape {
+            Shape::Sphere { center, radius } => AreaEmitter::Sphere { center, radius },
+            Shape::Quad {
+                vertices: [a, b, _, d],
+                ..
+            } => AreaEmitter::Planar(crate::lights::PlanarEmitter::quad(a, b - a, d - a)),
+            Shape::Triangle {
+                vertices: [a, b, c],
+                ..
+            } => AreaEmitter::Planar(crate::lights::PlanarEmitter::triangle(a, b, c)),
+            _ => return None,
+        };
+        Some((e, emission))
     }
 
     /// The material of object `i`.

@@ -34,6 +34,10 @@ pub fn transformed(scene: &Scene, scale: f64, translation: DVec3) -> Scene {
                 vertices: vertices.map(map),
                 normal,
             },
+            Shape::Quad { vertices, normal } => Shape::Quad {
+                vertices: vertices.map(map),
+                normal,
+            },
             Shape::Box { min, max } => Shape::Box {
                 min: map(min),
                 max: map(max),

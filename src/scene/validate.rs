@@ -186,6 +186,32 @@ fn object(
                 normal,
             }
         }
+        ObjectDesc::Quad {
+            corner,
+            edge_u,
+            edge_v,
+            ..
+        } => {
+            let a = ck.vec(&format!("{p}.corner"), *corner)?;
+            let u = ck.vec(&format!("{p}.edge_u"), *edge_u)?;
+            let v = ck.vec(&format!("{p}.edge_v"), *edge_v)?;
+            if u == DVec3::ZERO {
+                return ck.fail(format!("{p}.edge_u"), "must not be zero");
+            }
+            if v == DVec3::ZERO {
+                return ck.fail(format!("{p}.edge_v"), "must not be zero");
+            }
+            let Some(normal) = u.cross(v).try_normalize() else {
+                return ck.fail(
+                    format!("{p}.edge_v"),
+                    "must not be parallel to edge_u (zero area)",
+                );
+            };
+            Shape::Quad {
+                vertices: [a, a + u, a + u + v, a + v],
+                normal,
+            }
+        }
         ObjectDesc::Box { min, max, .. } => {
             let lo = ck.vec(&format!("{p}.min"), *min)?;
             let hi = ck.vec(&format!("{p}.max"), *max)?;
@@ -286,8 +312,19 @@ pub fn check_settings(s: &Settings) -> Result<Settings, (String, String)> {
             format!("must be in 1..={MAX_RAYS_LIMIT}, got {}", s.max_rays),
         ));
     }
+    if let Some(n) = s.light_samples
+        && !(1..=MAX_LIGHT_SAMPLES).contains(&n)
+    {
+        return Err((
+            "settings.light_samples".into(),
+            format!("must be in 1..={MAX_LIGHT_SAMPLES}, got {n}"),
+        ));
+    }
     Ok(*s)
 }
+
+/// Largest accepted `settings.light_samples`.
+pub const MAX_LIGHT_SAMPLES: u32 = 65_536;
 
 #[cfg(test)]
 mod tests {

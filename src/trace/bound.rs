@@ -133,6 +133,14 @@ fn shape_distance(shape: &Shape, p: DVec3) -> f64 {
         Shape::Sphere { center, radius } => ((p - *center).length() - radius).abs(),
         Shape::Plane { point, normal } => (p - *point).dot(*normal).abs(),
         Shape::Triangle { vertices, normal } => triangle_distance(vertices, *normal, p),
+        Shape::Quad {
+            vertices: [a, b, c, d],
+            normal,
+        } => triangle_distance(&[*a, *b, *c], *normal, p).min(triangle_distance(
+            &[*a, *c, *d],
+            *normal,
+            p,
+        )),
         Shape::Box { min, max } => box_surface_distance(*min, *max, p),
         Shape::Mesh(mesh) => {
             let b = mesh.bounds();

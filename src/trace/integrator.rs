@@ -74,21 +74,22 @@ impl Integrator for Tracer<'_> {
         Tracer::film(self)
     }
 
-    /// Whitted ray tracing is deterministic past the film offset: `sampler` is not used.
+    /// Whitted ray tracing draws from `sampler` only for area lights' shadow rays.
     #[inline]
     fn camera_radiance<R: Recorder, S: PixelSampler>(
         &self,
         ray: Ray,
-        _sampler: &mut S,
+        sampler: &mut S,
         rec: &mut R,
         counts: &mut RayCounts,
     ) -> (Rgb, Option<NodeId>) {
-        self.trace_camera(ray, rec, counts)
+        self.trace_camera(ray, sampler, rec, counts)
     }
 
+    /// Packets only without area lights (their shadow rays draw from the pixel's sampler).
     #[inline]
     fn traces_packets(&self) -> bool {
-        true
+        !self.plan().area_lights
     }
 
     #[inline]

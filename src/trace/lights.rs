@@ -13,6 +13,7 @@ use super::local::cos_to_light;
 use super::{RayCounts, Tracer};
 use crate::interaction::SurfaceInteraction;
 use crate::math::{Ray, Rgb};
+use crate::sampling::PixelSampler;
 use crate::scene::{Light, LightKind, OffsetStrategy};
 use glam::DVec3;
 
@@ -41,6 +42,21 @@ impl Light {
 /// The 2D sample the Whitted integrator passes to [`Light::sample`]: it has only delta lights,
 /// which ignore it. (Area lights will take theirs from the pixel sampler.)
 pub(super) const DELTA_U: (f64, f64) = (0.5, 0.5);
+
+/// The sampler of camera rays traced without one (packets, which run only when the plan has
+/// no area lights): it is never drawn from, and would give the square's centre if it were.
+#[derive(Clone, Copy, Debug)]
+pub(super) struct NoSamples;
+
+impl PixelSampler for NoSamples {
+    fn start_sample(&mut self, _: (u32, u32), _: u32) {}
+    fn next_1d(&mut self) -> f64 {
+        0.5
+    }
+    fn next_2d(&mut self) -> (f64, f64) {
+        DELTA_U
+    }
+}
 
 /// A light's shadow ray from a surface it faces, and the light's sample.
 pub(super) struct Unshadowed {

@@ -8,6 +8,7 @@ use crate::interaction::SurfaceInteraction;
 use crate::math::{Ray, Rgb};
 use crate::media::MediaStack;
 use crate::mesh::shading;
+use crate::sampling::PixelSampler;
 use crate::scene::{Hit, Light, Material, OffsetStrategy};
 use crate::tree::EndReason;
 use crate::tree::{NodeId, RayKind, RayNode, ShadowInfo};
@@ -66,10 +67,11 @@ impl Tracer<'_> {
     /// Emitted + ambient + the direct light of every light that can light something, with one
     /// shadow ray per light in front of the surface (recorded as children of `id`).
     #[inline(always)]
-    pub(super) fn local<R: Recorder>(
+    pub(super) fn local<R: Recorder, S: PixelSampler>(
         &self,
         si: &SurfaceInteraction,
         (id, depth): (Option<NodeId>, u32),
+        sampler: &mut S,
         rec: &mut R,
         counts: &mut RayCounts,
     ) -> Local {
@@ -81,6 +83,9 @@ impl Tracer<'_> {
         if !m.diffuse.is_black() || m.specular != Rgb::ZERO {
             for (i, light) in self.lights_on() {
                 total += self.direct((i, light), (si, albedo), (id, depth), rec, counts);
+            }
+            if self.plan.area_lights {
+                total += self.area_direct(si, albedo, (id, depth), sampler, rec, counts);
             }
         }
         Local {
@@ -254,6 +259,7 @@ impl Tracer<'_> {
             irradiance,
             blockers,
             transmittance,
+            area: None,
         }
     }
 }

@@ -1,6 +1,7 @@
 //! The Whitted tracer, exactly as the lecture's `trace(ray, objects, lights)` recursion, with a
 //! [`Recorder`] hook that sees every ray.
 
+mod area;
 pub mod bound;
 pub mod diagnose;
 mod direct_only;
@@ -21,6 +22,7 @@ pub use recorder::{DiagnosticRecorder, NoopRecorder, Recorder, TreeRecorder};
 use crate::bvh::TraversalCost;
 use crate::effects::EffectPlan;
 use crate::math::{Ray, Rgb};
+use crate::sampling::PixelSampler;
 use crate::scene::{Film, Hit, Scene};
 use crate::tree::{EndReason, NodeId, RayKind};
 use glam::DVec3;
@@ -132,7 +134,8 @@ impl<'a> Tracer<'a> {
     /// A tracer with an explicit plan (e.g. [`EffectPlan::everything`] for comparisons).
     #[must_use]
     pub fn with_plan(scene: &'a Scene, plan: EffectPlan) -> Self {
-        let direct_only = plan.direct_only();
+        // Area lights draw from the pixel's sampler: not on the direct-only path.
+        let direct_only = plan.direct_only() && !plan.area_lights;
         Self {
             scene,
             plan,
@@ -168,23 +171,28 @@ impl<'a> Tracer<'a> {
         &self.plan
     }
 
-    /// Radiance along a camera ray, recording into `rec` and counting into `counts`.
-    pub fn trace_camera<R: Recorder>(
+    /// Radiance along a camera ray, recording into `rec` and counting into `counts`; the
+    /// random numbers of the area lights' shadow rays come from `sampler` (already started at
+    /// this camera sample), so a re-traced pixel reproduces its value bit for bit.
+    pub fn trace_camera<R: Recorder, S: PixelSampler>(
         &self,
         ray: Ray,
+        sampler: &mut S,
         rec: &mut R,
         counts: &mut RayCounts,
     ) -> (Rgb, Option<NodeId>) {
         if self.direct_only && !R::RECORDS && !R::DIAGNOSE {
             return (self.trace_direct_only(&ray, None, counts), None);
         }
-        self.trace_camera_general(ray, None, rec, counts)
+        self.trace_camera_general(ray, None, sampler, rec, counts)
     }
 
     /// [`Tracer::trace_camera`] for a camera ray whose closest hit is already known: `found` is
     /// what [`Scene::intersect_counted`] returns for it over `(ray.t_min, infinity)` and the work
     /// that took, e.g. from [`Scene::intersect_packet`] over a tile of camera rays. The result
-    /// is the same as tracing the ray from scratch (the hit is the same bit for bit).
+    /// is the same as tracing the ray from scratch (the hit is the same bit for bit). Packets
+    /// are traced only when the plan has no area lights ([`Tracer::traces_packets`]), so no
+    /// random number is drawn here.
     pub fn trace_camera_found<R: Recorder>(
         &self,
         ray: Ray,
@@ -195,7 +203,7 @@ impl<'a> Tracer<'a> {
         if self.direct_only && !R::RECORDS && !R::DIAGNOSE {
             return (self.trace_direct_only(&ray, Some(found.0), counts), None);
         }
-        self.trace_camera_general(ray, Some(found), rec, counts)
+        self.trace_camera_general(ray, Some(found), &mut lights::NoSamples, rec, counts)
     }
 
     /// [`Tracer::trace_camera_found`] of a packet of camera rays (at most
@@ -225,10 +233,11 @@ impl<'a> Tracer<'a> {
         }
     }
 
-    fn trace_camera_general<R: Recorder>(
+    fn trace_camera_general<R: Recorder, S: PixelSampler>(
         &self,
         ray: Ray,
         found: Option<(Option<Hit>, TraversalCost)>,
+        sampler: &mut S,
         rec: &mut R,
         counts: &mut RayCounts,
     ) -> (Rgb, Option<NodeId>) {
@@ -247,7 +256,7 @@ impl<'a> Tracer<'a> {
             media: &MediaStack::AIR,
             ray_limit: counts.total().saturating_add(self.scene.settings.max_rays),
         };
-        let out = self.trace_ray(ray, found, spawn, state, rec, counts);
+        let out = self.trace_ray(ray, found, spawn, state, sampler, rec, counts);
         counts.budget_samples += u64::from(counts.budget_cuts > cuts);
         out
     }

@@ -7,6 +7,7 @@ use crate::bvh::TraversalCost;
 use crate::interaction::SurfaceInteraction;
 use crate::math::{self, Fresnel, Ray, Rgb, beer, reflect, refract};
 use crate::mesh::shading;
+use crate::sampling::PixelSampler;
 use crate::scene::Hit;
 use crate::tree::{Attenuation, EndReason, HitInfo, Interface, NodeId, RayKind, RayNode};
 use glam::DVec3;
@@ -14,12 +15,14 @@ use glam::DVec3;
 impl Tracer<'_> {
     /// One ray of the tree; `found` is its closest hit and the traversal work when the caller
     /// already has them (camera rays traced by packet), otherwise they are computed here.
-    pub(super) fn trace_ray<R: Recorder>(
+    #[allow(clippy::too_many_arguments)]
+    pub(super) fn trace_ray<R: Recorder, S: PixelSampler>(
         &self,
         ray: Ray,
         found: Option<(Option<Hit>, TraversalCost)>,
         spawn: Spawn,
         state: PathState,
+        sampler: &mut S,
         rec: &mut R,
         counts: &mut RayCounts,
     ) -> (Rgb, Option<NodeId>) {
@@ -81,7 +84,16 @@ impl Tracer<'_> {
             });
             return (radiance, id);
         };
-        let inner = self.shade(&ray, &hit, id, state.throughput * atten, state, rec, counts);
+        let inner = self.shade(
+            &ray,
+            &hit,
+            id,
+            state.throughput * atten,
+            state,
+            sampler,
+            rec,
+            counts,
+        );
         let radiance = atten * inner;
         rec.update(id, |n| n.radiance = radiance);
         (radiance, id)
@@ -90,13 +102,14 @@ impl Tracer<'_> {
     /// Everything at a hit: local shading plus the weighted secondary rays (before the segment's
     /// attenuation).
     #[allow(clippy::too_many_arguments)]
-    fn shade<R: Recorder>(
+    fn shade<R: Recorder, S: PixelSampler>(
         &self,
         ray: &Ray,
         hit: &Hit,
         id: Option<NodeId>,
         throughput: Rgb,
         state: PathState,
+        sampler: &mut S,
         rec: &mut R,
         counts: &mut RayCounts,
     ) -> Rgb {
@@ -131,7 +144,7 @@ impl Tracer<'_> {
             emitted,
             ambient,
             total: local,
-        } = self.local(&si, (id, state.depth), rec, counts);
+        } = self.local(&si, (id, state.depth), sampler, rec, counts);
         rec.update(id, |node| {
             node.emitted = emitted;
             node.ambient = ambient;
@@ -180,7 +193,16 @@ impl Tracer<'_> {
                 throughput,
                 ..state
             };
-            self.secondary(&mut acc, spawn, reflect(d, ns), n, state, rec, counts);
+            self.secondary(
+                &mut acc,
+                spawn,
+                reflect(d, ns),
+                n,
+                state,
+                sampler,
+                rec,
+                counts,
+            );
         }
         if let Some((dir, weight)) = refraction.filter(|r| r.1.max_element() > 0.0) {
             let media = if entering {
@@ -200,7 +222,7 @@ impl Tracer<'_> {
                 media: &media,
                 ..state
             };
-            self.secondary(&mut acc, spawn, dir, -n, state, rec, counts);
+            self.secondary(&mut acc, spawn, dir, -n, state, sampler, rec, counts);
         }
         let Secondary {
             total,
@@ -232,13 +254,14 @@ impl Tracer<'_> {
     /// Trace one secondary ray (or record why it was cut) and add its weighted radiance;
     /// `state` is the parent's, with the throughput at its hit and the child's media.
     #[allow(clippy::too_many_arguments)]
-    fn secondary<R: Recorder>(
+    fn secondary<R: Recorder, S: PixelSampler>(
         &self,
         acc: &mut Secondary,
         spawn: Spawn,
         dir: DVec3,
         side: DVec3,
         state: PathState,
+        sampler: &mut S,
         rec: &mut R,
         counts: &mut RayCounts,
     ) {
@@ -271,7 +294,7 @@ impl Tracer<'_> {
             throughput: child_throughput,
             ..state
         };
-        let (l, _) = self.trace_ray(ray, None, spawn, state, rec, counts);
+        let (l, _) = self.trace_ray(ray, None, spawn, state, sampler, rec, counts);
         acc.total += spawn.weight * l;
     }
 

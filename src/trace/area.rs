@@ -1,0 +1,143 @@
+//! Area lights in the Whitted local term (issue 14, distribution ray tracing after Cook et al.
+//! 1984): every emissive sphere, quad and triangle ([`crate::Scene::area_light`]) is sampled by
+//! `settings.light_samples` shadow rays per diffuse or Blinn-Phong hit, with the Monte Carlo
+//! estimator of the direct light
+//!
+//! `L_direct = (1/N) sum_k f(wi_k) cos(wi_k) L_e(wi_k) V(wi_k) / pdf(wi_k)`
+//!
+//! (pbrt-v4 section 13.4, Veach 1997 eq. 8.10 for the area-to-solid-angle pdf). The samplers
+//! are `crate::lights` (spheres by the cone they subtend, quads and triangles uniformly by area;
+//! emission leaves the outer side only). The 2D samples come from the pixel's sampler, so a
+//! re-traced pixel reproduces its value bit for bit. Emission itself is still added only where
+//! a camera, mirror or refracted ray hits the emitter (Whitted has no diffuse bounce), so
+//! nothing is counted twice.
+
+use super::local::cos_to_light;
+use super::{RayCounts, Recorder, Tracer, shadow};
+use crate::bvh::TraversalCost;
+use crate::interaction::SurfaceInteraction;
+use crate::math::Rgb;
+use crate::sampling::PixelSampler;
+use crate::tree::{AreaSample, EndReason, NodeId, RayKind, RayNode, ShadowInfo};
+
+/// The shadow ray to a sampled point on an emitter (or to where it meets the emitter first)
+/// stops this fraction short of it, so it does not find the emitter itself (pbrt-v4's
+/// `ShadowEpsilon` in `SpawnRayTo`).
+const SHADOW_EPSILON: f64 = 1e-4;
+
+impl Tracer<'_> {
+    /// The direct light at `si` (diffuse albedo `albedo`) from every area light but the surface
+    /// itself, `light_samples` recorded shadow rays each (children of `parent`).
+    pub(super) fn area_direct<R: Recorder, S: PixelSampler>(
+        &self,
+        si: &SurfaceInteraction,
+        albedo: Rgb,
+        (parent, depth): (Option<NodeId>, u32),
+        sampler: &mut S,
+        rec: &mut R,
+        counts: &mut RayCounts,
+    ) -> Rgb {
+        let n = self.scene.settings.light_samples.unwrap_or(1).max(1);
+        let inv_n = 1.0 / f64::from(n);
+        let mut total = Rgb::ZERO;
+        for object in 0..self.scene.objects.len() {
+            if object == si.object {
+                continue;
+            }
+            let Some((emitter, emission)) = self.scene.area_light(object) else {
+                continue;
+            };
+            for k in 0..n {
+                let u = sampler.next_2d();
+                let Some(ls) = emitter.sample(si.p, emission, u) else {
+                    continue;
+                };
+                let cos = cos_to_light(si.n, si.ns, ls.direction);
+                let value = ls.weight();
+                let (brdf, w) = Self::light_weight(
+                    self.plan.specular,
+                    si.material,
+                    albedo,
+                    si.ns,
+                    (ls.direction, si.wo),
+                    cos,
+                );
+                let weight = w * inv_n;
+                let strategy = self.scene.settings.offset.strategy;
+                let (ray, seg) =
+                    self.shadow_ray(strategy, si.from(), si.p, si.n, ls.direction, ls.distance);
+                // The offset origin sees the emitter along a slightly different line: near a
+                // sphere's silhouette that line enters it earlier than the sampled point (1.7%
+                // of the samples of a 14-degree cone were found blocked by the light itself).
+                // The shadow ray stops where it meets the emitter.
+                let own = self.scene.objects[object].shape.intersect(&ray, seg);
+                let seg = own.map_or(seg, |h| h.t) * (1.0 - SHADOW_EPSILON);
+                let id = rec.push(parent, || {
+                    let mut node =
+                        RayNode::new(RayKind::Shadow, depth, si.p, ray.origin, ray.direction);
+                    node.t_min = ray.t_min;
+                    node
+                });
+                let info = |blockers, transmittance| ShadowInfo {
+                    light: self.scene.lights.len() + object,
+                    light_name: self.scene.objects[object].name.clone(),
+                    distance: ls.distance,
+                    cos_theta: cos,
+                    brdf,
+                    irradiance: value,
+                    blockers,
+                    transmittance,
+                    area: Some(AreaSample {
+                        object,
+                        point: si.p + ls.distance * ls.direction,
+                        direction: ls.direction,
+                        pdf: ls.pdf,
+                        radiance: ls.radiance,
+                        sample: k,
+                    }),
+                };
+                if cos <= 0.0 || value == Rgb::ZERO {
+                    rec.update(id, |node| {
+                        node.weight = weight;
+                        node.end = EndReason::LightBehind;
+                        node.shadow = Some(info(Vec::new(), Rgb::ZERO));
+                    });
+                    continue;
+                }
+                counts.add_kind(RayKind::Shadow);
+                if R::DIAGNOSE {
+                    let first = self.scene.intersect(&ray, seg);
+                    self.diagnose(&ray, si.p, si.from(), first, id, rec, counts);
+                }
+                let mut blockers = R::RECORDS.then(Vec::new);
+                let mut cost = TraversalCost::default();
+                let transmittance = shadow::transmission(
+                    self.scene,
+                    &ray,
+                    seg,
+                    self.plan.translucent_shadows,
+                    blockers.as_mut(),
+                    &mut cost,
+                );
+                let arriving = value * transmittance;
+                rec.update(id, |node| {
+                    node.traversal = cost;
+                    node.weight = weight;
+                    node.radiance = arriving;
+                    node.end = if transmittance == Rgb::ONE {
+                        EndReason::Unblocked
+                    } else if transmittance == Rgb::ZERO {
+                        EndReason::Blocked
+                    } else {
+                        EndReason::Attenuated
+                    };
+                    node.shadow = Some(info(blockers.unwrap_or_default(), transmittance));
+                });
+                if transmittance != Rgb::ZERO {
+                    total += weight * arriving;
+                }
+            }
+        }
+        total
+    }
+}
