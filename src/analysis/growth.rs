@@ -119,7 +119,7 @@ fn point_inside(shape: &Shape, p: DVec3) -> bool {
         Shape::Sphere { center, radius } => (p - center).length() < radius,
         Shape::Box { min, max } => p.cmpgt(min).all() && p.cmplt(max).all(),
         Shape::Plane { point, normal } => (p - point).dot(normal) < 0.0,
-        Shape::Triangle { .. } | Shape::Mesh(_) => false,
+        Shape::Triangle { .. } | Shape::Quad { .. } | Shape::Mesh(_) => false,
     }
 }
 
