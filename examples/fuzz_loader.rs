@@ -1,6 +1,6 @@
 //! A fixed-budget fuzzer for the input readers (issue 13): mutates the fixtures' scene JSON and
-//! an OBJ mesh with a seeded generator and runs the scene loader (meshes from the mutated OBJ)
-//! and the OBJ reader on every case. It reports cases per second, how cases ended, the slowest
+//! an OBJ mesh with a seeded generator and runs the OBJ reader on its own (an error must name a
+//! line of the file) and the scene loader (meshes from the mutated OBJ) on every case. It reports cases per second, how cases ended, the slowest
 //! case, and every panic or rejection without a position (with the input, to reproduce).
 //!
 //! ```sh
@@ -140,16 +140,38 @@ enum Outcome {
     Unplaced(String),
 }
 
-fn run_case(scene: &[u8], obj: &[u8]) -> Outcome {
-    let obj_text = raytree::input::decode(obj.to_vec()).ok();
-    if let Some(t) = &obj_text {
-        let _ = raytree::mesh::parse_obj(t);
-    }
+/// What the OBJ reader did with the case's mesh on its own.
+enum ObjOutcome {
+    Accepted,
+    /// An error on a line of the file (or the whole-file "no faces").
+    Rejected,
+    /// Not UTF-8 (refused by `input::decode` with its position, before the reader).
+    NotText,
+    /// An error on no line, or on a line past the end of the file.
+    Unplaced(String),
+}
+
+fn run_obj(obj: &[u8]) -> (Option<String>, ObjOutcome) {
+    let text = match raytree::input::decode(obj.to_vec()) {
+        Ok(t) => t,
+        Err(_) => return (None, ObjOutcome::NotText),
+    };
+    let lines = text.lines().count();
+    let outcome = match raytree::mesh::parse_obj(&text) {
+        Ok(_) => ObjOutcome::Accepted,
+        Err(e) if (1..=lines).contains(&e.line) => ObjOutcome::Rejected,
+        Err(e) if e.line == 0 && e.message.starts_with("no faces") => ObjOutcome::Rejected,
+        Err(e) => ObjOutcome::Unplaced(format!("line {} of {lines}: {}", e.line, e.message)),
+    };
+    (Some(text), outcome)
+}
+
+fn run_case(scene: &[u8], obj_text: Option<&str>) -> Outcome {
     let text = match raytree::input::decode(scene.to_vec()) {
         Ok(t) => t,
         Err(_) => return Outcome::Rejected,
     };
-    let result = Scene::from_json_with(&text, &mut |_file| match &obj_text {
+    let result = Scene::from_json_with(&text, &mut |_file| match obj_text {
         Some(t) => raytree::mesh::parse_obj(t).map_err(|e| e.to_string()),
         None => Err("not UTF-8".into()),
     });
@@ -175,6 +197,10 @@ fn main() {
     // Panics are caught and reported below; the default hook would print each one.
     std::panic::set_hook(Box::new(|_| {}));
     let (mut cases, mut accepted, mut rejected) = (0u64, 0u64, 0u64);
+    // The OBJ reader on its own: accepted, rejected with a line, not UTF-8.
+    let mut obj_counts = [0u64; 3];
+    // Scenes with a mesh object (the loader read the case's OBJ).
+    let mut with_mesh = 0u64;
     let mut findings: Vec<String> = Vec::new();
     let mut slowest = (Duration::ZERO, String::new());
     let start = Instant::now();
@@ -183,12 +209,16 @@ fn main() {
         let mut scene = SCENES[i].as_bytes().to_vec();
         let other = SCENES[rng.below(SCENES.len())].as_bytes();
         mutate(&mut rng, &mut scene, other);
+        with_mesh += u64::from(scene.windows(6).any(|w| w == b"\"mesh\""));
         let mut obj = OBJ.as_bytes().to_vec();
         if rng.below(2) == 0 {
             mutate(&mut rng, &mut obj, OBJ.as_bytes());
         }
         let t0 = Instant::now();
-        let outcome = catch_unwind(AssertUnwindSafe(|| run_case(&scene, &obj)));
+        let outcome = catch_unwind(AssertUnwindSafe(|| {
+            let (obj_text, obj_outcome) = run_obj(&obj);
+            (obj_outcome, run_case(&scene, obj_text.as_deref()))
+        }));
         let took = t0.elapsed();
         cases += 1;
         let show = || {
@@ -201,7 +231,17 @@ fn main() {
         if took > slowest.0 {
             slowest = (took, show());
         }
-        match outcome {
+        if let Ok((o, _)) = &outcome {
+            match o {
+                ObjOutcome::Accepted => obj_counts[0] += 1,
+                ObjOutcome::Rejected => obj_counts[1] += 1,
+                ObjOutcome::NotText => obj_counts[2] += 1,
+                ObjOutcome::Unplaced(e) => {
+                    findings.push(format!("OBJ error without a line: {e}\n{}", show()));
+                }
+            }
+        }
+        match outcome.map(|(_, o)| o) {
             Ok(Outcome::Accepted) => accepted += 1,
             Ok(Outcome::Rejected) => rejected += 1,
             Ok(Outcome::Unplaced(e)) => findings.push(format!("no position: {e}\n{}", show())),
@@ -220,6 +260,10 @@ fn main() {
         "fuzz_loader: seed {seed}, {cases} cases in {secs:.1} s ({:.0} cases/s): {accepted} accepted, {rejected} rejected with a position, {} findings",
         cases as f64 / secs,
         findings.len()
+    );
+    println!(
+        "OBJ reader: {} accepted, {} rejected with a line, {} not UTF-8 (refused with a position); {with_mesh} scenes named a mesh",
+        obj_counts[0], obj_counts[1], obj_counts[2]
     );
     println!(
         "slowest case: {:.2} ms ({} bytes of input)",

@@ -12,6 +12,7 @@ pub mod bvh;
 pub mod codec;
 pub mod diagram;
 pub mod effects;
+pub mod finite;
 pub mod geometry;
 #[cfg(feature = "gui")]
 pub mod gui;

@@ -4,14 +4,51 @@ use crate::math::Rgb;
 use crate::tree::{EndReason, NodeId, RayKind, RayNode, RayTree};
 use std::fmt::Write;
 
+/// How a NaN or an infinity is written in the text form: words, never a token a program would
+/// read as a number (`NaN`, `inf`), so the text holds only finite numbers too. [`tree_text`]
+/// ends with a note when any value was written so.
+pub const NOT_FINITE: &str = "<not finite:";
+
+/// `v` with `prec` decimals, or `<not finite: not a number>` / `<not finite: +infinite>` /
+/// `<not finite: -infinite>`.
+#[must_use]
+pub fn num(v: f64, prec: usize) -> String {
+    if v.is_finite() {
+        format!("{v:.prec$}")
+    } else {
+        not_finite(v)
+    }
+}
+
+/// `v` in scientific notation (`{:e}`, or `{:.prec$e}`), or the not-finite words of [`num`].
+#[must_use]
+pub fn sci(v: f64, prec: Option<usize>) -> String {
+    match (v.is_finite(), prec) {
+        (false, _) => not_finite(v),
+        (true, Some(p)) => format!("{v:.p$e}"),
+        (true, None) => format!("{v:e}"),
+    }
+}
+
+fn not_finite(v: f64) -> String {
+    let what = if v.is_nan() {
+        "not a number"
+    } else if v > 0.0 {
+        "+infinite"
+    } else {
+        "-infinite"
+    };
+    format!("{NOT_FINITE} {what}>")
+}
+
 fn rgb(c: Rgb) -> String {
-    format!("[{:.4}, {:.4}, {:.4}]", c.x, c.y, c.z)
+    format!("[{}, {}, {}]", num(c.x, 4), num(c.y, 4), num(c.z, 4))
 }
 
 /// A weight or colour, written as one number when its channels agree.
 fn w(c: Rgb) -> String {
     if c.x == c.y && c.y == c.z {
-        format!("{:.4}", c.x)
+        num(c.x, 4)
     } else {
         rgb(c)
     }
@@ -25,8 +62,9 @@ fn serde_name<T: serde::Serialize>(v: &T) -> String {
         .to_string()
 }
 
-fn deg(cos: f64) -> f64 {
-    cos.clamp(-1.0, 1.0).acos().to_degrees()
+/// The angle of a cosine in degrees, 2 decimals (a NaN cosine stays not finite).
+fn deg(cos: f64) -> String {
+    num(cos.clamp(-1.0, 1.0).acos().to_degrees(), 2)
 }
 
 /// Why-text of an end reason.
@@ -57,8 +95,9 @@ pub fn diagnostic_text(n: &RayNode) -> String {
     if let Some(l) = &n.leak {
         let _ = write!(
             s,
-            "  LEAK (offset skipped {} at {:.3e})",
-            l.object_name, l.distance
+            "  LEAK (offset skipped {} at {})",
+            l.object_name,
+            sci(l.distance, Some(3))
         );
     }
     s
@@ -92,9 +131,9 @@ fn node_summary(n: &RayNode) -> String {
                     for b in &sh.blockers {
                         let _ = write!(
                             s,
-                            " ({} chord {:.4} passes {})",
+                            " ({} chord {} passes {})",
                             b.object_name,
-                            b.chord,
+                            num(b.chord, 4),
                             w(b.factor)
                         );
                     }
@@ -103,7 +142,7 @@ fn node_summary(n: &RayNode) -> String {
             }
             let _ = write!(
                 s,
-                "  theta {:.2} deg  E {}  brdf*cos {}  contribution {}",
+                "  theta {} deg  E {}  brdf*cos {}  contribution {}",
                 deg(sh.cos_theta),
                 w(sh.irradiance),
                 w(n.weight),
@@ -117,10 +156,10 @@ fn node_summary(n: &RayNode) -> String {
         Some(h) => {
             let _ = write!(
                 s,
-                " -> {} [{}] t={:.4} theta_i={:.2} deg {}",
+                " -> {} [{}] t={} theta_i={} deg {}",
                 h.object_name,
                 h.material,
-                h.t,
+                num(h.t, 4),
                 deg(h.cos_i),
                 if h.entering { "outside" } else { "inside" }
             );
@@ -133,17 +172,22 @@ fn node_summary(n: &RayNode) -> String {
         let _ = write!(s, "  weight {}", w(n.weight));
     }
     if let Some(i) = &n.interface {
-        let _ = write!(s, "  n1 {:.3} -> n2 {:.3}", i.n1, i.n2);
+        let _ = write!(s, "  n1 {} -> n2 {}", num(i.n1, 3), num(i.n2, 3));
         match i.cos_t {
             Some(ct) => {
-                let _ = write!(s, " theta_t={:.2} deg", deg(ct));
+                let _ = write!(s, " theta_t={} deg", deg(ct));
             }
             None => s.push_str(" TIR"),
         }
-        let _ = write!(s, " R={:.4} T={:.4}", i.fresnel.r, i.fresnel.t);
+        let _ = write!(s, " R={} T={}", num(i.fresnel.r, 4), num(i.fresnel.t, 4));
     }
     if let Some(a) = &n.attenuation {
-        let _ = write!(s, "  Beer: {:.4} inside -> {}", a.distance, w(a.factor));
+        let _ = write!(
+            s,
+            "  Beer: {} inside -> {}",
+            num(a.distance, 4),
+            w(a.factor)
+        );
     }
     let _ = write!(s, "  local {}  L {}", rgb(n.local), rgb(n.radiance));
     if n.truncated != Rgb::ZERO {
@@ -163,7 +207,7 @@ fn node_summary(n: &RayNode) -> String {
 pub fn tree_text(tree: &RayTree) -> String {
     let st = &tree.settings;
     let mut out = format!(
-        "pixel ({}, {})  radiance {}  spp {}  max_depth {}  fresnel {}  shadows {}  offset {} {:e}\n",
+        "pixel ({}, {})  radiance {}  spp {}  max_depth {}  fresnel {}  shadows {}  offset {} {}\n",
         tree.pixel[0],
         tree.pixel[1],
         rgb(tree.radiance),
@@ -172,18 +216,25 @@ pub fn tree_text(tree: &RayTree) -> String {
         serde_name(&st.fresnel),
         serde_name(&st.shadows),
         serde_name(&st.offset.strategy),
-        st.offset.epsilon,
+        sci(st.offset.epsilon, None),
     );
     for s in &tree.samples {
         let _ = writeln!(
             out,
-            "sample {} at ({:.3}, {:.3})  radiance {}",
+            "sample {} at ({}, {})  radiance {}",
             s.index,
-            s.film[0],
-            s.film[1],
+            num(s.film[0], 3),
+            num(s.film[1], 3),
             rgb(s.radiance)
         );
         node_text(tree, s.root, "", true, &mut out);
+    }
+    let bad = out.matches(NOT_FINITE).count();
+    if bad > 0 {
+        let _ = writeln!(
+            out,
+            "note: {bad} values above are not finite (not a number or infinite), written as \"{NOT_FINITE} ...>\"; `--json` refuses such a tree"
+        );
     }
     out
 }
@@ -199,5 +250,43 @@ fn node_text(tree: &RayTree, id: NodeId, prefix: &str, last: bool, out: &mut Str
     let child_prefix = format!("{prefix}{}", if last { "   " } else { "|  " });
     for (i, c) in n.children.iter().enumerate() {
         node_text(tree, *c, &child_prefix, i + 1 == n.children.len(), out);
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Every token of `s` a program would read as a non-finite number (`NaN`, `inf`, ...).
+    fn nonfinite_tokens(s: &str) -> Vec<&str> {
+        s.split(|c: char| !(c.is_ascii_alphanumeric() || "+-._".contains(c)))
+            .filter(|t| t.parse::<f64>().is_ok_and(|v| !v.is_finite()))
+            .collect()
+    }
+
+    #[test]
+    fn non_finite_values_are_named_in_words_and_counted() {
+        let mut scene = crate::Scene::default_scene();
+        scene.camera = scene.camera.with_size(64, 36);
+        let mut tree = crate::trace_pixel(&scene, 40, 20).unwrap();
+        let clean = tree_text(&tree);
+        assert!(!clean.contains(NOT_FINITE) && !clean.contains("note:"));
+        tree.radiance.y = f64::NAN;
+        tree.nodes[0].radiance = Rgb::new(f64::INFINITY, 0.5, f64::NEG_INFINITY);
+        if let Some(h) = tree.nodes[0].hit.as_mut() {
+            h.t = f64::NAN;
+        }
+        let text = tree_text(&tree);
+        assert_eq!(nonfinite_tokens(&text), Vec::<&str>::new(), "{text}");
+        assert!(text.contains("<not finite: not a number>"), "{text}");
+        assert!(text.contains("[<not finite: +infinite>, 0.5000, <not finite: -infinite>]"));
+        assert!(text.contains("t=<not finite: not a number>"), "{text}");
+        assert!(text.ends_with("`--json` refuses such a tree\n"), "{text}");
+        assert!(
+            text.contains("note: 4 values above are not finite"),
+            "{text}"
+        );
+        // The bare formatting this replaced would have written NaN and inf.
+        assert!(!nonfinite_tokens(&format!("{:.4} {:.4}", f64::NAN, f64::INFINITY)).is_empty());
     }
 }

@@ -4,6 +4,7 @@
 use egui::accesskit::Role;
 use egui_kittest::Harness;
 use egui_kittest::kittest::{NodeT, Queryable};
+use raytree::gui::export::ExportKind;
 use raytree::gui::stats::DebugView;
 use raytree::gui::{Files, InspectorApp, Session};
 use raytree::math::Rgb;
@@ -603,4 +604,80 @@ fn a_scene_that_fails_on_start_keeps_its_name_and_error() {
     settle(&mut h);
     assert!(has(&h, "scenes/bad.json:1:"), "the error names the file");
     assert!(has(&h, "scenes/bad.json did not load"));
+}
+
+/// Export as the button does. Through the session, not a click: a click right after a render
+/// can be lost when a late delivery adds a line above the buttons and shifts their ids.
+fn export(h: &mut Harness<'static, InspectorApp>, kind: ExportKind) {
+    h.state_mut()
+        .session
+        .apply(raytree::gui::Command::Export(kind));
+    h.run();
+}
+
+#[test]
+fn exports_warn_or_refuse_as_the_command_line_does_for_non_finite_values() {
+    // A light of 1e42: the EXR export clamps beyond f32 and says so, as `render` does.
+    let files = MemFiles::default();
+    let hot = CLASSIC.replace(
+        "\"intensity\": [120.0, 120.0, 120.0]",
+        "\"intensity\": [1e42, 1e42, 1e42]",
+    );
+    assert_ne!(hot, CLASSIC);
+    let mut h = harness_with(&files, &hot, |_| {});
+    export(&mut h, ExportKind::ImageExr);
+    let status = h.state().session.doc.status.clone();
+    assert!(
+        status.starts_with("wrote scenes/classic.exr; warning: ")
+            && status.ends_with(
+                "pixels had a channel beyond the 32-bit float range (3.4e38) and were clamped to it"
+            ),
+        "{status}"
+    );
+    assert!(has(&h, "were clamped to it"), "shown under the buttons");
+    assert!(files.get("scenes/classic.exr").is_some());
+    // The PNG of the same image needs no warning (sRGB clamps by design).
+    export(&mut h, ExportKind::ImagePng);
+    assert_eq!(h.state().session.doc.status, "wrote scenes/classic.png");
+
+    // A tree with a NaN (the inspector's epsilon slider stops far below the 1e308 that makes
+    // one, so it is put there): the JSON export refuses it, as `trace --json` does, and writes
+    // nothing.
+    click_pixel(&mut h, GLASS.0, GLASS.1);
+    let doc = &mut h.state_mut().session.doc;
+    doc.tree.as_mut().expect("a tree").nodes[1].radiance.y = f64::NAN;
+    export(&mut h, ExportKind::TreeJson);
+    let err = h
+        .state()
+        .session
+        .doc
+        .export_error
+        .clone()
+        .unwrap_or_default();
+    assert!(
+        err.contains("non-finite number at nodes[1].radiance[1]"),
+        "{err}"
+    );
+    assert!(has(&h, "JSON cannot carry it"), "shown");
+    assert!(files.get("scenes/classic-tree-200-100.json").is_none());
+
+    // A sphere of radius 1e300: shapes left out of the SVG, with the count, as `diagram` does.
+    let files = MemFiles::default();
+    let big = CLASSIC.replace("\"radius\": 1.0,", "\"radius\": 1e300,");
+    assert_ne!(big, CLASSIC);
+    let mut h = harness_with(&files, &big, |_| {});
+    click_pixel(&mut h, 0, 0);
+    export(&mut h, ExportKind::DiagramSvg);
+    let status = h.state().session.doc.status.clone();
+    assert!(
+        status.starts_with("wrote scenes/classic-diagram-0-0.svg; warning: ")
+            && status.contains(
+                "shapes with non-finite coordinates (not a number or infinite) were left out"
+            ),
+        "{status}"
+    );
+    let svg = files
+        .get("scenes/classic-diagram-0-0.svg")
+        .expect("written");
+    assert!(!svg.contains("NaN") && !svg.contains("inf\""), "finite SVG");
 }

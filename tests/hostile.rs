@@ -15,3 +15,6 @@ mod loader;
 
 #[path = "hostile/bounds.rs"]
 mod bounds;
+
+#[path = "hostile/commands.rs"]
+mod commands;

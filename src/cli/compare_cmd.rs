@@ -68,7 +68,7 @@ fn finite(img: &Image, path: &Path) -> Result<()> {
     if let Some(i) = img.pixels.iter().position(|p| !p.is_finite()) {
         let w = img.width.max(1) as usize;
         bail!(
-            "cannot compare {}: {bad} pixels are not finite (NaN or infinite), the first at {},{}",
+            "cannot compare {}: {bad} pixels are not finite (not a number or infinite), the first at {},{}",
             path.display(),
             i % w,
             i / w

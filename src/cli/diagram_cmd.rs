@@ -125,7 +125,7 @@ pub fn run(a: &DiagramArgs) -> Result<()> {
             let (svg, dropped) = to_svg_counting(&diagram, &style);
             if dropped > 0 {
                 warnln!(
-                    "warning: {dropped} shapes with non-finite coordinates (NaN or infinite) were left out of {}",
+                    "warning: {dropped} shapes with non-finite coordinates (not a number or infinite) were left out of {}",
                     a.output.display()
                 );
             }

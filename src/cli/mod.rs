@@ -12,7 +12,6 @@ mod compare_cmd;
 mod cost_cmd;
 mod diagram_cmd;
 mod effects_cmd;
-mod finite;
 mod load;
 mod output;
 mod plot;

@@ -35,7 +35,7 @@ pub fn run(a: &TraceArgs) -> Result<()> {
     }
     if a.json {
         // serde_json would write NaN and infinities as null, indistinguishable from "absent".
-        if let Some(at) = super::finite::first_nonfinite(&tree) {
+        if let Some(at) = raytree::finite::first_nonfinite(&tree) {
             bail!(
                 "pixel {x},{y}: the tree holds a non-finite number at {at}; JSON cannot carry it, so none was written (the text form shows it: drop --json)"
             );

@@ -215,8 +215,9 @@ impl Session {
     fn export(&mut self, kind: ExportKind) {
         let doc = &self.doc;
         let name = kind.file_name(&doc.export_field, doc.selection);
+        let no_warning = |b: Vec<u8>| (b, None);
         let bytes = match kind {
-            ExportKind::ImagePng if doc.rendered() => export::png(&doc.image),
+            ExportKind::ImagePng if doc.rendered() => export::png(&doc.image).map(no_warning),
             ExportKind::ImageExr if doc.rendered() => export::exr(&doc.image),
             ExportKind::ImagePng | ExportKind::ImageExr => {
                 Err("the render has not finished".into())
@@ -225,24 +226,32 @@ impl Session {
                 .tree
                 .as_ref()
                 .ok_or_else(|| "select a pixel first".to_string())
-                .and_then(export::tree_json),
+                .and_then(export::tree_json)
+                .map(no_warning),
             ExportKind::DiagramSvg | ExportKind::DiagramPng => diagram_bytes(doc, kind),
         };
-        let result = bytes.and_then(|b| {
-            self.files.write(Path::new(&name), &b).map_err(|e| {
-                // The file hook may already name the file (the binary's does).
-                let e = e.to_string();
-                if e.contains(&name) {
-                    e
-                } else {
-                    format!("cannot write {name}: {e}")
-                }
-            })
+        let result = bytes.and_then(|(b, warning)| {
+            self.files
+                .write(Path::new(&name), &b)
+                .map(|()| warning)
+                .map_err(|e| {
+                    // The file hook may already name the file (the binary's does).
+                    let e = e.to_string();
+                    if e.contains(&name) {
+                        e
+                    } else {
+                        format!("cannot write {name}: {e}")
+                    }
+                })
         });
         match result {
-            Ok(()) => {
+            Ok(warning) => {
                 self.doc.export_error = None;
-                self.doc.status = format!("wrote {name}");
+                self.doc.status = match warning {
+                    // The same warning the command line gives for the same output.
+                    Some(w) => format!("wrote {name}; warning: {w}"),
+                    None => format!("wrote {name}"),
+                };
             }
             Err(e) => self.doc.export_error = Some(e),
         }
@@ -321,14 +330,18 @@ impl Session {
 }
 
 /// The selected pixel's diagram at 1280x720 as SVG or PNG, with the panel's plane and selection.
-fn diagram_bytes(doc: &Document, kind: ExportKind) -> Result<Vec<u8>, String> {
-    use crate::diagram::{Diagram, Style, Theme, to_png, to_svg};
+/// The diagram's bytes, and the warning for shapes left out of an SVG.
+fn diagram_bytes(doc: &Document, kind: ExportKind) -> Result<(Vec<u8>, Option<String>), String> {
+    use crate::diagram::{Diagram, Style, Theme, to_png, to_svg_counting};
     let tree = doc.tree.as_ref().ok_or("select a pixel first")?;
     let opts = super::diagram_ui::diagram_options(doc, [1280, 720]);
     let d = Diagram::build(&doc.scene, tree, &opts).map_err(|e| e.to_string())?;
     let style = Style::new(Theme::Light);
     Ok(match kind {
-        ExportKind::DiagramPng => to_png(&d, &style),
-        _ => to_svg(&d, &style).into_bytes(),
+        ExportKind::DiagramPng => (to_png(&d, &style), None),
+        _ => {
+            let (svg, dropped) = to_svg_counting(&d, &style);
+            (svg.into_bytes(), export::svg_warning(dropped))
+        }
     })
 }

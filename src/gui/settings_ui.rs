@@ -1,6 +1,6 @@
 //! The left panel: scene file, tracer settings, view options and exports.
 
-use super::app::ERROR;
+use super::app::{ERROR, WARNING};
 use super::document::{Command, Document};
 use super::export::ExportKind;
 use super::stats::DebugView;
@@ -184,6 +184,9 @@ pub fn export_ui(ui: &mut egui::Ui, doc: &Document, cmds: &mut Vec<Command>) {
     });
     if let Some(e) = &doc.export_error {
         ui.add(egui::Label::new(RichText::new(e).color(ERROR)).wrap());
+    } else if doc.status.contains("warning:") {
+        // An export that wrote its file but had to clamp or leave out non-finite values.
+        ui.add(egui::Label::new(RichText::new(&doc.status).color(WARNING)).wrap());
     } else if !doc.status.is_empty() {
         ui.add(egui::Label::new(RichText::new(&doc.status).small()).wrap());
     }
