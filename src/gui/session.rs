@@ -272,11 +272,15 @@ impl Session {
         self.wait_until(|d| d.rendered() && d.progress.seconds.is_some());
     }
 
-    /// Block until the current render and its statistics have finished (for tests, benchmarks
-    /// and exports).
+    /// Block until the current render, its statistics and the tree-growth line (the last
+    /// delivery of a job, which adds a line to the settings panel) have arrived (for tests,
+    /// benchmarks and exports: a click right after this meets the final layout).
     pub fn wait_render(&mut self) {
         self.wait_until(|d| {
-            d.rendered() && d.progress.seconds.is_some() && d.progress.stats_seconds.is_some()
+            d.rendered()
+                && d.progress.seconds.is_some()
+                && d.progress.stats_seconds.is_some()
+                && d.progress.growth.is_some()
         });
     }
 
