@@ -74,8 +74,17 @@ fn luminance(c: Rgb) -> f64 {
     0.2126 * c.x + 0.7152 * c.y + 0.0722 * c.z
 }
 
+/// Four decimals, or three significant digits in scientific notation below 1e-3.
+fn num(v: f64) -> String {
+    if v == 0.0 || v.abs() >= 1e-3 || !v.is_finite() {
+        format!("{v:.4}")
+    } else {
+        format!("{v:.3e}")
+    }
+}
+
 fn rgb(c: Rgb) -> String {
-    format!("[{:.4}, {:.4}, {:.4}]", c.x, c.y, c.z)
+    format!("[{}, {}, {}]", num(c.x), num(c.y), num(c.z))
 }
 
 fn atten(n: &RayNode) -> Rgb {
@@ -114,6 +123,8 @@ struct Step<'a> {
     refracted: bool,
     inside_reflections: usize,
     tir: usize,
+    /// Reflections off the outside in a row (more than one only through self-hits).
+    outside_reflections: usize,
 }
 
 /// The path of node `id` in words, eye outward collapsed per object: "floor seen through the
@@ -133,11 +144,13 @@ fn path_words(tree: &RayTree, id: NodeId) -> String {
                 s.inside_reflections += usize::from(inside);
                 s.tir += usize::from(inside && tir);
             }
+            Some(s) if s.object == h.object_name && !s.refracted => s.outside_reflections += 1,
             _ => steps.push(Step {
                 object: &h.object_name,
                 refracted: refracted || inside,
                 inside_reflections: usize::from(inside),
                 tir: usize::from(inside && tir),
+                outside_reflections: usize::from(!(refracted || inside)),
             }),
         }
     }
@@ -173,6 +186,9 @@ fn path_words(tree: &RayTree, id: NodeId) -> String {
             }
         } else {
             let _ = write!(s, " reflected in the {}", st.object);
+            if st.outside_reflections > 1 {
+                let _ = write!(s, " ({} times)", st.outside_reflections);
+            }
         }
     }
     s
@@ -314,10 +330,10 @@ pub fn explain(tree: &RayTree, scene: &Scene) -> Explanation {
         sentences.push(Sentence {
             kind: SentenceKind::Energy,
             text: format!(
-                "cut by {what}: {} ray{} spawned no secondary rays, leaving path weight {:.4} untraced (the share of the pixel's paths that was not followed)",
+                "cut by {what}: {} ray{} spawned no secondary rays, leaving path weight {} untraced (the share of the pixel's paths that was not followed)",
                 cut.len(),
                 if cut.len() == 1 { "" } else { "s" },
-                luminance(weight)
+                num(luminance(weight))
             ),
             nodes: cut.iter().map(|n| n.id).collect(),
         });
@@ -480,12 +496,12 @@ fn suspicious(tree: &RayTree, sentences: &mut Vec<Sentence>) {
         sentences.push(Sentence {
             kind: SentenceKind::Suspicious,
             text: format!(
-                "a chain of {} total internal reflection{} ends at max depth {} at #{}: path weight {:.4} trapped and never traced",
+                "a chain of {} total internal reflection{} ends at max depth {} at #{}: path weight {} trapped and never traced",
                 chain.len(),
                 if chain.len() == 1 { "" } else { "s" },
                 st.max_depth,
                 n.id.0,
-                luminance(n.throughput * atten(n) * n.truncated / spp)
+                num(luminance(n.throughput * atten(n) * n.truncated / spp))
             ),
             nodes: chain,
         });
