@@ -4,5 +4,7 @@
 
 pub mod acne;
 pub mod cost;
+pub mod diff;
+pub mod explain;
 pub mod growth;
 pub mod invariants;

@@ -32,6 +32,10 @@ pub enum Command {
     View(ViewArgs),
     /// Draw a cross-section diagram of one pixel's ray tree (SVG or PNG).
     Diagram(DiagramArgs),
+    /// Explain one pixel in a few sentences: what it sees, where energy went, what is suspicious.
+    Explain(super::explain_cmd::ExplainArgs),
+    /// Trace one pixel under two sets of overrides (or two scenes) and print where the trees differ.
+    Diff(super::diff_cmd::DiffArgs),
 }
 
 /// Settings every tracing command can override (defaults come from the scene file).

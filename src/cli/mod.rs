@@ -11,7 +11,9 @@ mod cleanup;
 mod compare_cmd;
 mod cost_cmd;
 mod diagram_cmd;
+mod diff_cmd;
 mod effects_cmd;
+mod explain_cmd;
 mod load;
 mod output;
 mod plot;
@@ -44,6 +46,8 @@ pub fn run() -> ExitCode {
             "this raytree was built without the inspector (cargo feature \"gui\")"
         )),
         Command::Diagram(a) => diagram_cmd::run(&a),
+        Command::Explain(a) => explain_cmd::run(&a),
+        Command::Diff(a) => diff_cmd::run(&a),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,

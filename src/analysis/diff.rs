@@ -1,0 +1,444 @@
+//! Compare two ray trees of one pixel (issue 17, "pin and compare"): walk both trees in
+//! parallel, matching samples by index and children by kind and order (the i-th reflected child
+//! of one with the i-th reflected child of the other), and report every changed field of the
+//! matched nodes, the rays only one tree has, and the first divergent node: the shallowest
+//! matched pair (breadth-first) whose hit object, set of child ray kinds or any number differs
+//! beyond a relative [`REL_TOL`].
+//!
+//! Fields are compared through their serialized form (`raytree.tree/1`), so every field of
+//! [`RayNode`] takes part except the structural `id`, `parent` and `children` (children are
+//! compared by their kinds). A non-finite number serializes as `null` and so differs from any
+//! finite one.
+
+use crate::math::Rgb;
+use crate::tree::{NodeId, RayKind, RayNode, RayTree};
+use serde::Serialize;
+use serde_json::Value;
+use std::collections::VecDeque;
+
+/// Numbers closer than this, relative to the larger magnitude, are equal.
+pub const REL_TOL: f64 = 1e-12;
+
+/// One changed field: its path in the serialized node (`interface.fresnel.r`, `radiance[0]`)
+/// and both values.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct FieldChange {
+    /// Dotted path in the JSON form.
+    pub field: String,
+    /// Value in tree A.
+    pub a: Value,
+    /// Value in tree B.
+    pub b: Value,
+}
+
+/// A matched pair of nodes and what changed between them.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct NodeChange {
+    /// Node in tree A.
+    pub a: NodeId,
+    /// Node in tree B.
+    pub b: NodeId,
+    /// Their ray kind (matched nodes share it).
+    pub kind: RayKind,
+    /// Breadth-first level from the camera ray (0 = camera ray).
+    pub level: u32,
+    /// Changed fields (never empty).
+    pub fields: Vec<FieldChange>,
+}
+
+/// The difference of two trees of one pixel.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct TreeDiff {
+    /// Changed tree-level fields (`pixel`, `settings.*`).
+    pub settings: Vec<FieldChange>,
+    /// The shallowest matched pair that differs (breadth-first, then sample and child order).
+    pub first_divergence: Option<NodeChange>,
+    /// Every matched pair that differs, breadth-first (fields sorted by path).
+    pub changed: Vec<NodeChange>,
+    /// Number of matched pairs.
+    pub matched: usize,
+    /// Roots of subtrees only tree A has (no child of that kind and order in B).
+    pub only_a: Vec<NodeId>,
+    /// Roots of subtrees only tree B has.
+    pub only_b: Vec<NodeId>,
+    /// Pixel value of A.
+    pub radiance_a: Rgb,
+    /// Pixel value of B.
+    pub radiance_b: Rgb,
+    /// `radiance_b - radiance_a`.
+    pub difference: Rgb,
+}
+
+impl TreeDiff {
+    /// The trees are the same: no changed node, no unmatched ray (settings may differ).
+    #[must_use]
+    pub fn trees_equal(&self) -> bool {
+        self.changed.is_empty() && self.only_a.is_empty() && self.only_b.is_empty()
+    }
+}
+
+fn numbers_differ(x: f64, y: f64) -> bool {
+    // Bitwise-equal (including both infinite) is equal; otherwise relative.
+    x != y && (x - y).abs() > REL_TOL * x.abs().max(y.abs())
+}
+
+/// Push every leaf of `a` and `b` that differs, under `path`.
+fn compare(path: &str, a: &Value, b: &Value, out: &mut Vec<FieldChange>) {
+    let join = |k: &str| {
+        if path.is_empty() {
+            k.to_string()
+        } else {
+            format!("{path}.{k}")
+        }
+    };
+    match (a, b) {
+        (Value::Object(x), Value::Object(y)) => {
+            for (k, va) in x {
+                compare(&join(k), va, y.get(k).unwrap_or(&Value::Null), out);
+            }
+            for (k, vb) in y.iter().filter(|(k, _)| !x.contains_key(*k)) {
+                compare(&join(k), &Value::Null, vb, out);
+            }
+        }
+        (Value::Array(x), Value::Array(y)) if x.len() == y.len() => {
+            for (i, (va, vb)) in x.iter().zip(y).enumerate() {
+                compare(&format!("{path}[{i}]"), va, vb, out);
+            }
+        }
+        (Value::Number(x), Value::Number(y)) => {
+            if let (Some(x), Some(y)) = (x.as_f64(), y.as_f64())
+                && numbers_differ(x, y)
+            {
+                out.push(FieldChange {
+                    field: path.to_string(),
+                    a: a.clone(),
+                    b: b.clone(),
+                });
+            }
+        }
+        _ if a != b => out.push(FieldChange {
+            field: path.to_string(),
+            a: a.clone(),
+            b: b.clone(),
+        }),
+        _ => {}
+    }
+}
+
+fn node_value(n: &RayNode) -> Value {
+    let mut v = serde_json::to_value(n).unwrap_or(Value::Null);
+    if let Value::Object(m) = &mut v {
+        for k in ["id", "parent", "children"] {
+            m.remove(k);
+        }
+    }
+    v
+}
+
+fn child_kinds(t: &RayTree, n: &RayNode) -> Value {
+    Value::Array(
+        n.children
+            .iter()
+            .map(|c| Value::String(t.node(*c).kind.name().into()))
+            .collect(),
+    )
+}
+
+/// The fields that differ between nodes `a` and `b`, the child kinds first.
+fn node_changes(ta: &RayTree, a: &RayNode, tb: &RayTree, b: &RayNode) -> Vec<FieldChange> {
+    let mut out = Vec::new();
+    compare(
+        "children (kinds)",
+        &child_kinds(ta, a),
+        &child_kinds(tb, b),
+        &mut out,
+    );
+    compare("", &node_value(a), &node_value(b), &mut out);
+    out
+}
+
+/// Compare trees `a` and `b` (normally of one pixel under two settings).
+#[must_use]
+pub fn diff(a: &RayTree, b: &RayTree) -> TreeDiff {
+    let mut settings = Vec::new();
+    compare(
+        "pixel",
+        &serde_json::to_value(a.pixel).unwrap_or(Value::Null),
+        &serde_json::to_value(b.pixel).unwrap_or(Value::Null),
+        &mut settings,
+    );
+    compare(
+        "settings",
+        &serde_json::to_value(a.settings).unwrap_or(Value::Null),
+        &serde_json::to_value(b.settings).unwrap_or(Value::Null),
+        &mut settings,
+    );
+    let mut changed = Vec::new();
+    let (mut only_a, mut only_b) = (Vec::new(), Vec::new());
+    let mut matched = 0;
+    let mut queue: VecDeque<(NodeId, NodeId, u32)> = VecDeque::new();
+    let n = a.samples.len().min(b.samples.len());
+    for (sa, sb) in a.samples.iter().zip(&b.samples) {
+        queue.push_back((sa.root, sb.root, 0));
+    }
+    only_a.extend(a.samples[n..].iter().map(|s| s.root));
+    only_b.extend(b.samples[n..].iter().map(|s| s.root));
+    while let Some((ia, ib, level)) = queue.pop_front() {
+        let (na, nb) = (a.node(ia), b.node(ib));
+        matched += 1;
+        let fields = node_changes(a, na, b, nb);
+        if !fields.is_empty() {
+            changed.push(NodeChange {
+                a: ia,
+                b: ib,
+                kind: na.kind,
+                level,
+                fields,
+            });
+        }
+        for kind in RayKind::ALL {
+            let ca: Vec<NodeId> = na
+                .children
+                .iter()
+                .copied()
+                .filter(|c| a.node(*c).kind == kind)
+                .collect();
+            let cb: Vec<NodeId> = nb
+                .children
+                .iter()
+                .copied()
+                .filter(|c| b.node(*c).kind == kind)
+                .collect();
+            for (x, y) in ca.iter().zip(&cb) {
+                queue.push_back((*x, *y, level + 1));
+            }
+            only_a.extend(ca.iter().skip(cb.len()));
+            only_b.extend(cb.iter().skip(ca.len()));
+        }
+    }
+    TreeDiff {
+        settings,
+        first_divergence: changed.first().cloned(),
+        changed,
+        matched,
+        only_a,
+        only_b,
+        radiance_a: a.radiance,
+        radiance_b: b.radiance,
+        difference: b.radiance - a.radiance,
+    }
+}
+
+fn value_text(v: &Value) -> String {
+    match v {
+        Value::String(s) => s.clone(),
+        Value::Null => "none".into(),
+        v => v.to_string(),
+    }
+}
+
+fn rgb(c: Rgb) -> String {
+    format!("[{:.6}, {:.6}, {:.6}]", c.x, c.y, c.z)
+}
+
+fn ids(a: NodeId, b: NodeId) -> String {
+    if a == b {
+        format!("#{}", a.0)
+    } else {
+        format!("#{} / #{}", a.0, b.0)
+    }
+}
+
+/// Rays in the subtree of `id`.
+fn subtree_len(t: &RayTree, id: NodeId) -> usize {
+    t.depth_first(id).len()
+}
+
+/// The difference as text: settings, first divergence, every changed node (one field a line,
+/// `old -> new`), the unmatched subtrees, then the pixel values.
+#[must_use]
+pub fn diff_text(d: &TreeDiff, a: &RayTree, b: &RayTree) -> String {
+    use std::fmt::Write;
+    let mut s = String::new();
+    for f in &d.settings {
+        let _ = writeln!(
+            s,
+            "setting {}: {} -> {}",
+            f.field,
+            value_text(&f.a),
+            value_text(&f.b)
+        );
+    }
+    if d.trees_equal() {
+        let _ = writeln!(
+            s,
+            "no difference: the trees are identical ({} rays matched)",
+            d.matched
+        );
+    } else {
+        if let Some(f) = &d.first_divergence {
+            let head: Vec<String> = f
+                .fields
+                .iter()
+                .take(2)
+                .map(|c| format!("{} {} -> {}", c.field, value_text(&c.a), value_text(&c.b)))
+                .collect();
+            let more = f.fields.len().saturating_sub(2);
+            let _ = writeln!(
+                s,
+                "first divergence: {} {} (level {}): {}{}",
+                f.kind.name(),
+                ids(f.a, f.b),
+                f.level,
+                head.join("; "),
+                if more > 0 {
+                    format!(" (and {more} more fields)")
+                } else {
+                    String::new()
+                }
+            );
+        }
+        let _ = writeln!(
+            s,
+            "changed rays: {} of {} matched; only in a: {}, only in b: {}",
+            d.changed.len(),
+            d.matched,
+            d.only_a.len(),
+            d.only_b.len()
+        );
+        for c in &d.changed {
+            let _ = writeln!(
+                s,
+                "{} {} (level {}):",
+                c.kind.name(),
+                ids(c.a, c.b),
+                c.level
+            );
+            for f in &c.fields {
+                let _ = writeln!(
+                    s,
+                    "    {}: {} -> {}",
+                    f.field,
+                    value_text(&f.a),
+                    value_text(&f.b)
+                );
+            }
+        }
+        for (side, t, list) in [("a", a, &d.only_a), ("b", b, &d.only_b)] {
+            for id in list {
+                let n = t.node(*id);
+                let _ = writeln!(
+                    s,
+                    "only in {side}: {} #{} (subtree of {} rays)",
+                    n.kind.name(),
+                    id.0,
+                    subtree_len(t, *id)
+                );
+            }
+        }
+    }
+    let _ = writeln!(
+        s,
+        "pixel a {}  b {}  b - a {}",
+        rgb(d.radiance_a),
+        rgb(d.radiance_b),
+        rgb(d.difference)
+    );
+    s
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::math::FresnelModel;
+    use crate::{Scene, trace_pixel};
+
+    #[test]
+    fn identical_settings_give_no_difference() {
+        let scene = Scene::default_scene();
+        let t = trace_pixel(&scene, 400, 200).unwrap();
+        let d = diff(&t, &t.clone());
+        assert!(d.trees_equal() && d.settings.is_empty(), "{d:#?}");
+        assert_eq!(d.first_divergence, None);
+        assert_eq!(d.matched, t.nodes.len());
+        assert_eq!(d.difference, Rgb::ZERO);
+        assert!(diff_text(&d, &t, &t).starts_with("no difference"));
+    }
+
+    #[test]
+    fn schlick_first_diverges_at_the_camera_rays_fresnel_r() {
+        let mut scene = Scene::default_scene();
+        let a = trace_pixel(&scene, 400, 200).unwrap();
+        scene.settings.fresnel = FresnelModel::Schlick;
+        let b = trace_pixel(&scene, 400, 200).unwrap();
+        let d = diff(&a, &b);
+        assert_eq!(d.settings.len(), 1, "{:?}", d.settings);
+        assert_eq!(d.settings[0].field, "settings.fresnel");
+        let f = d.first_divergence.as_ref().expect("they differ");
+        assert_eq!(
+            (f.a, f.b, f.kind, f.level),
+            (NodeId(0), NodeId(0), RayKind::Camera, 0)
+        );
+        // Fields come in the order of their paths: the interface's model, then R, the first
+        // number to change.
+        let fields: Vec<&str> = f.fields.iter().map(|c| c.field.as_str()).collect();
+        assert_eq!(
+            fields[..2],
+            ["interface.fresnel.model", "interface.fresnel.r"],
+            "{fields:?}"
+        );
+        assert!(fields.contains(&"interface.fresnel.t") && fields.contains(&"radiance[0]"));
+        let (ra, rb) = (
+            a.nodes[0].interface.as_ref().unwrap().fresnel.r,
+            b.nodes[0].interface.as_ref().unwrap().fresnel.r,
+        );
+        assert!(ra != rb);
+        assert_eq!(f.fields[1].a.as_f64(), Some(ra));
+        assert_eq!(f.fields[1].b.as_f64(), Some(rb));
+        assert_eq!(d.difference, b.radiance - a.radiance);
+        // The structure is the same: every ray matched.
+        assert!(d.only_a.is_empty() && d.only_b.is_empty());
+        let text = diff_text(&d, &a, &b);
+        assert!(
+            text.contains(
+                "first divergence: camera #0 (level 0): interface.fresnel.model exact -> schlick; interface.fresnel.r 0.04"
+            ),
+            "{text}"
+        );
+    }
+
+    #[test]
+    fn a_lower_max_depth_leaves_subtrees_only_in_a() {
+        let mut scene = Scene::default_scene();
+        let a = trace_pixel(&scene, 400, 200).unwrap();
+        scene.settings.max_depth = 1;
+        let b = trace_pixel(&scene, 400, 200).unwrap();
+        let d = diff(&a, &b);
+        assert!(d.only_b.is_empty());
+        let lost: usize = d.only_a.iter().map(|id| subtree_len(&a, *id)).sum();
+        assert_eq!(lost, a.nodes.len() - b.nodes.len());
+        assert_eq!(d.matched, b.nodes.len());
+        // The shallowest change is where the cut happened (level 1, the refracted ray) or
+        // above it; the camera ray's radiance changes with it.
+        let f = d.first_divergence.unwrap();
+        assert_eq!(f.level, 0, "the camera ray's radiance changes");
+        assert!(f.fields.iter().any(|c| c.field == "radiance[0]"));
+    }
+
+    #[test]
+    fn numbers_differ_relatively() {
+        assert!(!numbers_differ(1.0, 1.0 + 1e-15));
+        assert!(numbers_differ(1.0, 1.0 + 1e-11));
+        assert!(numbers_differ(0.0, 1e-300));
+        assert!(!numbers_differ(f64::INFINITY, f64::INFINITY));
+        let mut out = Vec::new();
+        compare(
+            "x",
+            &serde_json::json!({"p": [1.0, 2.0], "s": "a"}),
+            &serde_json::json!({"p": [1.0, 2.5], "s": "b", "n": 1}),
+            &mut out,
+        );
+        let fields: Vec<&str> = out.iter().map(|f| f.field.as_str()).collect();
+        assert_eq!(fields, ["x.p[1]", "x.s", "x.n"]);
+    }
+}

@@ -1,0 +1,857 @@
+//! Explain a pixel in a few sentences generated from its ray tree (issue 17): what the pixel
+//! sees and through what, by share of the pixel value; where energy went (cut by max depth, by
+//! the min weight, by the ray budget, absorbed by Beer's law, blocked shadow rays); and what is
+//! suspicious (self-hits, leaks, TIR chains ending at max depth, a value clipped on display, a
+//! non-finite value). Every sentence carries the ids of the nodes it is about.
+//!
+//! The shares are exact: each non-shadow node contributes `throughput x Beer x local` (a miss:
+//! `throughput x radiance`, its attenuated background), divided by the sample count, and these
+//! terms add up to the pixel value (the tree's invariants). Terms are grouped by their path:
+//! the object names and ray kinds from the eye to the node.
+
+use crate::math::Rgb;
+use crate::scene::Scene;
+use crate::tree::{EndReason, NodeId, RayKind, RayNode, RayTree};
+use serde::Serialize;
+use std::fmt::Write;
+
+/// Shares below this fraction of the pixel are gathered into one "other paths" sentence.
+const SMALL_SHARE: f64 = 0.005;
+
+/// What a sentence is about.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
+#[serde(rename_all = "lowercase")]
+pub enum SentenceKind {
+    /// What the pixel sees and through what, with its share of the pixel value.
+    Sees,
+    /// A noteworthy optical event (total internal reflection).
+    Event,
+    /// Where energy went: cut, absorbed, blocked.
+    Energy,
+    /// Something a renderer engineer should look at.
+    Suspicious,
+}
+
+/// One generated sentence.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct Sentence {
+    /// What it is about.
+    pub kind: SentenceKind,
+    /// The sentence.
+    pub text: String,
+    /// The nodes it is about.
+    pub nodes: Vec<NodeId>,
+}
+
+/// One path group's part of the pixel value.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct Share {
+    /// The path in words ("floor seen through the glass ball").
+    pub path: String,
+    /// Its part of the pixel value (the shares add up to the pixel value).
+    pub value: Rgb,
+    /// Its fraction of the pixel's luminance (0 when the pixel is black).
+    pub fraction: f64,
+    /// The contributing nodes.
+    pub nodes: Vec<NodeId>,
+}
+
+/// The explanation of one pixel.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct Explanation {
+    /// Pixel coordinates.
+    pub pixel: [u32; 2],
+    /// The pixel value.
+    pub radiance: Rgb,
+    /// Every path group, largest first; their values add up to `radiance`.
+    pub shares: Vec<Share>,
+    /// The sentences, in order: sees, events, energy, suspicious.
+    pub sentences: Vec<Sentence>,
+}
+
+/// Rec. 709 luminance, the measure of a share.
+fn luminance(c: Rgb) -> f64 {
+    0.2126 * c.x + 0.7152 * c.y + 0.0722 * c.z
+}
+
+/// Four decimals, or three significant digits in scientific notation below 1e-3.
+fn num(v: f64) -> String {
+    if v == 0.0 || v.abs() >= 1e-3 || !v.is_finite() {
+        format!("{v:.4}")
+    } else {
+        format!("{v:.3e}")
+    }
+}
+
+fn rgb(c: Rgb) -> String {
+    format!("[{}, {}, {}]", num(c.x), num(c.y), num(c.z))
+}
+
+fn atten(n: &RayNode) -> Rgb {
+    n.attenuation.as_ref().map_or(Rgb::ONE, |a| a.factor)
+}
+
+fn deg(cos: f64) -> f64 {
+    cos.clamp(-1.0, 1.0).acos().to_degrees()
+}
+
+/// What a non-shadow node adds to the pixel value: its surface's local term (a miss: the
+/// background) carried to the eye, divided by the sample count.
+#[must_use]
+pub fn node_term(tree: &RayTree, n: &RayNode) -> Rgb {
+    let spp = tree.samples.len().max(1) as f64;
+    let source = match n.hit {
+        Some(_) => atten(n) * n.local,
+        None => n.radiance,
+    };
+    n.throughput * source / spp
+}
+
+/// The chain of nodes from the sample's camera ray down to `id`.
+fn chain(tree: &RayTree, id: NodeId) -> Vec<&RayNode> {
+    let mut out = vec![tree.node(id)];
+    while let Some(p) = out.last().and_then(|n| n.parent) {
+        out.push(tree.node(p));
+    }
+    out.reverse();
+    out
+}
+
+/// One interaction on the way from the eye: the surface `object` the next ray left.
+struct Step<'a> {
+    object: &'a str,
+    refracted: bool,
+    inside_reflections: usize,
+    tir: usize,
+    /// Reflections off the outside in a row (more than one only through self-hits).
+    outside_reflections: usize,
+}
+
+/// The path of node `id` in words, eye outward collapsed per object: "floor seen through the
+/// glass ball", "background reflected in the mirror ball".
+fn path_words(tree: &RayTree, id: NodeId) -> String {
+    let nodes = chain(tree, id);
+    let mut steps: Vec<Step> = Vec::new();
+    for w in nodes.windows(2) {
+        let (p, c) = (w[0], w[1]);
+        let Some(h) = &p.hit else { continue };
+        let tir = p.interface.as_ref().is_some_and(|i| i.tir);
+        let refracted = c.kind == RayKind::Refracted;
+        let inside = c.kind == RayKind::Reflected && !h.entering;
+        match steps.last_mut() {
+            Some(s) if s.object == h.object_name && (refracted || inside || s.refracted) => {
+                s.refracted |= refracted;
+                s.inside_reflections += usize::from(inside);
+                s.tir += usize::from(inside && tir);
+            }
+            Some(s) if s.object == h.object_name && !s.refracted => s.outside_reflections += 1,
+            _ => steps.push(Step {
+                object: &h.object_name,
+                refracted: refracted || inside,
+                inside_reflections: usize::from(inside),
+                tir: usize::from(inside && tir),
+                outside_reflections: usize::from(!(refracted || inside)),
+            }),
+        }
+    }
+    let last = nodes[nodes.len() - 1];
+    let what = last
+        .hit
+        .as_ref()
+        .map_or("background", |h| h.object_name.as_str());
+    let mut s = what.to_string();
+    if steps.is_empty() {
+        s.push_str(" seen directly");
+        return s;
+    }
+    for (i, st) in steps.iter().rev().enumerate() {
+        if i > 0 {
+            s.push(',');
+        }
+        if st.refracted {
+            let _ = write!(
+                s,
+                "{} through the {}",
+                if i == 0 { " seen" } else { "" },
+                st.object
+            );
+            if st.inside_reflections > 0 {
+                let k = st.inside_reflections;
+                let _ = write!(
+                    s,
+                    " ({k} {}internal reflection{})",
+                    if st.tir == k { "total " } else { "" },
+                    if k == 1 { "" } else { "s" }
+                );
+            }
+        } else {
+            let _ = write!(s, " reflected in the {}", st.object);
+            if st.outside_reflections > 1 {
+                let _ = write!(s, " ({} times)", st.outside_reflections);
+            }
+        }
+    }
+    s
+}
+
+fn ids(nodes: &[NodeId]) -> Vec<NodeId> {
+    let mut v = nodes.to_vec();
+    v.sort_unstable();
+    v.dedup();
+    v
+}
+
+/// Explain the pixel whose tree is `tree`, traced in `scene`.
+#[must_use]
+pub fn explain(tree: &RayTree, scene: &Scene) -> Explanation {
+    let spp = tree.samples.len().max(1) as f64;
+    let pixel_lum = luminance(tree.radiance);
+    let mut sentences = Vec::new();
+
+    // What the pixel sees.
+    let mut shares: Vec<Share> = Vec::new();
+    for n in tree.nodes.iter().filter(|n| n.kind != RayKind::Shadow) {
+        let value = node_term(tree, n);
+        if value == Rgb::ZERO {
+            continue;
+        }
+        let path = path_words(tree, n.id);
+        match shares.iter_mut().find(|s| s.path == path) {
+            Some(s) => {
+                s.value += value;
+                s.nodes.push(n.id);
+            }
+            None => shares.push(Share {
+                path,
+                value,
+                fraction: 0.0,
+                nodes: vec![n.id],
+            }),
+        }
+    }
+    for s in &mut shares {
+        s.fraction = if pixel_lum > 0.0 {
+            luminance(s.value) / pixel_lum
+        } else {
+            0.0
+        };
+    }
+    shares.sort_by(|a, b| luminance(b.value).total_cmp(&luminance(a.value)));
+    if shares.is_empty() {
+        sentences.push(Sentence {
+            kind: SentenceKind::Sees,
+            text: "the pixel is black: no path brings light to the eye".into(),
+            nodes: tree.samples.iter().map(|s| s.root).collect(),
+        });
+    }
+    let (big, small): (Vec<&Share>, Vec<&Share>) = shares
+        .iter()
+        .partition(|s| s.fraction >= SMALL_SHARE || pixel_lum <= 0.0);
+    for s in &big {
+        sentences.push(Sentence {
+            kind: SentenceKind::Sees,
+            text: format!("{}: {:.1}% {}", s.path, 100.0 * s.fraction, rgb(s.value)),
+            nodes: ids(&s.nodes),
+        });
+    }
+    if !small.is_empty() {
+        let value = small.iter().fold(Rgb::ZERO, |a, s| a + s.value);
+        let nodes: Vec<NodeId> = small.iter().flat_map(|s| s.nodes.clone()).collect();
+        sentences.push(Sentence {
+            kind: SentenceKind::Sees,
+            text: format!(
+                "{} other paths, each under {:.1}%: {:.1}% {}",
+                small.len(),
+                100.0 * SMALL_SHARE,
+                100.0 * luminance(value) / pixel_lum,
+                rgb(value)
+            ),
+            nodes: ids(&nodes),
+        });
+    }
+
+    // Total internal reflection.
+    let tir: Vec<&RayNode> = tree
+        .nodes
+        .iter()
+        .filter(|n| n.interface.as_ref().is_some_and(|i| i.tir))
+        .collect();
+    if let Some(first) = tir.first() {
+        let i = first.interface.as_ref().expect("filtered on interface");
+        let crit = (i.n2 / i.n1).clamp(-1.0, 1.0).asin().to_degrees();
+        let mut objects: Vec<&str> = tir
+            .iter()
+            .filter_map(|n| n.hit.as_ref().map(|h| h.object_name.as_str()))
+            .collect();
+        objects.dedup();
+        sentences.push(Sentence {
+            kind: SentenceKind::Event,
+            text: format!(
+                "total internal reflection at {} ray{} inside the {} (first at #{}: theta_i {:.1} deg > critical angle {:.1} deg, n {:.3} -> {:.3})",
+                tir.len(),
+                if tir.len() == 1 { "" } else { "s" },
+                objects.join(", the "),
+                first.id.0,
+                deg(i.cos_i),
+                crit,
+                i.n1,
+                i.n2
+            ),
+            nodes: tir.iter().map(|n| n.id).collect(),
+        });
+    }
+
+    // Where energy went: weight cut.
+    let st = &tree.settings;
+    for (reason, what) in [
+        (EndReason::MaxDepth, format!("max depth {}", st.max_depth)),
+        (
+            EndReason::MinWeight,
+            match scene.settings.min_weight {
+                None => format!(
+                    "the automatic min weight {:.2e}",
+                    st.min_weight.unwrap_or(0.0)
+                ),
+                Some(w) => format!("min weight {w:.2e}"),
+            },
+        ),
+        (
+            EndReason::RayBudget,
+            format!("the ray budget of {} rays per sample", st.max_rays),
+        ),
+    ] {
+        let cut: Vec<&RayNode> = tree.nodes.iter().filter(|n| n.end == reason).collect();
+        if cut.is_empty() {
+            continue;
+        }
+        let weight = cut.iter().fold(Rgb::ZERO, |a, n| {
+            a + n.throughput * atten(n) * n.truncated / spp
+        });
+        sentences.push(Sentence {
+            kind: SentenceKind::Energy,
+            text: format!(
+                "cut by {what}: {} ray{} spawned no secondary rays, leaving path weight {} untraced (the share of the pixel's paths that was not followed)",
+                cut.len(),
+                if cut.len() == 1 { "" } else { "s" },
+                num(luminance(weight))
+            ),
+            nodes: cut.iter().map(|n| n.id).collect(),
+        });
+    }
+
+    // Absorbed by Beer's law, per medium.
+    let mut absorbed: Vec<(usize, Rgb, Vec<NodeId>)> = Vec::new();
+    for n in &tree.nodes {
+        let Some(a) = &n.attenuation else { continue };
+        if a.factor == Rgb::ONE || n.kind == RayKind::Shadow {
+            continue;
+        }
+        let carried = match n.hit {
+            Some(_) => {
+                n.local
+                    + n.children
+                        .iter()
+                        .map(|c| tree.node(*c))
+                        .filter(|c| c.kind != RayKind::Shadow)
+                        .fold(Rgb::ZERO, |s, c| s + c.weight * c.radiance)
+            }
+            None => scene.background,
+        };
+        let lost = n.throughput * (Rgb::ONE - a.factor) * carried / spp;
+        match absorbed.iter_mut().find(|x| x.0 == a.medium) {
+            Some(x) => {
+                x.1 += lost;
+                x.2.push(n.id);
+            }
+            None => absorbed.push((a.medium, lost, vec![n.id])),
+        }
+    }
+    for (medium, lost, nodes) in absorbed {
+        let name = scene
+            .objects
+            .get(medium)
+            .map_or("an absorbing object", |o| o.name.as_str());
+        sentences.push(Sentence {
+            kind: SentenceKind::Energy,
+            text: format!(
+                "absorbed by Beer's law in the {name}: {} of pixel value on {} ray segment{}",
+                rgb(lost),
+                nodes.len(),
+                if nodes.len() == 1 { "" } else { "s" }
+            ),
+            nodes,
+        });
+    }
+
+    // Shadow rays blocked.
+    let blocked: Vec<&RayNode> = tree
+        .nodes
+        .iter()
+        .filter(|n| matches!(n.end, EndReason::Blocked | EndReason::Attenuated))
+        .collect();
+    if !blocked.is_empty() {
+        let mut lost = Rgb::ZERO;
+        let mut by: Vec<&str> = Vec::new();
+        for n in &blocked {
+            let Some(sh) = &n.shadow else { continue };
+            let surface = n.parent.map(|p| tree.node(p));
+            let carry = surface.map_or(Rgb::ONE, |s| s.throughput * atten(s));
+            lost += carry * n.weight * sh.irradiance * (Rgb::ONE - sh.transmittance) / spp;
+            for b in &sh.blockers {
+                if !by.contains(&b.object_name.as_str()) {
+                    by.push(&b.object_name);
+                }
+            }
+        }
+        let text = if lost == Rgb::ZERO {
+            format!(
+                "{} shadow ray{} blocked or dimmed (by the {}), none of which would have lit its surface (BRDF x cos is 0 there)",
+                blocked.len(),
+                if blocked.len() == 1 { "" } else { "s" },
+                by.join(", the ")
+            )
+        } else {
+            format!(
+                "{} shadow ray{} blocked or dimmed by the {}: unblocked they would add {} to the pixel",
+                blocked.len(),
+                if blocked.len() == 1 { "" } else { "s" },
+                by.join(", the "),
+                rgb(lost)
+            )
+        };
+        sentences.push(Sentence {
+            kind: SentenceKind::Energy,
+            text,
+            nodes: blocked.iter().map(|n| n.id).collect(),
+        });
+    }
+
+    suspicious(tree, &mut sentences);
+    Explanation {
+        pixel: tree.pixel,
+        radiance: tree.radiance,
+        shares,
+        sentences,
+    }
+}
+
+fn suspicious(tree: &RayTree, sentences: &mut Vec<Sentence>) {
+    let st = &tree.settings;
+    let offset = format!(
+        "offset {} {:e}",
+        serde_json::to_string(&st.offset.strategy)
+            .unwrap_or_default()
+            .trim_matches('"'),
+        st.offset.epsilon
+    );
+    let self_hits: Vec<NodeId> = tree
+        .nodes
+        .iter()
+        .filter(|n| n.self_hit)
+        .map(|n| n.id)
+        .collect();
+    if !self_hits.is_empty() {
+        sentences.push(Sentence {
+            kind: SentenceKind::Suspicious,
+            text: format!(
+                "{} ray{} re-hit the surface {} left (self-intersection: acne) with {offset}",
+                self_hits.len(),
+                if self_hits.len() == 1 { "" } else { "s" },
+                if self_hits.len() == 1 { "it" } else { "they" }
+            ),
+            nodes: self_hits,
+        });
+    }
+    let leaks: Vec<&RayNode> = tree.nodes.iter().filter(|n| n.leak.is_some()).collect();
+    if let Some(l) = leaks.first().and_then(|n| n.leak.as_ref()) {
+        sentences.push(Sentence {
+            kind: SentenceKind::Suspicious,
+            text: format!(
+                "{} ray{} leaked: the spawn offset skipped a surface a zero offset would meet (first: the {} at {:.3e}) with {offset}",
+                leaks.len(),
+                if leaks.len() == 1 { "" } else { "s" },
+                l.object_name,
+                l.distance
+            ),
+            nodes: leaks.iter().map(|n| n.id).collect(),
+        });
+    }
+    // TIR chains whose last total reflection was cut by max depth: trapped light lost.
+    for n in tree
+        .nodes
+        .iter()
+        .filter(|n| n.end == EndReason::MaxDepth && n.interface.as_ref().is_some_and(|i| i.tir))
+    {
+        let mut chain = vec![n.id];
+        let mut at = n;
+        while let Some(p) = at.parent.map(|p| tree.node(p)) {
+            if at.kind != RayKind::Reflected || !p.interface.as_ref().is_some_and(|i| i.tir) {
+                break;
+            }
+            chain.push(p.id);
+            at = p;
+        }
+        chain.reverse();
+        let spp = tree.samples.len().max(1) as f64;
+        sentences.push(Sentence {
+            kind: SentenceKind::Suspicious,
+            text: format!(
+                "a chain of {} total internal reflection{} ends at max depth {} at #{}: path weight {} trapped and never traced",
+                chain.len(),
+                if chain.len() == 1 { "" } else { "s" },
+                st.max_depth,
+                n.id.0,
+                num(luminance(n.throughput * atten(n) * n.truncated / spp))
+            ),
+            nodes: chain,
+        });
+    }
+    let roots: Vec<NodeId> = tree.samples.iter().map(|s| s.root).collect();
+    if tree.radiance.is_finite() && tree.radiance.max_element() > 1.0 {
+        let ch: Vec<&str> = [
+            ("R", tree.radiance.x),
+            ("G", tree.radiance.y),
+            ("B", tree.radiance.z),
+        ]
+        .iter()
+        .filter(|(_, v)| *v > 1.0)
+        .map(|(c, _)| *c)
+        .collect();
+        sentences.push(Sentence {
+            kind: SentenceKind::Suspicious,
+            text: format!(
+                "the pixel value {} is above 1 in {}: the display clips it (8-bit 255), the EXR keeps it",
+                rgb(tree.radiance),
+                ch.join(", ")
+            ),
+            nodes: roots.clone(),
+        });
+    }
+    let bad: Vec<NodeId> = tree
+        .nodes
+        .iter()
+        .filter(|n| {
+            ![n.radiance, n.weight, n.throughput, n.local]
+                .iter()
+                .all(|c| c.is_finite())
+        })
+        .map(|n| n.id)
+        .collect();
+    if !bad.is_empty() || !tree.radiance.is_finite() {
+        sentences.push(Sentence {
+            kind: SentenceKind::Suspicious,
+            text: format!(
+                "non-finite value: the pixel is {} and {} ray{} carry NaN or infinity",
+                rgb(tree.radiance),
+                bad.len(),
+                if bad.len() == 1 { "" } else { "s" }
+            ),
+            nodes: if bad.is_empty() { roots } else { bad },
+        });
+    }
+}
+
+/// The explanation as text: one sentence a line, `- ` then the text and the node ids.
+#[must_use]
+pub fn explanation_text(e: &Explanation) -> String {
+    let mut out = format!(
+        "pixel ({}, {})  value {}\n",
+        e.pixel[0],
+        e.pixel[1],
+        rgb(e.radiance)
+    );
+    let mut last = None;
+    for s in &e.sentences {
+        if last != Some(s.kind) {
+            let head = match s.kind {
+                SentenceKind::Sees => "what it sees",
+                SentenceKind::Event => "events",
+                SentenceKind::Energy => "where energy went",
+                SentenceKind::Suspicious => "suspicious",
+            };
+            let _ = writeln!(out, "{head}:");
+            last = Some(s.kind);
+        }
+        let _ = writeln!(out, "- {}  ({})", s.text, node_list(&s.nodes));
+    }
+    if !e
+        .sentences
+        .iter()
+        .any(|s| s.kind == SentenceKind::Suspicious)
+    {
+        out.push_str("suspicious: nothing (no self-hit, leak, trapped TIR chain, clipped or non-finite value)\n");
+    }
+    out
+}
+
+/// `#12, #14`, at most 12 ids and then how many more.
+#[must_use]
+pub fn node_list(nodes: &[NodeId]) -> String {
+    const MAX: usize = 12;
+    let mut s: Vec<String> = nodes
+        .iter()
+        .take(MAX)
+        .map(|n| format!("#{}", n.0))
+        .collect();
+    if nodes.len() > MAX {
+        s.push(format!("and {} more", nodes.len() - MAX));
+    }
+    s.join(", ")
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::trace_pixel;
+
+    fn fixture(name: &str) -> Scene {
+        let path = format!("{}/fixtures/{name}", env!("CARGO_MANIFEST_DIR"));
+        Scene::from_json(&std::fs::read_to_string(path).unwrap()).unwrap()
+    }
+
+    fn texts(e: &Explanation, kind: SentenceKind) -> Vec<&str> {
+        e.sentences
+            .iter()
+            .filter(|s| s.kind == kind)
+            .map(|s| s.text.as_str())
+            .collect()
+    }
+
+    fn close(a: Rgb, b: Rgb) -> bool {
+        (a - b).abs().max_element() <= 1e-12 * (1.0 + a.abs().max_element())
+    }
+
+    #[test]
+    fn the_glass_pixel_sees_the_floor_through_the_glass_ball() {
+        let scene = fixture("classic.json");
+        let tree = trace_pixel(&scene, 400, 200).unwrap();
+        let e = explain(&tree, &scene);
+        let top = &e.shares[0];
+        assert_eq!(top.path, "floor seen through the glass ball", "{e:#?}");
+        assert!(top.fraction > 0.5, "{}", top.fraction);
+        let sees = texts(&e, SentenceKind::Sees);
+        assert!(
+            sees[0].starts_with("floor seen through the glass ball: "),
+            "{sees:?}"
+        );
+        // The background reflected off the ball's front is a path of its own.
+        assert!(
+            e.shares
+                .iter()
+                .any(|s| s.path == "background reflected in the glass ball"),
+            "{e:#?}"
+        );
+        // Each share's nodes are exactly the nodes whose terms it sums.
+        for s in &e.shares {
+            let sum = s
+                .nodes
+                .iter()
+                .fold(Rgb::ZERO, |a, id| a + node_term(&tree, tree.node(*id)));
+            assert!(close(sum, s.value), "{}: {sum} vs {}", s.path, s.value);
+        }
+        // The opaque glass blocks the floor's shadow rays behind it? Not at this pixel; but a
+        // blocked shadow ray from inside the ball is reported, with its node.
+        let energy = e
+            .sentences
+            .iter()
+            .find(|s| s.text.contains("shadow ray"))
+            .expect("the glass blocks shadow rays from inside the ball");
+        assert!(energy.nodes.iter().all(|id| {
+            tree.node(*id).end == EndReason::Blocked || tree.node(*id).end == EndReason::Attenuated
+        }));
+    }
+
+    #[test]
+    fn the_shares_add_up_to_the_pixel_value() {
+        let mut checked = 0;
+        for (name, pixels) in [
+            (
+                "classic.json",
+                vec![(400, 200), (300, 200), (5, 5), (250, 300)],
+            ),
+            ("nested.json", vec![(320, 150), (320, 230)]),
+            ("tir-block.json", vec![(320, 230)]),
+            ("absorption.json", vec![(100, 250), (500, 250)]),
+            ("translucent-shadow.json", vec![(320, 300)]),
+        ] {
+            let mut scene = fixture(name);
+            for spp in [1, 4] {
+                scene.settings.spp = spp;
+                for &(x, y) in &pixels {
+                    let tree = trace_pixel(&scene, x, y).unwrap();
+                    let e = explain(&tree, &scene);
+                    let sum = e.shares.iter().fold(Rgb::ZERO, |a, s| a + s.value);
+                    assert!(
+                        close(sum, tree.radiance),
+                        "{name} {x},{y} spp {spp}: {sum} vs {}",
+                        tree.radiance
+                    );
+                    if tree.radiance.element_sum() > 0.0 {
+                        let f: f64 = e.shares.iter().map(|s| s.fraction).sum();
+                        assert!((f - 1.0).abs() < 1e-9, "{name} {x},{y}: {f}");
+                        checked += 1;
+                    }
+                    // Every node id named exists.
+                    for s in &e.sentences {
+                        assert!(s.nodes.iter().all(|n| n.index() < tree.nodes.len()));
+                        assert!(!s.nodes.is_empty(), "{}", s.text);
+                    }
+                }
+            }
+        }
+        assert!(checked > 10, "only {checked} lit pixels checked");
+    }
+
+    #[test]
+    fn tir_in_the_block_is_mentioned() {
+        let scene = fixture("tir-block.json");
+        let tree = trace_pixel(&scene, 320, 230).unwrap();
+        let e = explain(&tree, &scene);
+        let ev = e
+            .sentences
+            .iter()
+            .find(|s| s.kind == SentenceKind::Event)
+            .expect("a TIR sentence");
+        assert!(ev.text.contains("total internal reflection"), "{}", ev.text);
+        assert!(
+            ev.text.contains("glass block") && ev.text.contains("41.8"),
+            "{}",
+            ev.text
+        );
+        assert!(
+            ev.nodes
+                .iter()
+                .all(|id| tree.node(*id).interface.as_ref().is_some_and(|i| i.tir))
+        );
+    }
+
+    #[test]
+    fn max_depth_one_on_nested_is_a_cut() {
+        let mut scene = fixture("nested.json");
+        scene.settings.max_depth = 1;
+        let tree = trace_pixel(&scene, 320, 150).unwrap();
+        let e = explain(&tree, &scene);
+        let cut = e
+            .sentences
+            .iter()
+            .find(|s| s.text.starts_with("cut by max depth 1"))
+            .unwrap_or_else(|| panic!("{:#?}", e.sentences));
+        assert_eq!(cut.kind, SentenceKind::Energy);
+        assert!(
+            cut.nodes
+                .iter()
+                .all(|id| tree.node(*id).end == EndReason::MaxDepth)
+        );
+        // At the default depth nothing there is cut by max depth.
+        scene.settings.max_depth = 16;
+        let tree = trace_pixel(&scene, 320, 150).unwrap();
+        let e = explain(&tree, &scene);
+        assert!(
+            !e.sentences
+                .iter()
+                .any(|s| s.text.starts_with("cut by max depth"))
+        );
+    }
+
+    #[test]
+    fn beer_absorbs_red_more_than_blue_in_the_water() {
+        let scene = fixture("absorption.json");
+        let tree = trace_pixel(&scene, 320, 180).unwrap();
+        let e = explain(&tree, &scene);
+        let s = e
+            .sentences
+            .iter()
+            .find(|s| s.text.starts_with("absorbed by Beer's law in the water 1"))
+            .unwrap_or_else(|| panic!("{:#?}", e.sentences));
+        assert!(
+            s.nodes
+                .iter()
+                .all(|id| tree.node(*id).attenuation.is_some())
+        );
+        // The water's absorption is [0.9, 0.25, 0.06]: red is lost most ("deeper water looks
+        // blue").
+        let inside = &s.text[s.text.find('[').unwrap() + 1..s.text.find(']').unwrap()];
+        let v: Vec<f64> = inside.split(", ").map(|x| x.parse().unwrap()).collect();
+        assert!(v[0] > v[1] && v[1] > v[2] && v[2] > 0.0, "{}", s.text);
+    }
+
+    /// Suspicious cases built on a real tree: each must be reported, and a clean tree has none.
+    #[test]
+    fn suspicious_values_are_reported() {
+        let scene = fixture("classic.json");
+        let clean = trace_pixel(&scene, 400, 200).unwrap();
+        assert!(texts(&explain(&clean, &scene), SentenceKind::Suspicious).is_empty());
+
+        let mut t = clean.clone();
+        t.radiance = Rgb::new(1.5, 0.2, 0.1);
+        let s = texts(&explain(&t, &scene), SentenceKind::Suspicious).join("|");
+        assert!(s.contains("above 1 in R") && s.contains("clips"), "{s}");
+
+        let mut t = clean.clone();
+        t.nodes[3].radiance = Rgb::new(f64::NAN, 0.0, 0.0);
+        let e = explain(&t, &scene);
+        let s = e
+            .sentences
+            .iter()
+            .find(|s| s.text.starts_with("non-finite"))
+            .expect("NaN reported");
+        assert_eq!(s.nodes, vec![NodeId(3)]);
+
+        let mut t = clean.clone();
+        t.nodes[2].self_hit = true;
+        t.nodes[5].self_hit = true;
+        let e = explain(&t, &scene);
+        let s = e
+            .sentences
+            .iter()
+            .find(|s| s.text.contains("self-intersection"))
+            .unwrap();
+        assert_eq!(s.nodes, vec![NodeId(2), NodeId(5)]);
+        assert!(s.text.starts_with("2 rays"), "{}", s.text);
+    }
+
+    #[test]
+    fn a_tir_chain_cut_at_max_depth_is_suspicious() {
+        let mut scene = fixture("tir-block.json");
+        let tree = trace_pixel(&scene, 320, 230).unwrap();
+        let e = explain(&tree, &scene);
+        assert!(
+            !texts(&e, SentenceKind::Suspicious)
+                .iter()
+                .any(|s| s.contains("chain"))
+        );
+        // Cut the recursion right at the first TIR event.
+        let first_tir = tree
+            .nodes
+            .iter()
+            .find(|n| n.interface.as_ref().is_some_and(|i| i.tir))
+            .unwrap();
+        scene.settings.max_depth = first_tir.depth;
+        let tree = trace_pixel(&scene, 320, 230).unwrap();
+        let e = explain(&tree, &scene);
+        let s = e
+            .sentences
+            .iter()
+            .find(|s| {
+                s.text.contains("total internal reflection") && s.kind == SentenceKind::Suspicious
+            })
+            .unwrap_or_else(|| panic!("{:#?}", e.sentences));
+        assert!(s.text.contains("ends at max depth"), "{}", s.text);
+    }
+
+    #[test]
+    fn text_lists_node_ids() {
+        let scene = fixture("classic.json");
+        let tree = trace_pixel(&scene, 400, 200).unwrap();
+        let text = explanation_text(&explain(&tree, &scene));
+        assert!(text.starts_with("pixel (400, 200)"), "{text}");
+        assert!(
+            text.contains("- floor seen through the glass ball: "),
+            "{text}"
+        );
+        assert!(text.contains("(#"), "{text}");
+        assert_eq!(node_list(&[NodeId(12), NodeId(14)]), "#12, #14");
+        let many: Vec<NodeId> = (0..15).map(NodeId).collect();
+        assert!(node_list(&many).ends_with("#11, and 3 more"));
+    }
+}

@@ -1,0 +1,56 @@
+//! `raytree explain`: a pixel's tree in a few sentences (`raytree::analysis::explain`).
+
+use super::args::Overrides;
+use super::load::{load, pair};
+use super::say::{out, sayln};
+use anyhow::{Result, bail};
+use clap::Args;
+use raytree::analysis::explain::{explain, explanation_text};
+use std::path::PathBuf;
+
+/// `raytree explain`.
+#[derive(Debug, Args)]
+pub struct ExplainArgs {
+    /// Scene JSON (default: the built-in classic scene).
+    pub scene: Option<PathBuf>,
+    /// Pixel X,Y (0,0 is top-left).
+    #[arg(long, value_name = "X,Y")]
+    pub pixel: String,
+    /// Print JSON (pixel, radiance, shares, sentences) instead of text.
+    #[arg(long)]
+    pub json: bool,
+    /// Settings overrides.
+    #[command(flatten)]
+    pub overrides: Overrides,
+}
+
+/// Trace the pixel and print its explanation.
+pub fn run(a: &ExplainArgs) -> Result<()> {
+    let (x, y) = pair("pixel", &a.pixel, ',')?;
+    let mut loaded = load(a.scene.as_deref(), &a.overrides)?;
+    super::budget::fit_tree(
+        &mut loaded.scene,
+        super::budget::mib(a.overrides.max_memory),
+    )?;
+    let cam = &loaded.scene.camera;
+    let Some(tree) = raytree::trace_pixel(&loaded.scene, x, y) else {
+        bail!(
+            "--pixel {x},{y} is outside the {}x{} image",
+            cam.width,
+            cam.height
+        );
+    };
+    let e = explain(&tree, &loaded.scene);
+    if a.json {
+        let finite = e.radiance.is_finite() && e.shares.iter().all(|s| s.value.is_finite());
+        if !finite {
+            bail!(
+                "pixel {x},{y}: the explanation holds a non-finite value; JSON cannot carry it, so none was written (the text form shows it: drop --json)"
+            );
+        }
+        sayln!("{}", serde_json::to_string_pretty(&e)?)?;
+    } else {
+        out(&explanation_text(&e))?;
+    }
+    Ok(())
+}
