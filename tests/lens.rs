@@ -194,9 +194,23 @@ fn bad_lens_and_filter_values_are_refused() {
     for cmd in [
         &["trace", "--pixel", "1,1"][..],
         &["diagram", "--pixel", "1,1", "-o", "d.svg"],
+        &["effects"],
+        &["cost", "--quick", "--repeats", "1", "-o", "cost"],
+        &[
+            "acne",
+            "--size",
+            "8x6",
+            "--scales",
+            "1",
+            "--epsilons",
+            "1e-4",
+            "-o",
+            "acne",
+        ],
     ] {
         fails_with(d, &[cmd, &["--aperture", "-1"]].concat(), "--aperture");
         fails_with(d, &[cmd, &["--filter", "tent:0"]].concat(), "--filter");
+        fails_with(d, &[cmd, &["--focus", "0"]].concat(), "--focus");
     }
     let scene = |camera: &str, settings: &str| {
         format!(

@@ -52,7 +52,8 @@ pub struct StratifiedJitter {
     /// The current sample's hash key (pixel, index, seed) of the film offset (the historical
     /// key: it repeats across pixels for sample indices from 512 on, see [`Self::hashed`]).
     key: u64,
-    /// The current pixel's hashed key (pixel, seed), for the dimensions after the film offset.
+    /// The current pixel `y << 32 | x`, hashed with the seed for the dimensions after the film
+    /// offset (only when one is drawn: the Whitted render draws none and pays nothing).
     pixel: u64,
     /// The current sample index.
     sample: u32,
@@ -97,7 +98,7 @@ impl StratifiedJitter {
     #[inline]
     fn hashed(&mut self) -> f64 {
         self.dim = self.dim.max(2);
-        let sample = splitmix64(self.pixel ^ u64::from(self.sample));
+        let sample = splitmix64(splitmix64(self.pixel ^ self.seed_mix) ^ u64::from(self.sample));
         let h = splitmix64(sample ^ splitmix64(u64::from(self.dim) << 40));
         self.dim += 1;
         unit(h)
@@ -109,7 +110,7 @@ impl PixelSampler for StratifiedJitter {
     fn start_sample(&mut self, (x, y): (u32, u32), s: u32) {
         self.key = ((u64::from(y) << 32 | u64::from(x)) ^ (u64::from(s) << 48).rotate_left(7))
             ^ self.seed_mix;
-        self.pixel = splitmix64((u64::from(y) << 32 | u64::from(x)) ^ self.seed_mix);
+        self.pixel = u64::from(y) << 32 | u64::from(x);
         self.sample = s;
         self.dim = 0;
     }
