@@ -8,14 +8,15 @@
 use crate::bvh::TraversalCost;
 use crate::bvh::wide::PACKET;
 use crate::geometry::Shape;
-use crate::math::Rgb;
-use crate::sampling::{PixelSampler, StratifiedJitter};
-use crate::scene::Scene;
+use crate::math::{Ray, Rgb};
+use crate::sampling::{PixelFilter, PixelSampler, StratifiedJitter};
+use crate::scene::{Film, Scene};
 use crate::trace::{
     DiagnosticRecorder, Integrator, NoopRecorder, RayCounts, Recorder, SceneIntegrator,
     TreeRecorder,
 };
 use crate::tree::{RayTree, SampleRecord, TREE_SCHEMA};
+use glam::DVec2;
 use rayon::prelude::*;
 
 /// A linear-radiance image, row-major, top row first.
@@ -91,7 +92,46 @@ fn film_position<S: PixelSampler>(sampler: &mut S, x: u32, y: u32, s: u32) -> (f
     (f64::from(x) + u, f64::from(y) + v)
 }
 
-/// Trace every sample of pixel (x, y) into `rec`; returns the pixel radiance (box filter).
+/// Start sample `s` of pixel (x, y) in `sampler` and return its film position and camera ray.
+///
+/// The film position is the pixel centre plus an offset drawn from `filter` with the sampler's
+/// first 2D value (filter importance sampling, pbrt-v4 section 8.8.3, so every sample has
+/// weight 1); the box filter keeps the historical `corner + u` bit for bit. A thin-lens camera
+/// then draws the lens sample as the next 2D value ([`Film::lens_ray`]); a pinhole draws
+/// nothing more, so aperture 0 traces the pinhole's rays and leaves the sampler's later
+/// dimensions where they were. Both the pixel loop and the packet bands call this, so they
+/// trace the same rays.
+///
+/// [`Film::lens_ray`]: crate::scene::Film::lens_ray
+#[inline(always)]
+fn camera_sample<S: PixelSampler>(
+    film: &Film<'_>,
+    filter: PixelFilter,
+    sampler: &mut S,
+    x: u32,
+    y: u32,
+    s: u32,
+) -> ((f64, f64), Ray) {
+    sampler.start_sample((x, y), s);
+    let (u, v) = sampler.next_2d();
+    let (fx, fy) = match filter {
+        PixelFilter::Box => (f64::from(x) + u, f64::from(y) + v),
+        f => {
+            let o = f.sample(DVec2::new(u, v));
+            (f64::from(x) + 0.5 + o.x, f64::from(y) + 0.5 + o.y)
+        }
+    };
+    let ray = if film.has_lens() {
+        let (a, b) = sampler.next_2d();
+        film.lens_ray(fx, fy, DVec2::new(a, b))
+    } else {
+        film.ray(fx, fy)
+    };
+    ((fx, fy), ray)
+}
+
+/// Trace every sample of pixel (x, y) into `rec`; returns the pixel radiance (the plain mean
+/// of its samples, whose positions the filter chose).
 pub fn render_pixel<R: Recorder>(
     scene: &Scene,
     x: u32,
@@ -119,7 +159,8 @@ pub fn render_pixel_with<I: Integrator, R: Recorder>(
 
 /// [`render_pixel_with`] drawing every sample from `sampler` (the sampler seam): sample `s`
 /// starts with [`PixelSampler::start_sample`], its film position is the pixel corner plus the
-/// first [`PixelSampler::next_2d`], and the integrator draws its further dimensions.
+/// first [`PixelSampler::next_2d`] through the filter ([`camera_sample`]: then the lens sample
+/// of a thin-lens camera), and the integrator draws its further dimensions.
 pub fn render_pixel_sampled<I: Integrator, S: PixelSampler, R: Recorder>(
     integrator: &I,
     sampler: &mut S,
@@ -131,10 +172,11 @@ pub fn render_pixel_sampled<I: Integrator, S: PixelSampler, R: Recorder>(
 ) -> Rgb {
     let scene = integrator.scene();
     let spp = scene.settings.spp.max(1);
+    let filter = scene.settings.filter.filter();
+    let film = integrator.film();
     let mut sum = Rgb::ZERO;
     for s in 0..spp {
-        let (fx, fy) = film_position(sampler, x, y, s);
-        let ray = integrator.film().ray(fx, fy);
+        let ((fx, fy), ray) = camera_sample(film, filter, sampler, x, y, s);
         let (l, root) = integrator.camera_radiance(ray, sampler, rec, counts);
         sum += l;
         if let Some(root) = root {
@@ -401,6 +443,7 @@ fn render_band<R: Recorder + Default, I: Integrator, S: PixelSampler>(
     let mut rec = R::default();
     let mut band = vec![Rgb::ZERO; (w * rows) as usize];
     let film = integrator.film();
+    let filter = scene.settings.filter.filter();
     let mut rays = Vec::with_capacity(PACKET);
     let mut hits = [None; PACKET];
     let mut cost = [TraversalCost::default(); PACKET];
@@ -411,8 +454,8 @@ fn render_band<R: Recorder + Default, I: Integrator, S: PixelSampler>(
             rays.clear();
             for dy in 0..rows {
                 for dx in 0..cols {
-                    let (fx, fy) = film_position(&mut sampler, x0 + dx, y0 + dy, s);
-                    rays.push(film.ray(fx, fy));
+                    let (_, ray) = camera_sample(film, filter, &mut sampler, x0 + dx, y0 + dy, s);
+                    rays.push(ray);
                 }
             }
             cost.fill(TraversalCost::default());
@@ -432,3 +475,7 @@ fn render_band<R: Recorder + Default, I: Integrator, S: PixelSampler>(
     }
     (band, counts)
 }
+
+#[cfg(test)]
+#[path = "render_tests.rs"]
+mod tests;

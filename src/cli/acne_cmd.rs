@@ -62,6 +62,9 @@ pub fn run(a: &AcneArgs) -> Result<()> {
     let overrides = Overrides {
         integrator: a.integrator.clone(),
         seed: a.seed,
+        aperture: a.aperture,
+        focus: a.focus,
+        filter: a.filter.clone(),
         ..Overrides::default()
     };
     let loaded = load(a.scene.as_deref(), &overrides)?;

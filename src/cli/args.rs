@@ -88,6 +88,19 @@ pub struct Overrides {
     /// lights on.
     #[arg(long, value_name = "N")]
     pub light_samples: Option<u32>,
+    /// Thin-lens aperture radius in world units (0 = pinhole); sets camera.aperture_radius.
+    #[arg(long, value_name = "R", allow_negative_numbers = true)]
+    pub aperture: Option<f64>,
+    /// Distance of the plane in focus (> 0); sets camera.focus_distance.
+    #[arg(long, value_name = "D", allow_negative_numbers = true)]
+    pub focus: Option<f64>,
+    /// Pixel filter: box, tent:RADIUS or gaussian:SIGMA (radius 3 sigma), in pixels.
+    #[arg(
+        long,
+        value_name = "box|tent:R|gaussian:SIGMA",
+        allow_hyphen_values = true
+    )]
+    pub filter: Option<String>,
 }
 
 /// `raytree render`.
@@ -152,6 +165,19 @@ pub struct AcneArgs {
     /// Seed of the per-pixel sample positions (0 = the default positions).
     #[arg(long)]
     pub seed: Option<u64>,
+    /// Thin-lens aperture radius in world units (0 = pinhole); scaled with the scene.
+    #[arg(long, value_name = "R", allow_negative_numbers = true)]
+    pub aperture: Option<f64>,
+    /// Distance of the plane in focus (> 0); scaled with the scene.
+    #[arg(long, value_name = "D", allow_negative_numbers = true)]
+    pub focus: Option<f64>,
+    /// Pixel filter: box, tent:RADIUS or gaussian:SIGMA (radius 3 sigma), in pixels.
+    #[arg(
+        long,
+        value_name = "box|tent:R|gaussian:SIGMA",
+        allow_hyphen_values = true
+    )]
+    pub filter: Option<String>,
 }
 
 /// `raytree effects`.

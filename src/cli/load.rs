@@ -174,10 +174,25 @@ pub fn apply(scene: &mut Scene, o: &Overrides) -> Result<()> {
     if let Some(v) = o.light_samples {
         s.light_samples = Some(v);
     }
+    if let Some(v) = &o.filter {
+        s.filter =
+            raytree::scene::FilterDesc::parse(v).map_err(|msg| anyhow!("--filter: {msg}"))?;
+    }
     raytree::scene::check_settings(s).map_err(|(path, msg)| {
         let flag = path.rsplit('.').next().unwrap_or(&path).replace('_', "-");
+        if path.starts_with("settings.filter.") {
+            return anyhow!("--filter: {flag} {msg}");
+        }
         anyhow!("--{flag}: {msg}")
     })?;
+    if let Some(v) = o.aperture {
+        scene.camera.aperture_radius =
+            raytree::scene::check_aperture(v).map_err(|msg| anyhow!("--aperture: {msg}"))?;
+    }
+    if let Some(v) = o.focus {
+        scene.camera.focus_distance =
+            raytree::scene::check_focus(v).map_err(|msg| anyhow!("--focus: {msg}"))?;
+    }
     if let Some(size) = &o.size {
         let (w, h) = pair("size", size, 'x')?;
         if w == 0 || h == 0 || w > 65_536 || h > 65_536 {

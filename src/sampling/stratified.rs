@@ -49,8 +49,12 @@ pub fn unit(h: u64) -> f64 {
 pub struct StratifiedJitter {
     spp: u32,
     seed_mix: u64,
-    /// The current sample's hash key (pixel, index, seed).
+    /// The current sample's hash key (pixel, index, seed) of the film offset (the historical
+    /// key: it repeats across pixels for sample indices from 512 on, see [`Self::hashed`]).
     key: u64,
+    /// The current pixel `y << 32 | x`, hashed with the seed for the dimensions after the film
+    /// offset (only when one is drawn: the Whitted render draws none and pays nothing).
+    pixel: u64,
     /// The current sample index.
     sample: u32,
     /// The next dimension (0 and 1 are the film offset).
@@ -71,6 +75,7 @@ impl StratifiedJitter {
                 splitmix64(seed) ^ splitmix64(0)
             },
             key: 0,
+            pixel: 0,
             sample: 0,
             dim: 0,
         }
@@ -82,11 +87,19 @@ impl StratifiedJitter {
         Self::new(settings.spp, settings.seed)
     }
 
-    /// A dimension after the film offset: a fresh hash of (key, dimension).
+    /// A dimension after the film offset: a fresh hash of (pixel, seed, index, dimension).
+    ///
+    /// Not of the film offset's `key`: that key puts the index's bits 9 to 15 on the column's
+    /// bits 0 to 6 (`(s << 48).rotate_left(7)`), so pixel (x, y) sample s and pixel (x ^ 1, y)
+    /// sample s ^ 512 share it, and a lens sample drawn from it would repeat across neighbouring
+    /// pixels at 512 samples per pixel and more (the render-path chi-square of the lens points
+    /// rejected exactly that). Here the pixel is hashed before the index is mixed in: SplitMix64
+    /// is a bijection, so distinct (pixel, index) pairs collide only by chance.
     #[inline]
     fn hashed(&mut self) -> f64 {
         self.dim = self.dim.max(2);
-        let h = splitmix64(self.key ^ splitmix64(u64::from(self.dim) << 40));
+        let sample = splitmix64(splitmix64(self.pixel ^ self.seed_mix) ^ u64::from(self.sample));
+        let h = splitmix64(sample ^ splitmix64(u64::from(self.dim) << 40));
         self.dim += 1;
         unit(h)
     }
@@ -97,6 +110,7 @@ impl PixelSampler for StratifiedJitter {
     fn start_sample(&mut self, (x, y): (u32, u32), s: u32) {
         self.key = ((u64::from(y) << 32 | u64::from(x)) ^ (u64::from(s) << 48).rotate_left(7))
             ^ self.seed_mix;
+        self.pixel = u64::from(y) << 32 | u64::from(x);
         self.sample = s;
         self.dim = 0;
     }
@@ -189,6 +203,21 @@ mod tests {
         );
         assert_eq!(draw(spp, 0, (x, y), s)[..2], [want.0, want.1]);
         assert_ne!(draw(spp, 1, (x, y), s)[..2], [want.0, want.1]);
+    }
+
+    /// Later dimensions do not repeat across pixels (the film offset's key does, from sample
+    /// index 512 on: pixel (1, 0) sample 0 and pixel (0, 0) sample 512).
+    #[test]
+    fn later_dimensions_differ_where_the_film_key_repeats() {
+        let (a, b) = (draw(1024, 0, (1, 0), 0), draw(1024, 0, (0, 0), 512));
+        assert_ne!(a[2..], b[2..]);
+        let mut seen = std::collections::HashSet::new();
+        for x in 0..64 {
+            for s in (0..4096).step_by(7) {
+                let v = draw(4096, 5, (x, 3), s);
+                assert!(seen.insert(v[2].to_bits()), "repeat at ({x}, 3) sample {s}");
+            }
+        }
     }
 
     /// Later dimensions are uniform: a coarse histogram over many samples.

@@ -55,6 +55,18 @@ pub struct CameraDesc {
     pub width: u32,
     /// Image height in pixels.
     pub height: u32,
+    /// Thin-lens radius in world units (>= 0; 0, the default, is the pinhole).
+    #[serde(default, skip_serializing_if = "is_zero")]
+    pub aperture_radius: f64,
+    /// Distance of the plane in focus along the view direction (> 0; default
+    /// `|look_at - position|`).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub focus_distance: Option<f64>,
+}
+
+#[allow(clippy::trivially_copy_pass_by_ref)] // serde's skip_serializing_if passes a reference
+fn is_zero(v: &f64) -> bool {
+    *v == 0.0
 }
 
 fn default_up() -> Triple {
@@ -399,6 +411,88 @@ impl TryFrom<String> for IntegratorKind {
     }
 }
 
+/// The pixel filter (`settings.filter`), importance-sampled: the camera ray's offset from the
+/// pixel centre is drawn from it ([`crate::sampling::PixelFilter`]).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Serialize, Deserialize)]
+#[serde(tag = "type", rename_all = "lowercase", deny_unknown_fields)]
+pub enum FilterDesc {
+    /// Uniform over the pixel (today's positions, bit for bit).
+    #[default]
+    Box,
+    /// Separable tent of `radius` pixels.
+    Tent {
+        /// Half-width in pixels (> 0).
+        radius: f64,
+    },
+    /// Separable Gaussian of standard deviation `sigma` pixels, truncated at `radius` pixels.
+    Gaussian {
+        /// Standard deviation in pixels (> 0).
+        sigma: f64,
+        /// Truncation radius in pixels (> 0); default [`GAUSSIAN_RADIUS_SIGMAS`] `sigma`.
+        #[serde(default, skip_serializing_if = "Option::is_none")]
+        radius: Option<f64>,
+    },
+}
+
+/// A Gaussian filter without a `radius` is truncated at this many `sigma`.
+pub const GAUSSIAN_RADIUS_SIGMAS: f64 = 3.0;
+
+impl FilterDesc {
+    /// The sampling filter.
+    #[must_use]
+    pub fn filter(&self) -> crate::sampling::PixelFilter {
+        use crate::sampling::PixelFilter;
+        match *self {
+            FilterDesc::Box => PixelFilter::Box,
+            FilterDesc::Tent { radius } => PixelFilter::Tent { radius },
+            FilterDesc::Gaussian { sigma, radius } => PixelFilter::Gaussian {
+                sigma,
+                radius: radius.unwrap_or(GAUSSIAN_RADIUS_SIGMAS * sigma),
+            },
+        }
+    }
+
+    /// Whether this is the default box.
+    #[must_use]
+    pub fn is_box(&self) -> bool {
+        *self == FilterDesc::Box
+    }
+
+    /// The filter written `box`, `tent:R` or `gaussian:SIGMA` (the `--filter` flag), or why
+    /// not. Values are checked by [`crate::scene::check_settings`].
+    ///
+    /// # Errors
+    /// An unknown type, a missing or extra parameter, or a parameter that is not a number.
+    pub fn parse(v: &str) -> Result<Self, String> {
+        let (kind, arg) = match v.split_once(':') {
+            Some((k, a)) => (k, Some(a)),
+            None => (v, None),
+        };
+        let number = |a: Option<&str>, what: &str| -> Result<f64, String> {
+            let a = a.ok_or_else(|| {
+                format!("{kind} needs its {what}: {kind}:{}", what.to_uppercase())
+            })?;
+            a.trim()
+                .parse::<f64>()
+                .map_err(|_| format!("{what} {a:?} is not a number"))
+        };
+        match kind {
+            "box" if arg.is_none() => Ok(FilterDesc::Box),
+            "box" => Err("box takes no parameter".into()),
+            "tent" => Ok(FilterDesc::Tent {
+                radius: number(arg, "radius")?,
+            }),
+            "gaussian" => Ok(FilterDesc::Gaussian {
+                sigma: number(arg, "sigma")?,
+                radius: None,
+            }),
+            _ => Err(format!(
+                "unknown filter {kind:?}, expected box, tent:RADIUS or gaussian:SIGMA"
+            )),
+        }
+    }
+}
+
 /// Tracer settings.
 #[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields, default)]
@@ -409,8 +503,11 @@ pub struct Settings {
     pub seed: u64,
     /// Deepest recursion; 0 = camera rays and shadow rays only.
     pub max_depth: u32,
-    /// Samples per pixel (stratified, box filter).
+    /// Samples per pixel (stratified; positions drawn from `filter`).
     pub spp: u32,
+    /// The pixel filter (default box).
+    #[serde(skip_serializing_if = "FilterDesc::is_box")]
+    pub filter: FilterDesc,
     /// Secondary-ray offset.
     pub offset: OffsetDesc,
     /// Fresnel model.
@@ -446,6 +543,7 @@ impl Default for Settings {
             seed: 0,
             max_depth: 16,
             spp: 1,
+            filter: FilterDesc::Box,
             offset: OffsetDesc::default(),
             fresnel: FresnelModel::Exact,
             shadows: ShadowMode::Opaque,

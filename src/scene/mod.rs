@@ -22,18 +22,20 @@ use glam::DVec3;
 use std::borrow::Cow;
 
 pub use accel::{Accel, traversal_cost_image};
-pub use desc::{IntegratorKind, OffsetDesc, OffsetStrategy, SceneDesc, Settings, ShadowMode};
+pub use desc::{
+    FilterDesc, IntegratorKind, OffsetDesc, OffsetStrategy, SceneDesc, Settings, ShadowMode,
+};
 pub use error::SceneError;
 pub use generated::icosphere_scene;
 pub use locate::locate;
 pub use transform::transformed;
-pub use validate::check_settings;
+pub use validate::{check_aperture, check_focus, check_settings};
 
 /// The built-in default scene: the lecture's classic (mirror ball, glass ball, checkered floor,
 /// one light). Same file as `fixtures/classic.json`.
 pub const DEFAULT_SCENE_JSON: &str = include_str!("../../fixtures/classic.json");
 
-/// A pinhole camera with an orthonormal frame.
+/// A camera with an orthonormal frame: a pinhole, or a thin lens when `aperture_radius > 0`.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Camera {
     /// Eye position.
@@ -50,6 +52,10 @@ pub struct Camera {
     pub width: u32,
     /// Image height.
     pub height: u32,
+    /// Thin-lens radius in world units; 0 is the pinhole (`camera.aperture_radius`).
+    pub aperture_radius: f64,
+    /// Distance along `forward` of the plane in focus (`camera.focus_distance`, > 0).
+    pub focus_distance: f64,
 }
 
 impl Camera {
@@ -107,6 +113,34 @@ impl Film<'_> {
         let (u, v) = self.to_plane(fx, fy);
         let d = (c.forward + u * c.right + v * c.up).normalize();
         Ray::new(c.position, d, 0.0)
+    }
+
+    /// Whether the camera is a thin lens (`aperture_radius > 0`): its camera rays then need a
+    /// lens sample ([`Film::lens_ray`]); a pinhole's do not ([`Film::ray`]).
+    #[must_use]
+    #[inline]
+    pub fn has_lens(&self) -> bool {
+        self.camera.aperture_radius > 0.0
+    }
+
+    /// The thin-lens camera ray through film position `(fx, fy)` and lens sample `u` in
+    /// `[0, 1)^2` (pbrt-v4 `PerspectiveCamera::GenerateRay`, section 5.2.3): the point on the
+    /// lens is `aperture_radius` times the concentric disk map of `u`
+    /// ([`crate::sampling::warp::square_to_concentric_disk`], Shirley and Chiu 1997) in the
+    /// `right`/`up` plane through the eye; the ray leaves it towards the point where the pinhole
+    /// ray of `(fx, fy)` meets the plane at `focus_distance` along `forward`. Every point of that
+    /// plane is therefore seen at one film position from every lens sample (it is in focus).
+    #[must_use]
+    #[inline]
+    pub fn lens_ray(&self, fx: f64, fy: f64, u: glam::DVec2) -> Ray {
+        let c = self.camera;
+        let (pu, pv) = self.to_plane(fx, fy);
+        // The pinhole direction scaled so its `forward` component is 1 (pbrt: ft = f / d.z).
+        let focus = c.focus_distance * (c.forward + pu * c.right + pv * c.up);
+        let lens = c.aperture_radius * crate::sampling::warp::square_to_concentric_disk(u);
+        let on_lens = lens.x * c.right + lens.y * c.up;
+        // Both relative to the eye, so a far-away camera does not cancel digits.
+        Ray::new(c.position + on_lens, (focus - on_lens).normalize(), 0.0)
     }
 
     /// [`Camera::film_to_plane`].
@@ -412,3 +446,6 @@ impl Scene {
             .filter_map(|(m, u)| u.then_some(m))
     }
 }
+
+#[cfg(test)]
+mod lens_tests;

@@ -12,7 +12,8 @@ use std::sync::Arc;
 /// intensities are multiplied by `scale^2` and absorption coefficients divided by `scale`, so
 /// irradiance and Beer's factors (and so the image) are unchanged; checker cells scale with the
 /// scene (their pattern is fixed in world space, so a translation that is not a whole number of
-/// cells shifts it). Directions, normals and the field of view are invariant. The offset
+/// cells shifts it). The thin lens's aperture radius and focus distance scale too. Directions, normals and the
+/// field of view are invariant. The offset
 /// epsilon stays absolute: an offset strategy either scales it or not, and that is what the
 /// sweep measures.
 #[must_use]
@@ -20,6 +21,8 @@ pub fn transformed(scene: &Scene, scale: f64, translation: DVec3) -> Scene {
     let map = |p: DVec3| scale * p + translation;
     let mut out = scene.clone();
     out.camera.position = map(scene.camera.position);
+    out.camera.aperture_radius *= scale;
+    out.camera.focus_distance *= scale;
     for o in &mut out.objects {
         o.shape = match o.shape {
             Shape::Sphere { center, radius } => Shape::Sphere {

@@ -99,6 +99,20 @@ fn camera(ck: &Check, c: &CameraDesc) -> Result<Camera, SceneError> {
             );
         }
     }
+    let aperture_radius = ck.finite("camera.aperture_radius", c.aperture_radius)?;
+    if let Err(msg) = check_aperture(aperture_radius) {
+        return ck.fail("camera.aperture_radius", msg);
+    }
+    let focus_distance = match c.focus_distance {
+        Some(f) => {
+            let f = ck.finite("camera.focus_distance", f)?;
+            if let Err(msg) = check_focus(f) {
+                return ck.fail("camera.focus_distance", msg);
+            }
+            f
+        }
+        None => (look_at - position).length(),
+    };
     Ok(Camera {
         position,
         forward,
@@ -107,7 +121,27 @@ fn camera(ck: &Check, c: &CameraDesc) -> Result<Camera, SceneError> {
         fov_y,
         width: c.width,
         height: c.height,
+        aperture_radius,
+        focus_distance,
     })
+}
+
+/// `camera.aperture_radius` (and `--aperture`): a finite number >= 0.
+pub fn check_aperture(r: f64) -> Result<f64, String> {
+    if r.is_finite() && r >= 0.0 {
+        Ok(r)
+    } else {
+        Err(format!("must be a finite number >= 0, got {r}"))
+    }
+}
+
+/// `camera.focus_distance` (and `--focus`): a finite number > 0.
+pub fn check_focus(f: f64) -> Result<f64, String> {
+    if f.is_finite() && f > 0.0 {
+        Ok(f)
+    } else {
+        Err(format!("must be a finite number > 0, got {f}"))
+    }
 }
 
 fn material(ck: &Check, name: &str, m: &MaterialDesc) -> Result<Material, SceneError> {
@@ -320,11 +354,35 @@ pub fn check_settings(s: &Settings) -> Result<Settings, (String, String)> {
             format!("must be in 1..={MAX_LIGHT_SAMPLES}, got {n}"),
         ));
     }
+    check_filter(&s.filter)?;
     Ok(*s)
 }
 
 /// Largest accepted `settings.light_samples`.
 pub const MAX_LIGHT_SAMPLES: u32 = 65_536;
+
+/// `settings.filter`: radius and sigma finite and > 0.
+fn check_filter(f: &super::desc::FilterDesc) -> Result<(), (String, String)> {
+    use super::desc::FilterDesc;
+    let positive = |name: &str, v: f64| {
+        if v.is_finite() && v > 0.0 {
+            Ok(())
+        } else {
+            Err((
+                format!("settings.filter.{name}"),
+                format!("must be a finite number > 0, got {v}"),
+            ))
+        }
+    };
+    match *f {
+        FilterDesc::Box => Ok(()),
+        FilterDesc::Tent { radius } => positive("radius", radius),
+        FilterDesc::Gaussian { sigma, radius } => {
+            positive("sigma", sigma)?;
+            radius.map_or(Ok(()), |r| positive("radius", r))
+        }
+    }
+}
 
 #[cfg(test)]
 mod tests {
