@@ -121,15 +121,25 @@ proptest! {
         }
     }
 
-    /// Byte-level damage (truncation, a flipped character): never a panic.
+    /// Byte-level damage (truncation, a flipped character): never a panic; a truncated
+    /// document is always rejected, and every rejection has a line and column.
     #[test]
     fn damaged_text_never_panics(cut in 0usize..2000, at in 0usize..2000, ch in any::<char>()) {
-        let mut src: String = CLASSIC.chars().take(cut.max(1)).collect();
-        let _ = Scene::from_json(&src);
+        let src: String = CLASSIC.chars().take(cut.max(1)).collect();
+        let result = Scene::from_json(&src);
+        if src.len() < CLASSIC.trim_end().len() {
+            // A strict prefix lacks at least the closing brace.
+            prop_assert!(result.is_err(), "a truncated scene was accepted:\n{src}");
+        }
+        if let Err(e) = result {
+            prop_assert!(e.line.is_some() && e.column.is_some(), "no position: {e}");
+        }
         let i = at % CLASSIC.len();
         if CLASSIC.is_char_boundary(i) && CLASSIC.is_char_boundary(i + 1) {
-            src = format!("{}{ch}{}", &CLASSIC[..i], &CLASSIC[i + 1..]);
-            let _ = Scene::from_json(&src);
+            let flipped = format!("{}{ch}{}", &CLASSIC[..i], &CLASSIC[i + 1..]);
+            if let Err(e) = Scene::from_json(&flipped) {
+                prop_assert!(e.line.is_some() && e.column.is_some(), "no position: {e}");
+            }
         }
     }
 }
