@@ -374,3 +374,27 @@ fn effects_cost_and_compare() {
     assert!(err.contains("sizes differ"), "{err}");
     assert!(!d.join("map2.png").exists());
 }
+
+/// A negative number in exponent form reaches validation (clap's own negative-number test
+/// takes `-1e-4` for a flag), so the message names the rule, not a parsing accident.
+#[test]
+fn negative_exponent_values_reach_validation() {
+    let dir = tempfile::tempdir().unwrap();
+    for (flag, value, expect) in [
+        (
+            "--epsilon",
+            "-1e-4",
+            "--epsilon: must be a finite number >= 0",
+        ),
+        ("--min-weight", "-1e-3", "--min-weight"),
+        ("--aperture", "-2e-1", "--aperture"),
+    ] {
+        let o = raytree(&["render", flag, value, "-o", "x.png"], dir.path());
+        let err = fails(&o);
+        assert!(
+            err.contains(expect) && !err.contains("unexpected argument"),
+            "{flag} {value}: {err}"
+        );
+        assert!(!dir.path().join("x.png").exists());
+    }
+}

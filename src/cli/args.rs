@@ -51,7 +51,7 @@ pub struct Overrides {
     #[arg(long)]
     pub max_depth: Option<u32>,
     /// Offset epsilon in world units.
-    #[arg(long, allow_negative_numbers = true)]
+    #[arg(long, allow_hyphen_values = true)]
     pub epsilon: Option<f64>,
     /// Offset strategy: normal (P +/- eps N), ray (t_min = eps), scaled (eps relative to |P|)
     /// or robust (floating-point error bounds, ignores --epsilon).
@@ -65,11 +65,11 @@ pub struct Overrides {
     pub shadows: Option<String>,
     /// Stop rays whose throughput falls below this (0 = the exhaustive tree; default: chosen
     /// from --tolerance and the scene).
-    #[arg(long, allow_negative_numbers = true)]
+    #[arg(long, allow_hyphen_values = true)]
     pub min_weight: Option<f64>,
     /// What one cut branch may still add to a pixel, in display units (default 1/510, half an
     /// 8-bit step); sets the automatic min weight.
-    #[arg(long, allow_negative_numbers = true)]
+    #[arg(long, allow_hyphen_values = true)]
     pub tolerance: Option<f64>,
     /// Per-sample ray budget: a sample that reaches it spawns no more secondary rays.
     #[arg(long)]
@@ -89,10 +89,10 @@ pub struct Overrides {
     #[arg(long, value_name = "N")]
     pub light_samples: Option<u32>,
     /// Thin-lens aperture radius in world units (0 = pinhole); sets camera.aperture_radius.
-    #[arg(long, value_name = "R", allow_negative_numbers = true)]
+    #[arg(long, value_name = "R", allow_hyphen_values = true)]
     pub aperture: Option<f64>,
     /// Distance of the plane in focus (> 0); sets camera.focus_distance.
-    #[arg(long, value_name = "D", allow_negative_numbers = true)]
+    #[arg(long, value_name = "D", allow_hyphen_values = true)]
     pub focus: Option<f64>,
     /// Pixel filter: box, tent:RADIUS or gaussian:SIGMA (radius 3 sigma), in pixels.
     #[arg(
@@ -166,10 +166,10 @@ pub struct AcneArgs {
     #[arg(long)]
     pub seed: Option<u64>,
     /// Thin-lens aperture radius in world units (0 = pinhole); scaled with the scene.
-    #[arg(long, value_name = "R", allow_negative_numbers = true)]
+    #[arg(long, value_name = "R", allow_hyphen_values = true)]
     pub aperture: Option<f64>,
     /// Distance of the plane in focus (> 0); scaled with the scene.
-    #[arg(long, value_name = "D", allow_negative_numbers = true)]
+    #[arg(long, value_name = "D", allow_hyphen_values = true)]
     pub focus: Option<f64>,
     /// Pixel filter: box, tent:RADIUS or gaussian:SIGMA (radius 3 sigma), in pixels.
     #[arg(
