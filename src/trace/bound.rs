@@ -7,7 +7,8 @@
 //!
 //! - a miss carries at most the background, `L <= max(background)` (Beer factors are <= 1);
 //! - a hit carries its local term plus its weighted secondary rays. The local term is at most
-//!   `B = max(emission) + max(ambient) max(albedo) + (max(albedo) / pi + max(specular)) sum_l E_l`,
+//!   `B = max(emission) + max(ambient) max(albedo) + (max(albedo) / pi + max(specular)) sum_l E_l`
+//!   (plus `(max(albedo) + pi max(specular)) max(emission)` when area lights are sampled),
 //!   since Lambert's `albedo / pi`, the Blinn-Phong `specular (N.H)^n <= specular`, `cos <= 1`,
 //!   a shadow ray's transmission `<= 1`, and `E_l` bounds light `l`'s irradiance on any surface:
 //!   the irradiance of a directional light, or `I / d^2` of a point light with `d` the least
@@ -103,7 +104,17 @@ pub fn radiance_bound(scene: &Scene, max_depth: u32, shadows: ShadowMode) -> f64
     } else {
         0.0
     };
-    let local = emission + max(scene.ambient) * albedo + direct;
+    // Area lights (emissive objects sampled for direct light, on with `light_samples`): the
+    // radiance arriving over the hemisphere is at most `max(emission)` (shadow rays stop at the
+    // first emitter), so their expected direct light is at most `(albedo / pi + specular) x pi x
+    // max(emission)`. A single sample's estimate can exceed its expectation (`f cos L / pdf`):
+    // like a point light near a surface, this part of the bound is not strict per sample.
+    let area = if scene.settings.light_samples.is_some() && emission > 0.0 {
+        (albedo + std::f64::consts::PI * specular) * emission
+    } else {
+        0.0
+    };
+    let local = emission + max(scene.ambient) * albedo + direct + area;
     let one = local.max(max(scene.background));
     one * geometric_sum(split, max_depth)
 }
@@ -200,6 +211,21 @@ mod tests {
                {extra}}}"#
         );
         Scene::from_json(&src).unwrap()
+    }
+
+    /// Sampled area lights add their expected direct light to the bound:
+    /// `(max albedo + pi max specular) x max emission` (pbrt's `E <= pi L_max` over the hemisphere).
+    #[test]
+    fn sampled_area_lights_raise_the_bound_by_their_direct_light() {
+        let src = include_str!("../../fixtures/soft-shadows.json");
+        let mut s = Scene::from_json(src).unwrap();
+        assert!(s.settings.light_samples.is_some());
+        let on = radiance_bound(&s, 0, ShadowMode::Opaque);
+        s.settings.light_samples = None;
+        let off = radiance_bound(&s, 0, ShadowMode::Opaque);
+        // The fixture: emission 10 (max channel), albedo 0.8, specular 0.3.
+        let expect = (0.8 + std::f64::consts::PI * 0.3) * 10.0;
+        assert!((on - off - expect).abs() < 1e-9 * on, "on {on}, off {off}");
     }
 
     #[test]
