@@ -12,9 +12,8 @@
 //! a camera, mirror or refracted ray hits the emitter (Whitted has no diffuse bounce), so
 //! nothing is counted twice.
 
-use super::local::cos_to_light;
-use super::{RayCounts, Recorder, Tracer, shadow};
-use crate::bvh::TraversalCost;
+use super::local::{Cast, cos_to_light, shadow_end};
+use super::{RayCounts, Recorder, Tracer};
 use crate::interaction::SurfaceInteraction;
 use crate::math::Rgb;
 use crate::sampling::PixelSampler;
@@ -104,34 +103,18 @@ impl Tracer<'_> {
                     });
                     continue;
                 }
-                counts.add_kind(RayKind::Shadow);
-                if R::DIAGNOSE {
-                    let first = self.scene.intersect(&ray, seg);
-                    self.diagnose(&ray, si.p, si.from(), first, id, rec, counts);
-                }
-                let mut blockers = R::RECORDS.then(Vec::new);
-                let mut cost = TraversalCost::default();
-                let transmittance = shadow::transmission(
-                    self.scene,
-                    &ray,
-                    seg,
-                    self.plan.translucent_shadows,
-                    blockers.as_mut(),
-                    &mut cost,
-                );
+                let Cast {
+                    transmittance,
+                    blockers,
+                    cost,
+                } = self.cast_shadow(&ray, seg, (si.p, si.from()), id, rec, counts);
                 let arriving = value * transmittance;
                 rec.update(id, |node| {
                     node.traversal = cost;
                     node.weight = weight;
                     node.radiance = arriving;
-                    node.end = if transmittance == Rgb::ONE {
-                        EndReason::Unblocked
-                    } else if transmittance == Rgb::ZERO {
-                        EndReason::Blocked
-                    } else {
-                        EndReason::Attenuated
-                    };
-                    node.shadow = Some(info(blockers.unwrap_or_default(), transmittance));
+                    node.end = shadow_end(transmittance);
+                    node.shadow = Some(info(blockers, transmittance));
                 });
                 if transmittance != Rgb::ZERO {
                     total += weight * arriving;

@@ -134,43 +134,19 @@ impl Tracer<'_> {
             });
             return Rgb::ZERO;
         }
-        counts.add_kind(RayKind::Shadow);
-        if R::DIAGNOSE {
-            let first = self.scene.intersect(&ray, seg);
-            self.diagnose(&ray, p, from, first, id, rec, counts);
-        }
-        // Blockers are collected only when recording (no `Vec` on the render path).
-        let mut blockers = R::RECORDS.then(Vec::new);
-        let mut cost = TraversalCost::default();
-        let transmittance = shadow::transmission(
-            self.scene,
-            &ray,
-            seg,
-            self.plan.translucent_shadows,
-            blockers.as_mut(),
-            &mut cost,
-        );
+        let Cast {
+            transmittance,
+            blockers,
+            cost,
+        } = self.cast_shadow(&ray, seg, (p, from), id, rec, counts);
         let arriving = irradiance * transmittance;
         rec.update(id, |node| {
             node.traversal = cost;
             node.weight = weight;
             node.radiance = arriving;
-            node.end = if transmittance == Rgb::ONE {
-                EndReason::Unblocked
-            } else if transmittance == Rgb::ZERO {
-                EndReason::Blocked
-            } else {
-                EndReason::Attenuated
-            };
-            node.shadow = Some(self.shadow_info(
-                light,
-                dist,
-                cos,
-                brdf,
-                irradiance,
-                blockers.unwrap_or_default(),
-                transmittance,
-            ));
+            node.end = shadow_end(transmittance);
+            node.shadow =
+                Some(self.shadow_info(light, dist, cos, brdf, irradiance, blockers, transmittance));
         });
         // A blocked light adds exactly nothing (not `0 * inf` for a light on the surface), as in
         // the direct-only path, which does not evaluate blocked lights at all.
@@ -178,6 +154,42 @@ impl Tracer<'_> {
             Rgb::ZERO
         } else {
             weight * arriving
+        }
+    }
+
+    /// Cast a recorded shadow ray (from `p` on surface `from`): count it, diagnose it when the
+    /// recorder does, and find its transmittance; the blockers are collected only when
+    /// recording (no `Vec` on the render path). Shared by the point/directional lights' shadow
+    /// rays and the area lights' (`area.rs`).
+    #[inline(always)]
+    pub(super) fn cast_shadow<R: Recorder>(
+        &self,
+        ray: &Ray,
+        seg: f64,
+        (p, from): (DVec3, (usize, Option<u32>)),
+        id: Option<NodeId>,
+        rec: &mut R,
+        counts: &mut RayCounts,
+    ) -> Cast {
+        counts.add_kind(RayKind::Shadow);
+        if R::DIAGNOSE {
+            let first = self.scene.intersect(ray, seg);
+            self.diagnose(ray, p, from, first, id, rec, counts);
+        }
+        let mut blockers = R::RECORDS.then(Vec::new);
+        let mut cost = TraversalCost::default();
+        let transmittance = shadow::transmission(
+            self.scene,
+            ray,
+            seg,
+            self.plan.translucent_shadows,
+            blockers.as_mut(),
+            &mut cost,
+        );
+        Cast {
+            transmittance,
+            blockers: blockers.unwrap_or_default(),
+            cost,
         }
     }
 
@@ -261,6 +273,27 @@ impl Tracer<'_> {
             transmittance,
             area: None,
         }
+    }
+}
+
+/// What a cast shadow ray found ([`Tracer::cast_shadow`]).
+pub(super) struct Cast {
+    /// The fraction of the light that arrives (1 unblocked, 0 blocked).
+    pub transmittance: Rgb,
+    /// The blockers passed or stopped at (empty unless recording).
+    pub blockers: Vec<crate::tree::Blocker>,
+    /// The traversal work.
+    pub cost: TraversalCost,
+}
+
+/// A recorded shadow ray's end reason from its transmittance.
+pub(super) fn shadow_end(transmittance: Rgb) -> EndReason {
+    if transmittance == Rgb::ONE {
+        EndReason::Unblocked
+    } else if transmittance == Rgb::ZERO {
+        EndReason::Blocked
+    } else {
+        EndReason::Attenuated
     }
 }
 
