@@ -39,8 +39,8 @@ pub fn unit(h: u64) -> f64 {
 }
 
 /// The default sampler: the film offset of sample `s` is the pixel centre for one sample per
-/// pixel, otherwise jittered stratified on a `cols x rows` grid (`cols = ceil(sqrt(spp))`),
-/// jittered by a SplitMix64 hash of (pixel, sample, seed); further dimensions are independent
+/// pixel, otherwise jittered stratified on a `cols x rows` grid with `cols x rows = spp` exactly
+/// (`cols` the smallest divisor of `spp` not below its square root, see [`grid`]), jittered by a SplitMix64 hash of (pixel, sample, seed); further dimensions are independent
 /// uniform values from a counter-based hash of (pixel, sample, seed, dimension).
 ///
 /// The seed enters as `key ^ (splitmix64(seed) ^ splitmix64(0))`, which is `key` for seed 0:
@@ -48,6 +48,9 @@ pub fn unit(h: u64) -> f64 {
 #[derive(Clone, Copy, Debug)]
 pub struct StratifiedJitter {
     spp: u32,
+    /// The strata grid's columns and rows ([`grid`]; `(1, 1)` for one sample).
+    cols: u32,
+    rows: u32,
     seed_mix: u64,
     /// The current sample's hash key (pixel, index, seed) of the film offset (the historical
     /// key: it repeats across pixels for sample indices from 512 on, see [`Self::hashed`]).
@@ -65,8 +68,12 @@ impl StratifiedJitter {
     /// A sampler for `spp` samples per pixel (at least 1) and `seed`.
     #[must_use]
     pub fn new(spp: u32, seed: u64) -> Self {
+        let spp = spp.max(1);
+        let (cols, rows) = if spp > 1 { grid(spp) } else { (1, 1) };
         Self {
-            spp: spp.max(1),
+            spp,
+            cols,
+            rows,
             // Branch-free would hash twice per construction, and `render_pixel_with` builds one
             // per pixel; at seed 0 the mix is 0 by definition.
             seed_mix: if seed == 0 {
@@ -129,18 +136,32 @@ impl PixelSampler for StratifiedJitter {
             if self.spp <= 1 {
                 return (0.5, 0.5);
             }
-            return jittered(self.key, self.sample, self.spp);
+            return jittered(self.key, self.sample, self.cols, self.rows);
         }
         (self.hashed(), self.hashed())
     }
 }
 
-/// The stratified film offset for `spp > 1`. Out of line, so its square root and `ceil` are
-/// not hoisted into one-sample renders.
+/// The strata grid for `spp > 1` samples: `cols x rows = spp` exactly, `cols` the smallest
+/// divisor of `spp` that is at least `sqrt(spp)` (a square grid for square counts, `8 x 4` for
+/// 32, a row of strips for a prime). Every stratum holds one sample, so the pixel mean is
+/// unbiased: a `ceil(sqrt(spp))`-column grid with an incomplete last row (raytree before
+/// 2026-11-28, e.g. 32 samples on 6 x 6) leaves strata empty and over-weights the rest. Where
+/// that grid was complete it equals this one, so those counts keep their positions bit for bit.
+/// Out of line, so its square root is not hoisted into one-sample renders.
 #[inline(never)]
-fn jittered(key: u64, s: u32, spp: u32) -> (f64, f64) {
-    let cols = f64::from(spp).sqrt().ceil() as u32;
-    let rows = spp.div_ceil(cols);
+#[must_use]
+pub fn grid(spp: u32) -> (u32, u32) {
+    let mut cols = (f64::from(spp).sqrt().ceil() as u32).max(1);
+    while spp % cols != 0 {
+        cols += 1;
+    }
+    (cols, spp / cols)
+}
+
+/// The stratified film offset of sample `s` on the `cols x rows` grid.
+#[inline]
+fn jittered(key: u64, s: u32, cols: u32, rows: u32) -> (f64, f64) {
     let seed = splitmix64(key);
     let jx = unit(seed);
     let jy = unit(splitmix64(seed));
@@ -165,7 +186,7 @@ mod tests {
     #[test]
     fn offsets_are_stratified_and_in_the_unit_square() {
         for spp in [2, 4, 5, 16] {
-            let cols = f64::from(spp).sqrt().ceil() as u32;
+            let (cols, _) = grid(spp);
             for s in 0..spp {
                 let v = draw(spp, 0, (3, 7), s);
                 assert!(v.iter().all(|u| (0.0..1.0).contains(u)), "{v:?}");
@@ -174,6 +195,58 @@ mod tests {
         }
         assert_eq!(draw(1, 0, (3, 7), 0)[..2], [0.5, 0.5]);
         assert_eq!(draw(1, 9, (3, 7), 0)[..2], [0.5, 0.5]);
+    }
+
+    /// Every stratum of the grid holds exactly one sample, for every count up to 300, so the
+    /// mean of the film offsets' strata is the pixel centre (unbiased). Fails on the old
+    /// `ceil(sqrt(spp))` grid (32 samples left 4 of 36 strata empty).
+    #[test]
+    fn every_stratum_holds_one_sample() {
+        for spp in 2..=300u32 {
+            let (cols, rows) = grid(spp);
+            assert_eq!(cols * rows, spp);
+            assert!(cols >= rows, "{spp}: {cols} x {rows}");
+            let mut seen = vec![false; spp as usize];
+            let mut mean = (0.0, 0.0);
+            for s in 0..spp {
+                let v = draw(spp, 0, (3, 7), s);
+                let (i, j) = (
+                    (v[0] * f64::from(cols)) as u32,
+                    (v[1] * f64::from(rows)) as u32,
+                );
+                assert!(!seen[(j * cols + i) as usize], "{spp}: stratum {i},{j} twice");
+                seen[(j * cols + i) as usize] = true;
+                mean.0 += (f64::from(i) + 0.5) / f64::from(cols) / f64::from(spp);
+                mean.1 += (f64::from(j) + 0.5) / f64::from(rows) / f64::from(spp);
+            }
+            assert!((mean.0 - 0.5).abs() < 1e-12 && (mean.1 - 0.5).abs() < 1e-12, "{spp}");
+        }
+        // Counts whose old ceil(sqrt) grid was complete keep it (their images stay the same).
+        assert_eq!(grid(16), (4, 4));
+        assert_eq!(grid(2), (2, 1));
+        assert_eq!(grid(12), (4, 3));
+        assert_eq!(grid(32), (8, 4));
+        assert_eq!(grid(7), (7, 1));
+    }
+
+    /// Independent of [`grid`]: the film offsets of every count average to the pixel centre
+    /// (over 1000 pixels, within 5 sigma of a uniform jitter's mean, an upper bound on the
+    /// stratified one's). The old grid put 3 samples' mean at y = 0.417, 32 samples' at 0.448.
+    #[test]
+    fn film_offsets_average_to_the_pixel_centre() {
+        for spp in 2..=64u32 {
+            let (mut mx, mut my) = (0.0, 0.0);
+            for p in 0..1000 {
+                for s in 0..spp {
+                    let v = draw(spp, 0, (p, 2 * p + 1), s);
+                    mx += v[0];
+                    my += v[1];
+                }
+            }
+            let n = f64::from(spp * 1000);
+            let tol = 5.0 * (1.0f64 / 12.0).sqrt() / n.sqrt();
+            assert!((mx / n - 0.5).abs() < tol && (my / n - 0.5).abs() < tol, "{spp}");
+        }
     }
 
     #[test]
