@@ -105,6 +105,52 @@ fn quad_and_triangle_lights_follow_lamberts_formula() {
     check(&tri, ALBEDO / PI * e);
 }
 
+/// An emissive mesh is an area light too (sampled uniformly over its area). Two squares facing
+/// down, the small one 0.5 below the big one and hiding part of it from the floor point: the
+/// small one shows exactly the solid angle it hides, at the same radiance, so the irradiance
+/// is the big square's alone by Lambert's formula. Counting the hidden samples as seen (the
+/// shadow ray stopped at the mesh's first hit) would add the small square's share again.
+#[test]
+fn an_emissive_mesh_lights_like_its_visible_triangles() {
+    let obj = "v -1 2 -1\nv 1 2 -1\nv 1 2 1\nv -1 2 1\n\
+               v -0.3 1.5 -0.3\nv 0.3 1.5 -0.3\nv 0.3 1.5 0.3\nv -0.3 1.5 0.3\n\
+               f 1 2 3\nf 1 3 4\nf 5 6 7\nf 5 7 8\n";
+    let data = raytree::mesh::obj::parse_obj(obj).unwrap();
+    let v: Vec<f64> = (0..40)
+        .map(|seed| {
+            let src = r#"{
+  "camera": {"position": [0, 1, 3], "look_at": [0, 0, 0], "fov_y": 1, "width": 1, "height": 1},
+  "materials": {"floor": {"diffuse": [0.5, 0.5, 0.5]}, "lamp": {"emission": [2, 2, 2]}},
+  "objects": [
+    {"type": "plane", "point": [0, 0, 0], "normal": [0, 1, 0], "material": "floor"},
+    {"type": "mesh", "file": "lamp.obj", "material": "lamp"}
+  ],
+  "settings": {"light_samples": 256, "seed": SEED}
+}"#
+            .replace("SEED", &seed.to_string());
+            let scene = Scene::from_json_with(&src, &mut |_| Ok(data.clone())).unwrap();
+            render(&scene, &|_| {}).0.get(0, 0).x
+        })
+        .collect();
+    let n = v.len() as f64;
+    let mean = v.iter().sum::<f64>() / n;
+    let se = (v.iter().map(|x| (x - mean).powi(2)).sum::<f64>() / (n - 1.0) / n).sqrt();
+    let big = [
+        DVec3::new(-1.0, 2.0, -1.0),
+        DVec3::new(1.0, 2.0, -1.0),
+        DVec3::new(1.0, 2.0, 1.0),
+        DVec3::new(-1.0, 2.0, 1.0),
+    ];
+    let small = big.map(|p| DVec3::new(0.3 * p.x, 1.5, 0.3 * p.z));
+    let exact = ALBEDO / PI * lambert_polygon(DVec3::ZERO, DVec3::Y, &big, 2.0);
+    let both = exact + ALBEDO / PI * lambert_polygon(DVec3::ZERO, DVec3::Y, &small, 2.0);
+    assert!(se > 0.0 && se < 0.01 * exact, "s.e. {se} vs {exact}");
+    assert!(
+        (mean - exact).abs() < 4.0 * se && (mean - both).abs() > 8.0 * se,
+        "mean {mean} vs exact {exact} (s.e. {se}; hidden counted: {both})"
+    );
+}
+
 /// Emission leaves the outer side only: a quad facing up lights nothing below it.
 #[test]
 fn a_quad_facing_away_lights_nothing() {

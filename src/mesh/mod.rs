@@ -7,6 +7,7 @@
 //! out). The geometric normal alone decides entering/leaving and the offset side; the shading
 //! normal only shades (see [`shading`]).
 
+mod emitter;
 pub mod generate;
 pub mod obj;
 mod packed;
@@ -100,6 +101,8 @@ pub struct Mesh {
     bounds: Aabb,
     bvh: WideBvh,
     packs: Vec<TriPack>,
+    /// Running sums of the stored triangles' areas ([`Mesh::sample_emitter`]).
+    area_cdf: Vec<f64>,
 }
 
 impl std::fmt::Debug for Mesh {
@@ -199,6 +202,7 @@ impl Mesh {
                 TriPack::new(group, wide.center)
             })
             .collect();
+        let area_cdf = emitter::area_cdf(&tris);
         Self {
             tris,
             corner_normals: corners.map(reorder),
@@ -206,6 +210,7 @@ impl Mesh {
             bounds: bvh.bounds().expect("a mesh has triangles"),
             bvh: wide,
             packs,
+            area_cdf,
         }
     }
 

@@ -153,7 +153,7 @@ impl PixelSampler for StratifiedJitter {
 #[must_use]
 pub fn grid(spp: u32) -> (u32, u32) {
     let mut cols = (f64::from(spp).sqrt().ceil() as u32).max(1);
-    while spp % cols != 0 {
+    while !spp.is_multiple_of(cols) {
         cols += 1;
     }
     (cols, spp / cols)
@@ -214,12 +214,18 @@ mod tests {
                     (v[0] * f64::from(cols)) as u32,
                     (v[1] * f64::from(rows)) as u32,
                 );
-                assert!(!seen[(j * cols + i) as usize], "{spp}: stratum {i},{j} twice");
+                assert!(
+                    !seen[(j * cols + i) as usize],
+                    "{spp}: stratum {i},{j} twice"
+                );
                 seen[(j * cols + i) as usize] = true;
                 mean.0 += (f64::from(i) + 0.5) / f64::from(cols) / f64::from(spp);
                 mean.1 += (f64::from(j) + 0.5) / f64::from(rows) / f64::from(spp);
             }
-            assert!((mean.0 - 0.5).abs() < 1e-12 && (mean.1 - 0.5).abs() < 1e-12, "{spp}");
+            assert!(
+                (mean.0 - 0.5).abs() < 1e-12 && (mean.1 - 0.5).abs() < 1e-12,
+                "{spp}"
+            );
         }
         // Counts whose old ceil(sqrt) grid was complete keep it (their images stay the same).
         assert_eq!(grid(16), (4, 4));
@@ -245,7 +251,10 @@ mod tests {
             }
             let n = f64::from(spp * 1000);
             let tol = 5.0 * (1.0f64 / 12.0).sqrt() / n.sqrt();
-            assert!((mx / n - 0.5).abs() < tol && (my / n - 0.5).abs() < tol, "{spp}");
+            assert!(
+                (mx / n - 0.5).abs() < tol && (my / n - 0.5).abs() < tol,
+                "{spp}"
+            );
         }
     }
 

@@ -261,7 +261,7 @@ pub enum LightKind {
 
 /// The sampling geometry of an area light ([`Scene::area_light`]).
 #[derive(Clone, Copy, Debug, PartialEq)]
-pub enum AreaEmitter {
+pub enum AreaEmitter<'a> {
     /// Sampled uniformly in the cone it subtends.
     Sphere {
         /// Centre.
@@ -271,9 +271,11 @@ pub enum AreaEmitter {
     },
     /// A quad or triangle, sampled uniformly by area.
     Planar(crate::lights::PlanarEmitter),
+    /// A triangle mesh, sampled uniformly over its whole area ([`crate::mesh::Mesh::sample_emitter`]).
+    Mesh(&'a crate::mesh::Mesh),
 }
 
-impl AreaEmitter {
+impl AreaEmitter<'_> {
     /// A [`crate::lights::LightSample`] towards this emitter (radiance `emission`) from `p`,
     /// `None` where `p` cannot see its outer side.
     #[must_use]
@@ -289,6 +291,21 @@ impl AreaEmitter {
                 crate::lights::sample_sphere(p, center, radius, emission, u)
             }
             AreaEmitter::Planar(e) => e.sample(p, emission, u),
+            AreaEmitter::Mesh(m) => m.sample_emitter(p, emission, u),
+        }
+    }
+
+    /// The solid-angle pdf of [`Self::sample`] for direction `wi` from `p` (0 where the ray
+    /// misses the emitter's outer side): what multiple importance sampling weighs a direction
+    /// found by BSDF sampling with.
+    #[must_use]
+    pub fn pdf(&self, p: DVec3, wi: DVec3) -> f64 {
+        match *self {
+            AreaEmitter::Sphere { center, radius } => {
+                crate::lights::sphere_pdf(p, center, radius, wi)
+            }
+            AreaEmitter::Planar(e) => e.pdf(p, wi),
+            AreaEmitter::Mesh(m) => m.emitter_pdf(p, wi),
         }
     }
 }
@@ -398,10 +415,10 @@ impl Scene {
     }
 
     /// Object `i` as an area light, when its material emits and its shape can be sampled
-    /// (sphere by its cone, quad and triangle by area; meshes, boxes and planes are not
+    /// (sphere by its cone, quad, triangle and mesh by area; boxes and planes are not
     /// sampled): the sampler and the emitted radiance.
     #[must_use]
-    pub fn area_light(&self, i: usize) -> Option<(AreaEmitter, Rgb)> {
+    pub fn area_light(&self, i: usize) -> Option<(AreaEmitter<'_>, Rgb)> {
         let emission = self.material_of(i).emission;
         if emission.max_element() <= 0.0 {
             return None;
@@ -416,6 +433,7 @@ impl Scene {
                 vertices: [a, b, c],
                 ..
             } => AreaEmitter::Planar(crate::lights::PlanarEmitter::triangle(a, b, c)),
+            Shape::Mesh(ref m) => AreaEmitter::Mesh(m),
             _ => return None,
         };
         Some((e, emission))

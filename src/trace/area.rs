@@ -1,12 +1,12 @@
 //! Area lights in the Whitted local term (issue 14, distribution ray tracing after Cook et al.
-//! 1984): every emissive sphere, quad and triangle ([`crate::Scene::area_light`]) is sampled by
+//! 1984): every emissive sphere, quad, triangle and mesh ([`crate::Scene::area_light`]) is sampled by
 //! `settings.light_samples` shadow rays per diffuse or Blinn-Phong hit, with the Monte Carlo
 //! estimator of the direct light
 //!
 //! `L_direct = (1/N) sum_k f(wi_k) cos(wi_k) L_e(wi_k) V(wi_k) / pdf(wi_k)`
 //!
 //! (pbrt-v4 section 13.4, Veach 1997 eq. 8.10 for the area-to-solid-angle pdf). The samplers
-//! are `crate::lights` (spheres by the cone they subtend, quads and triangles uniformly by area;
+//! are `crate::lights` (spheres by the cone they subtend, quads, triangles and meshes uniformly by area;
 //! emission leaves the outer side only). The 2D samples come from the pixel's sampler, so a
 //! re-traced pixel reproduces its value bit for bit. Emission itself is still added only where
 //! a camera, mirror or refracted ray hits the emitter (Whitted has no diffuse bounce), so
@@ -17,12 +17,19 @@ use super::{RayCounts, Recorder, Tracer};
 use crate::interaction::SurfaceInteraction;
 use crate::math::Rgb;
 use crate::sampling::PixelSampler;
-use crate::tree::{AreaSample, EndReason, NodeId, RayKind, RayNode, ShadowInfo};
+use crate::scene::AreaEmitter;
+use crate::tree::{AreaSample, Blocker, EndReason, NodeId, RayKind, RayNode, ShadowInfo};
 
 /// The shadow ray to a sampled point on an emitter (or to where it meets the emitter first)
 /// stops this fraction short of it, so it does not find the emitter itself (pbrt-v4's
 /// `ShadowEpsilon` in `SpawnRayTo`).
 const SHADOW_EPSILON: f64 = 1e-4;
+
+/// A mesh emitter's own hit more than this fraction of the distance (plus twice the shadow
+/// ray's origin offset, which shortens the ray to the sampled point's plane) short of its
+/// sampled point hides the point. An occluding part of the mesh closer than that to the point
+/// is not seen as one (a small error on nearly touching surfaces).
+const HIDDEN_BY_ITSELF: f64 = 1e-3;
 
 impl Tracer<'_> {
     /// The direct light at `si` (diffuse albedo `albedo`) from every area light but the surface
@@ -70,6 +77,16 @@ impl Tracer<'_> {
                 // of the samples of a 14-degree cone were found blocked by the light itself).
                 // The shadow ray stops where it meets the emitter.
                 let own = self.scene.objects[object].shape.intersect(&ray, seg);
+                // A non-convex emissive mesh can hide the sampled point behind another of its
+                // own triangles: that sample is blocked by the emitter (visibility V = 0), not
+                // cut short like the sphere's silhouette rays.
+                let hidden = own
+                    .filter(|h| {
+                        matches!(emitter, AreaEmitter::Mesh(_))
+                            && h.t
+                                < seg * (1.0 - HIDDEN_BY_ITSELF) - 2.0 * ray.origin.distance(si.p)
+                    })
+                    .map(|h| h.t);
                 let seg = own.map_or(seg, |h| h.t) * (1.0 - SHADOW_EPSILON);
                 let id = rec.push(parent, || {
                     let mut node =
@@ -95,6 +112,23 @@ impl Tracer<'_> {
                         sample: k,
                     }),
                 };
+                if let Some(t) = hidden {
+                    rec.update(id, |node| {
+                        node.weight = weight;
+                        node.end = shadow_end(Rgb::ZERO);
+                        node.shadow = Some(info(
+                            vec![Blocker {
+                                object,
+                                object_name: self.scene.objects[object].name.clone(),
+                                t,
+                                chord: 0.0,
+                                factor: Rgb::ZERO,
+                            }],
+                            Rgb::ZERO,
+                        ));
+                    });
+                    continue;
+                }
                 if cos <= 0.0 || value == Rgb::ZERO {
                     rec.update(id, |node| {
                         node.weight = weight;
