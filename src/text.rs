@@ -140,11 +140,21 @@ fn node_summary(n: &RayNode) -> String {
                 }
                 _ => s.push_str(": unblocked"),
             }
+            // A point or directional light delivers an irradiance E; an area-light sample a
+            // Monte Carlo estimate L / pdf (its radiance over its solid-angle pdf).
+            let arrives = match &sh.area {
+                Some(a) => format!(
+                    "L {}  pdf {}  L/pdf {}",
+                    w(a.radiance),
+                    num(a.pdf, 4),
+                    w(sh.irradiance)
+                ),
+                None => format!("E {}", w(sh.irradiance)),
+            };
             let _ = write!(
                 s,
-                "  theta {} deg  E {}  brdf*cos {}  contribution {}",
+                "  theta {} deg  {arrives}  brdf*cos {}  contribution {}",
                 deg(sh.cos_theta),
-                w(sh.irradiance),
                 w(n.weight),
                 rgb(n.weight * n.radiance)
             );

@@ -151,6 +151,23 @@ fn an_emissive_mesh_lights_like_its_visible_triangles() {
     );
 }
 
+/// The text tree labels an area-light sample's arriving light as what it is, the radiance, its
+/// pdf and the estimate L / pdf, not as an irradiance `E` (which a point light's line keeps).
+#[test]
+fn text_tree_names_area_samples_l_over_pdf() {
+    let sphere = r#"{"type": "sphere", "center": [0, 2, 0], "radius": 0.5, "material": "lamp"}"#;
+    let text = raytree::text::tree_text(&trace_pixel(&one_point(sphere, 2, 0), 0, 0).unwrap());
+    let shadows: Vec<&str> = text.lines().filter(|l| l.contains("shadow #")).collect();
+    assert_eq!(shadows.len(), 2, "{text}");
+    for l in shadows {
+        assert!(
+            l.contains("  L 2.0000") && l.contains("  pdf ") && l.contains("  L/pdf "),
+            "{l}"
+        );
+        assert!(!l.contains("  E "), "{l}");
+    }
+}
+
 /// Emission leaves the outer side only: a quad facing up lights nothing below it.
 #[test]
 fn a_quad_facing_away_lights_nothing() {

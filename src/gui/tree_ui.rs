@@ -438,7 +438,16 @@ pub fn details_ui(ui: &mut egui::Ui, doc: &Document) {
                 row("light distance", num(s.distance));
                 row("cos theta", num(s.cos_theta));
                 row("BRDF", rgb(s.brdf));
-                row("irradiance", rgb(s.irradiance));
+                if let Some(a) = &s.area {
+                    // An area-light sample: the emitted radiance, its solid-angle pdf and the
+                    // Monte Carlo weight L / pdf (not an irradiance).
+                    row("sampled point", vec3(a.point));
+                    row("emitted radiance L", rgb(a.radiance));
+                    row("pdf (solid angle)", num(a.pdf));
+                    row("L / pdf", rgb(s.irradiance));
+                } else {
+                    row("irradiance", rgb(s.irradiance));
+                }
                 row("transmittance", rgb(s.transmittance));
                 for b in &s.blockers {
                     row(
