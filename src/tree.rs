@@ -1,4 +1,5 @@
-//! The recorded ray tree of one pixel: plain data, serializable (`raytree.tree/1`).
+//! The recorded ray tree of one pixel: plain data, serializable (`raytree.tree/2`; `/1` trees,
+//! written before the path integrator, read as they are: every field added since has a default).
 //!
 //! Nodes live in one arena (`RayTree::nodes`) and refer to each other by [`NodeId`]. Every view
 //! (text, JSON, diagram, inspector) reads this structure; keep it stable.
@@ -10,7 +11,10 @@ use glam::DVec3;
 use serde::{Deserialize, Serialize};
 
 /// The JSON schema tag of a serialized tree.
-pub const TREE_SCHEMA: &str = "raytree.tree/1";
+pub const TREE_SCHEMA: &str = "raytree.tree/2";
+
+/// The schema tags a reader accepts: this one and `raytree.tree/1` (no path-tracing fields).
+pub const TREE_SCHEMAS_READ: [&str; 2] = [TREE_SCHEMA, "raytree.tree/1"];
 
 /// Index of a node in [`RayTree::nodes`].
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord, Serialize, Deserialize)]
@@ -37,15 +41,21 @@ pub enum RayKind {
     Refracted,
     /// Towards a light.
     Shadow,
+    /// A diffuse bounce sampled from the BSDF (path integrator).
+    Diffuse,
 }
 
 impl RayKind {
+    /// Number of kinds.
+    pub const COUNT: usize = 5;
+
     /// All kinds, in display order.
-    pub const ALL: [RayKind; 4] = [
+    pub const ALL: [RayKind; Self::COUNT] = [
         RayKind::Camera,
         RayKind::Reflected,
         RayKind::Refracted,
         RayKind::Shadow,
+        RayKind::Diffuse,
     ];
 
     /// Lower-case name.
@@ -56,6 +66,7 @@ impl RayKind {
             RayKind::Reflected => "reflected",
             RayKind::Refracted => "refracted",
             RayKind::Shadow => "shadow",
+            RayKind::Diffuse => "diffuse",
         }
     }
 }
@@ -86,6 +97,11 @@ pub enum EndReason {
     Blocked,
     /// The light is behind the surface (`N.L <= 0`): no shadow ray was cast.
     LightBehind,
+    /// Path integrator: Russian roulette ended the path here.
+    RussianRoulette,
+    /// Path integrator: the BSDF sample carried nothing (absorbed, below the horizon, or a
+    /// sampled direction on the wrong side of the geometric surface).
+    Absorbed,
 }
 
 /// The surface a ray hit.
@@ -274,6 +290,71 @@ pub struct RayNode {
     /// The spawn offset skipped this surface, which a zero offset would have met.
     #[serde(default)]
     pub leak: Option<Leak>,
+    /// Path integrator: the sample's estimator at this ray (absent in Whitted trees).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub path: Option<PathInfo>,
+}
+
+/// A solid-angle pdf, or `"delta"` for a specular event or a point/directional light.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(untagged)]
+pub enum Pdf {
+    /// Solid-angle density (sr^-1).
+    Density(f64),
+    /// A delta distribution (written `"delta"`).
+    Delta(DeltaTag),
+}
+
+/// The JSON word `"delta"` of [`Pdf::Delta`].
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
+pub enum DeltaTag {
+    /// `"delta"`.
+    #[serde(rename = "delta")]
+    Delta,
+}
+
+/// A Russian-roulette decision (path integrator).
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+pub struct Roulette {
+    /// Survival probability `min(1, max component of the throughput)`.
+    pub probability: f64,
+    /// Whether the path went on (its continuation was divided by `probability`).
+    pub survived: bool,
+}
+
+/// What the path integrator records on a node (`RayNode::path`); see `docs/path-tracing.md`.
+///
+/// For a continuation ray (`camera`, `diffuse`, `reflected`, `refracted`): the lobe sampled at
+/// its origin, its pdf, `bsdf_cos_pdf = f |cos| / pdf` (the node's `weight` is that divided by
+/// the roulette probability), and at its hit the MIS weight of the emission it found. For a
+/// shadow ray (next-event estimation): the lobe class that scatters the light, the light pdf
+/// (selection x solid angle) and the MIS weight of the light sample. `contribution` is what
+/// this node adds to the sample's radiance (throughput x Beer x weighted emission for a ray,
+/// throughput x Beer x weight x radiance for a shadow ray): a sample's radiance is the sum of
+/// its nodes' contributions in depth-first order.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct PathInfo {
+    /// The sampled lobe (absent for camera rays).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub lobe: Option<crate::bsdf::LobeKind>,
+    /// Solid-angle pdf of this ray's direction (BSDF pdf for continuations, light pdf for
+    /// shadow rays), or delta.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub pdf: Option<Pdf>,
+    /// `f |cos| / pdf` of the sampled direction (continuations) or `f |cos|` (shadow rays).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub bsdf_cos_pdf: Option<crate::math::Rgb>,
+    /// MIS weight (power heuristic) of this light sample, or of the emission this ray found.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub mis_weight: Option<f64>,
+    /// The Russian-roulette decision taken at this ray's hit.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub roulette: Option<Roulette>,
+    /// What this node adds to the sample's radiance.
+    pub contribution: Rgb,
+    /// Light path expression (OSL alphabet) of the path to this node; ends in `L` or `B` when
+    /// the node contributes light.
+    pub lpe: String,
 }
 
 impl RayNode {
@@ -312,6 +393,7 @@ impl RayNode {
             traversal: TraversalCost::default(),
             self_hit: false,
             leak: None,
+            path: None,
         }
     }
 
@@ -373,8 +455,8 @@ impl RayTree {
 
     /// Number of nodes of each kind, in [`RayKind::ALL`] order.
     #[must_use]
-    pub fn count_by_kind(&self) -> [usize; 4] {
-        let mut c = [0; 4];
+    pub fn count_by_kind(&self) -> [usize; RayKind::COUNT] {
+        let mut c = [0; RayKind::COUNT];
         for n in &self.nodes {
             c[RayKind::ALL.iter().position(|k| *k == n.kind).unwrap_or(0)] += 1;
         }
