@@ -3,6 +3,8 @@
 use crate::math::{FresnelModel, Rgb, critical_angle};
 use crate::scene::{LightKind, Scene, ShadowMode};
 
+mod path;
+
 /// The effects the tracer evaluates for one scene and its settings. Computed once per tracer.
 ///
 /// Two kinds of flag: *switches* remove code from the per-ray path when off (`reflection`,
@@ -247,7 +249,7 @@ impl EffectPlan {
             }),
         ];
         if s.integrator == crate::scene::IntegratorKind::Path {
-            out.extend(path_lines(scene, &names));
+            out.extend(path::lines(scene, &names));
         }
         let unused: Vec<&str> = (0..scene.materials.len())
             .filter(|&m| !scene.material_used(m))
@@ -277,69 +279,6 @@ impl EffectPlan {
         }
         out
     }
-}
-
-/// What the path integrator does with the scene, for `raytree effects`: it samples lights and
-/// BSDFs at every hit, and ignores Whitted's approximations (ambient, Blinn-Phong, translucent
-/// shadows).
-fn path_lines(
-    scene: &Scene,
-    names: &dyn Fn(&dyn Fn(&crate::scene::Material) -> bool) -> String,
-) -> Vec<EffectLine> {
-    let s = &scene.settings;
-    let line = |effect: &str, on: bool, reason: String| EffectLine {
-        effect: effect.to_string(),
-        on,
-        reason,
-    };
-    let emitters = (0..scene.objects.len())
-        .filter(|&i| scene.area_light(i).is_some())
-        .count();
-    vec![
-        line(
-            "path integrator",
-            true,
-            format!(
-                "next-event estimation over {} lights ({} point/directional, {emitters} \
-                 emissive spheres/quads/triangles), BSDF sampling, MIS (power heuristic), \
-                 Russian roulette from bounce {}, max depth {}",
-                scene.lights.len() + emitters,
-                scene.lights.len(),
-                s.rr_depth,
-                s.max_depth
-            ),
-        ),
-        line(
-            "ambient (path integrator ignores it)",
-            false,
-            if scene.ambient.max_element() > 0.0 {
-                "scene ambient > 0: a Whitted approximation of indirect light, which the path \
-                 integrator computes"
-                    .to_string()
-            } else {
-                "scene ambient is 0".to_string()
-            },
-        ),
-        line(
-            "Blinn-Phong specular (path integrator ignores it)",
-            false,
-            format!(
-                "specular/shininess are Whitted's highlight: {}",
-                names(&|m| nonzero(m.specular))
-            ),
-        ),
-        line(
-            "translucent shadows (path integrator ignores them)",
-            false,
-            format!(
-                "shadow rays are visibility tests; light through glass arrives by BSDF \
-                 sampling (caustics); shadows {:?}",
-                s.shadows
-            )
-            .to_lowercase()
-            .replace("bsdf", "BSDF"),
-        ),
-    ]
 }
 
 /// The largest drop in index a ray can meet, `(n1, n2)` with `n1 > n2`, if any. Media: air

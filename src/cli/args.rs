@@ -266,7 +266,7 @@ pub struct DiagramArgs {
     #[arg(long, value_name = "N")]
     pub draw_depth: Option<u32>,
     /// Ray kinds to draw, comma-separated.
-    #[arg(long, value_name = "camera,reflected,refracted,shadow")]
+    #[arg(long, value_name = "camera,reflected,refracted,shadow,diffuse")]
     pub kinds: Option<String>,
     /// Which sample of the pixel to draw (for spp > 1).
     #[arg(long, value_name = "K", default_value_t = 0)]

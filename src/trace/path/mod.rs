@@ -13,6 +13,8 @@
 
 mod nee;
 
+use nee::{event, transmits};
+
 use super::{RayCounts, Recorder, Tracer};
 use crate::bsdf::{Bsdf, LobeKind};
 use crate::bvh::TraversalCost;
@@ -399,34 +401,4 @@ impl<'a> PathTracer<'a> {
         }
         (l, root)
     }
-}
-
-/// Whether `kind` crosses the surface.
-fn transmits(kind: LobeKind) -> bool {
-    matches!(
-        kind,
-        LobeKind::SpecularTransmission | LobeKind::GlossyTransmission
-    )
-}
-
-/// The light path expression event of a sampled lobe (OSL alphabet).
-fn event(kind: LobeKind) -> &'static str {
-    match kind {
-        LobeKind::Diffuse => "<RD>",
-        LobeKind::SpecularReflection => "<RS>",
-        LobeKind::SpecularTransmission => "<TS>",
-        LobeKind::GlossyReflection => "<RG>",
-        LobeKind::GlossyTransmission => "<TG>",
-    }
-}
-
-/// The power heuristic with beta 2 (Veach 1997, eq. 9.13) for `nf` samples of pdf `f` against
-/// one sample of pdf `g`: `f^2 / (f^2 + g^2)`; 1 when `g` is 0, and for an infinite `f`.
-#[must_use]
-pub(crate) fn power_heuristic(f: f64, g: f64) -> f64 {
-    if f.is_infinite() {
-        return 1.0;
-    }
-    let (f2, g2) = (f * f, g * g);
-    if f2 + g2 > 0.0 { f2 / (f2 + g2) } else { 0.0 }
 }

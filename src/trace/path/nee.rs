@@ -8,7 +8,7 @@
 //! `PathIntegrator::SampleLd`); delta lights have weight 1. Emission found by a BSDF-sampled
 //! ray is weighted by the power heuristic the other way round ([`PathTracer::emission_weight`]).
 
-use super::{PathStrategy, PathTracer, Prev, power_heuristic};
+use super::{PathStrategy, PathTracer, Prev};
 use crate::bsdf::{Bsdf, Lobe, LobeKind};
 use crate::interaction::SurfaceInteraction;
 use crate::math::{Rgb, beer};
@@ -226,9 +226,39 @@ impl PathTracer<'_> {
 /// light is on the viewer's side, `<RG>`/`<TG>` for a glossy lobe on either side.
 fn lobe_event(bsdf: &Bsdf, reflect: bool) -> &'static str {
     let diffuse = bsdf.lobes().any(|(l, _)| matches!(l, Lobe::Lambert { .. }));
-    super::event(match (reflect, diffuse) {
+    event(match (reflect, diffuse) {
         (true, true) => LobeKind::Diffuse,
         (true, false) => LobeKind::GlossyReflection,
         (false, _) => LobeKind::GlossyTransmission,
     })
+}
+
+/// Whether `kind` crosses the surface.
+pub(super) fn transmits(kind: LobeKind) -> bool {
+    matches!(
+        kind,
+        LobeKind::SpecularTransmission | LobeKind::GlossyTransmission
+    )
+}
+
+/// The light path expression event of a sampled lobe (OSL alphabet).
+pub(super) fn event(kind: LobeKind) -> &'static str {
+    match kind {
+        LobeKind::Diffuse => "<RD>",
+        LobeKind::SpecularReflection => "<RS>",
+        LobeKind::SpecularTransmission => "<TS>",
+        LobeKind::GlossyReflection => "<RG>",
+        LobeKind::GlossyTransmission => "<TG>",
+    }
+}
+
+/// The power heuristic with beta 2 (Veach 1997, eq. 9.13) for `nf` samples of pdf `f` against
+/// one sample of pdf `g`: `f^2 / (f^2 + g^2)`; 1 when `g` is 0, and for an infinite `f`.
+#[must_use]
+pub(crate) fn power_heuristic(f: f64, g: f64) -> f64 {
+    if f.is_infinite() {
+        return 1.0;
+    }
+    let (f2, g2) = (f * f, g * g);
+    if f2 + g2 > 0.0 { f2 / (f2 + g2) } else { 0.0 }
 }
