@@ -1,15 +1,15 @@
 //! `raytree effects` under the path integrator.
 
 use super::{EffectLine, nonzero};
-use crate::scene::Scene;
+use crate::scene::{Material, Scene};
+
+/// The names of the used materials a predicate holds for (`EffectPlan::explain`'s `names`).
+type Names<'a> = &'a dyn Fn(&dyn Fn(&Material) -> bool) -> String;
 
 /// What the path integrator does with the scene, for `raytree effects`: it samples lights and
 /// BSDFs at every hit, and ignores Whitted's approximations (ambient, Blinn-Phong, translucent
 /// shadows).
-pub(super) fn lines(
-    scene: &Scene,
-    names: &dyn Fn(&dyn Fn(&crate::scene::Material) -> bool) -> String,
-) -> Vec<EffectLine> {
+pub(super) fn lines(scene: &Scene, names: Names<'_>) -> Vec<EffectLine> {
     let s = &scene.settings;
     let line = |effect: &str, on: bool, reason: String| EffectLine {
         effect: effect.to_string(),
