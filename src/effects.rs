@@ -3,6 +3,8 @@
 use crate::math::{FresnelModel, Rgb, critical_angle};
 use crate::scene::{LightKind, Scene, ShadowMode};
 
+mod path;
+
 /// The effects the tracer evaluates for one scene and its settings. Computed once per tracer.
 ///
 /// Two kinds of flag: *switches* remove code from the per-ray path when off (`reflection`,
@@ -246,6 +248,9 @@ impl EffectPlan {
                 }
             }),
         ];
+        if s.integrator == crate::scene::IntegratorKind::Path {
+            out.extend(path::lines(scene, &names));
+        }
         let unused: Vec<&str> = (0..scene.materials.len())
             .filter(|&m| !scene.material_used(m))
             .map(|m| scene.materials[m].name.as_str())

@@ -10,7 +10,7 @@ use crate::bvh::wide::PACKET;
 use crate::geometry::Shape;
 use crate::math::{Ray, Rgb};
 use crate::sampling::{PixelFilter, PixelSampler, StratifiedJitter};
-use crate::scene::{Film, Scene};
+use crate::scene::{Film, IntegratorKind, Scene};
 use crate::trace::{
     DiagnosticRecorder, Integrator, NoopRecorder, RayCounts, Recorder, SceneIntegrator,
     TreeRecorder,
@@ -178,7 +178,14 @@ pub fn render_pixel_sampled<I: Integrator, S: PixelSampler, R: Recorder>(
     for s in 0..spp {
         let ((fx, fy), ray) = camera_sample(film, filter, sampler, x, y, s);
         let (l, root) = integrator.camera_radiance(ray, sampler, rec, counts);
-        sum += l;
+        if l.is_finite() || integrator.kind() == IntegratorKind::Whitted {
+            sum += l;
+        } else {
+            // A path sample that is NaN or infinite is dropped (black), counted and named, so
+            // no NaN reaches the image and the sample can be traced (`raytree trace`).
+            counts.dropped_samples += 1;
+            counts.first_dropped.get_or_insert((x, y, s));
+        }
         if let Some(root) = root {
             on_sample(SampleRecord {
                 index: s,

@@ -82,6 +82,8 @@ pub fn end_text(e: EndReason) -> &'static str {
         EndReason::Attenuated => "reaches the light, attenuated by translucent blockers",
         EndReason::Blocked => "blocked",
         EndReason::LightBehind => "light is behind the surface: no shadow ray",
+        EndReason::RussianRoulette => "path ended by Russian roulette",
+        EndReason::Absorbed => "path ended: the BSDF sample carried nothing",
     }
 }
 
@@ -107,7 +109,53 @@ pub fn diagnostic_text(n: &RayNode) -> String {
 #[must_use]
 pub fn node_line(n: &RayNode) -> String {
     let mut s = node_summary(n);
+    s.push_str(&path_text(n));
     s.push_str(&diagnostic_text(n));
+    s
+}
+
+/// The path integrator's fields of a node, as a suffix (empty for Whitted nodes):
+/// `  | C<RD>L lobe diffuse pdf 0.3 f*cos/pdf 0.8 mis 0.7 rr 0.6 survived contribution ...`.
+#[must_use]
+pub fn path_text(n: &RayNode) -> String {
+    use crate::tree::Pdf;
+    let Some(p) = &n.path else {
+        return String::new();
+    };
+    let mut s = format!("  | {}", p.lpe);
+    if let Some(l) = p.lobe {
+        let name = serde_json::to_string(&l).unwrap_or_default();
+        let _ = write!(s, " lobe {}", name.trim_matches('"'));
+    }
+    match p.pdf {
+        Some(Pdf::Density(d)) => {
+            let _ = write!(s, " pdf {}", num(d, 4));
+        }
+        Some(Pdf::Delta(_)) => s.push_str(" pdf delta"),
+        None => {}
+    }
+    if let Some(f) = p.bsdf_cos_pdf {
+        let what = if n.kind == RayKind::Shadow {
+            "f*cos"
+        } else {
+            "f*cos/pdf"
+        };
+        let _ = write!(s, " {what} {}", w(f));
+    }
+    if let Some(m) = p.mis_weight {
+        let _ = write!(s, " mis {}", num(m, 4));
+    }
+    if let Some(r) = p.roulette {
+        let _ = write!(
+            s,
+            " rr {} {}",
+            num(r.probability, 4),
+            if r.survived { "survived" } else { "killed" }
+        );
+    }
+    if p.contribution != Rgb::ZERO {
+        let _ = write!(s, " contribution {}", rgb(p.contribution));
+    }
     s
 }
 

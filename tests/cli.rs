@@ -83,7 +83,7 @@ fn trace_prints_text_and_json() {
         dir.path(),
     );
     let v: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
-    assert_eq!(v["schema"], "raytree.tree/1");
+    assert_eq!(v["schema"], "raytree.tree/2");
     assert_eq!(v["settings"]["max_depth"], 2);
     assert_eq!(v["nodes"][0]["kind"], "camera");
     assert!(

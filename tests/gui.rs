@@ -237,7 +237,7 @@ fn exports_write_next_to_the_export_base() {
     let json = files
         .get("scenes/classic-tree-150-100.json")
         .expect("tree written");
-    assert!(json.contains("raytree.tree/1"));
+    assert!(json.contains("raytree.tree/2"));
     assert!(files.get("scenes/classic.png").is_some());
     assert!(has(&h, "wrote scenes/classic-diagram-150-100.svg"));
 }

@@ -116,7 +116,7 @@ fn the_seed_moves_samples_and_trees_still_equal_pixels() {
 }
 
 #[test]
-fn the_scene_chooses_the_integrator_and_path_is_not_built_yet() {
+fn the_scene_chooses_the_integrator() {
     let scene = Scene::default_scene();
     assert_eq!(scene.settings.integrator, IntegratorKind::Whitted);
     assert_eq!(SceneIntegrator::new(&scene).kind(), IntegratorKind::Whitted);
@@ -128,12 +128,9 @@ fn the_scene_chooses_the_integrator_and_path_is_not_built_yet() {
     };
     let ok = Scene::from_json(&json("\"whitted\"")).unwrap();
     assert_eq!(ok.settings.seed, 7);
-    let e = Scene::from_json(&json("\"path\"")).unwrap_err();
-    assert_eq!(e.path, "settings.integrator");
-    assert!(
-        e.message.contains("the path integrator is not built yet"),
-        "{e}"
-    );
+    let path = Scene::from_json(&json("\"path\"")).unwrap();
+    assert_eq!(path.settings.integrator, IntegratorKind::Path);
+    assert_eq!(SceneIntegrator::new(&path).kind(), IntegratorKind::Path);
     let e = Scene::from_json(&json("\"bidir\"")).unwrap_err();
     assert_eq!(e.path, "settings.integrator");
     assert!(e.message.contains("unknown integrator \"bidir\""), "{e}");
@@ -163,13 +160,12 @@ fn fails_with(o: &Output, text: &str) {
     assert!(err.contains(text), "{err}");
 }
 
-/// Every tracing command takes `--integrator` and `--seed`; `path` is refused with exit 2 and
-/// nothing written, as is a scene file asking for it.
+/// Every tracing command takes `--integrator` (whitted or path) and `--seed`; an unknown
+/// integrator is refused with exit 2 and nothing written, as is a scene file asking for one.
 #[test]
 fn every_tracing_command_takes_integrator_and_seed() {
     let dir = tempfile::tempdir().unwrap();
     let d = dir.path();
-    let not_built = "--integrator: the path integrator is not built yet";
     let size = ["--size", "16x9"];
     let commands: [&[&str]; 6] = [
         &["render", "-o", "out.png"],
@@ -198,7 +194,6 @@ fn every_tracing_command_takes_integrator_and_seed() {
             }
             raytree(&args, d)
         };
-        fails_with(&with(&["--integrator", "path"]), not_built);
         fails_with(
             &with(&["--integrator", "nope"]),
             "unknown integrator \"nope\"",
@@ -208,12 +203,14 @@ fn every_tracing_command_takes_integrator_and_seed() {
             "{cmd:?} wrote"
         );
         if cmd[0] != "cost" && cmd[0] != "acne" {
-            let o = with(&["--integrator", "whitted", "--seed", "3"]);
-            assert!(
-                o.status.success(),
-                "{cmd:?}: {}",
-                String::from_utf8_lossy(&o.stderr)
-            );
+            for integrator in ["whitted", "path"] {
+                let o = with(&["--integrator", integrator, "--seed", "3", "--rr-depth", "2"]);
+                assert!(
+                    o.status.success(),
+                    "{cmd:?}: {}",
+                    String::from_utf8_lossy(&o.stderr)
+                );
+            }
         }
         for f in ["out.png", "out.svg"] {
             let _ = std::fs::remove_file(d.join(f));
@@ -222,14 +219,11 @@ fn every_tracing_command_takes_integrator_and_seed() {
     std::fs::write(
         d.join("p.json"),
         r#"{"camera": {"position": [0,0,5], "look_at": [0,0,0], "fov_y": 40, "width": 4,
-        "height": 3}, "settings": {"integrator": "path"}}"#,
+        "height": 3}, "settings": {"integrator": "bidir"}}"#,
     )
     .unwrap();
     let o = raytree(&["render", "p.json", "-o", "p.png"], d);
-    fails_with(
-        &o,
-        "settings.integrator: the path integrator is not built yet",
-    );
+    fails_with(&o, "settings.integrator: unknown integrator \"bidir\"");
     assert!(!d.join("p.png").exists());
 }
 

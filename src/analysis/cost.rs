@@ -201,6 +201,8 @@ pub struct RaysByKind {
     pub refracted: u64,
     /// Shadow rays.
     pub shadow: u64,
+    /// Diffuse bounces (path integrator).
+    pub diffuse: u64,
     /// All rays.
     pub total: u64,
 }
@@ -212,6 +214,7 @@ impl From<RayCounts> for RaysByKind {
             reflected: c.reflected,
             refracted: c.refracted,
             shadow: c.shadow,
+            diffuse: c.diffuse,
             total: c.total(),
         }
     }

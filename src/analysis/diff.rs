@@ -5,7 +5,7 @@
 //! matched pair (breadth-first) whose hit object, set of child ray kinds or any number differs
 //! beyond a relative [`REL_TOL`].
 //!
-//! Fields are compared through their serialized form (`raytree.tree/1`), so every field of
+//! Fields are compared through their serialized form (`raytree.tree/2`), so every field of
 //! [`RayNode`] takes part except the structural `id`, `parent` and `children` (children are
 //! compared by their kinds). A non-finite number serializes as `null` and so differs from any
 //! finite one.

@@ -18,17 +18,31 @@ fn close(a: Rgb, b: Rgb) -> bool {
 /// - `local = emitted + ambient + sum(shadow weight * radiance)`;
 /// - `radiance = attenuation * (local + sum(secondary weight * radiance))` (misses: background);
 /// - a child's throughput is its parent's times the parent's attenuation times its weight;
-/// - `R + T = 1` and `0 <= R <= 1` at every dielectric hit; TIR has no transmitted ray.
+/// - `R + T = 1` and `0 <= R <= 1` at every dielectric hit; TIR has no transmitted ray;
+/// - path integrator: a sample's radiance is the sum of its nodes' recorded contributions (in
+///   depth-first order, the order the integrator adds them), each node's light path expression
+///   extends its parent's, and a Russian-roulette kill has no continuation.
 #[must_use]
 pub fn tree_violations(tree: &RayTree, background: Rgb) -> Vec<String> {
     let mut v = Vec::new();
     let spp = tree.samples.len().max(1) as f64;
-    let mean = tree.samples.iter().fold(Rgb::ZERO, |s, x| s + x.radiance) / spp;
+    // The path integrator drops a sample that is not finite (black in the pixel's mean).
+    let path = tree.nodes.iter().any(|n| n.path.is_some());
+    let mean = tree.samples.iter().fold(Rgb::ZERO, |s, x| {
+        if path && !x.radiance.is_finite() {
+            s
+        } else {
+            s + x.radiance
+        }
+    }) / spp;
     if mean != tree.radiance {
         v.push(format!(
             "pixel radiance {} != sample mean {}",
             tree.radiance, mean
         ));
+    }
+    if path {
+        path_violations(tree, &mut v);
     }
     for n in &tree.nodes {
         let id = n.id.0;
@@ -92,6 +106,44 @@ pub fn tree_violations(tree: &RayTree, background: Rgb) -> Vec<String> {
         }
     }
     v
+}
+
+/// The path integrator's per-sample invariants ([`tree_violations`]).
+fn path_violations(tree: &RayTree, v: &mut Vec<String>) {
+    for s in &tree.samples {
+        let mut sum = Rgb::ZERO;
+        for id in tree.depth_first(s.root) {
+            let n = tree.node(id);
+            let Some(p) = &n.path else {
+                v.push(format!("node {}: no path record in a path tree", id.0));
+                continue;
+            };
+            sum += p.contribution;
+            if let Some(parent) = n.parent.and_then(|q| tree.node(q).path.as_ref()) {
+                let stem = parent.lpe.trim_end_matches(['L', 'B']);
+                if !p.lpe.starts_with(stem) {
+                    v.push(format!(
+                        "node {}: LPE {} does not extend its parent's {}",
+                        id.0, p.lpe, parent.lpe
+                    ));
+                }
+            }
+            let killed = p.roulette.is_some_and(|r| !r.survived);
+            let continued = n
+                .children
+                .iter()
+                .any(|c| tree.node(*c).kind != RayKind::Shadow);
+            if killed && continued {
+                v.push(format!("node {}: killed by roulette but continued", id.0));
+            }
+        }
+        if s.radiance.is_finite() && sum != s.radiance && !close(sum, s.radiance) {
+            v.push(format!(
+                "sample {}: radiance {} != sum of contributions {}",
+                s.index, s.radiance, sum
+            ));
+        }
+    }
 }
 
 #[cfg(test)]

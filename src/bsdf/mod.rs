@@ -27,7 +27,8 @@ use lobe::Draw;
 pub const MAX_LOBES: usize = 4;
 
 /// What kind of event a sample is.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, serde::Serialize, serde::Deserialize)]
+#[serde(rename_all = "snake_case")]
 pub enum LobeKind {
     /// Lambertian reflection.
     Diffuse,

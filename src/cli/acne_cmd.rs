@@ -61,6 +61,7 @@ pub fn run(a: &AcneArgs) -> Result<()> {
     let cfg = config(a)?;
     let overrides = Overrides {
         integrator: a.integrator.clone(),
+        rr_depth: a.rr_depth,
         seed: a.seed,
         aperture: a.aperture,
         focus: a.focus,

@@ -78,9 +78,12 @@ pub struct Overrides {
     /// 4096, or half the address-space limit (`ulimit -v`) when that is smaller].
     #[arg(long, value_name = "MIB")]
     pub max_memory: Option<u64>,
-    /// Integrator (only whitted exists; path is not built yet).
-    #[arg(long, value_name = "whitted")]
+    /// Integrator: whitted (the lecture's recursion) or path (Monte Carlo path tracing).
+    #[arg(long, value_name = "whitted|path")]
     pub integrator: Option<String>,
+    /// Path integrator: Russian roulette from this bounce on (default 5).
+    #[arg(long, value_name = "N")]
+    pub rr_depth: Option<u32>,
     /// Seed of the per-pixel sample positions (0 = the default positions).
     #[arg(long)]
     pub seed: Option<u64>,
@@ -127,7 +130,7 @@ pub struct TraceArgs {
     /// Pixel X,Y (0,0 is top-left).
     #[arg(long, value_name = "X,Y")]
     pub pixel: String,
-    /// Print JSON (schema raytree.tree/1) instead of text.
+    /// Print JSON (schema raytree.tree/2) instead of text.
     #[arg(long)]
     pub json: bool,
     /// Settings overrides.
@@ -159,9 +162,12 @@ pub struct AcneArgs {
     /// earlier report.
     #[arg(short, long, default_value = "acne-report")]
     pub output: PathBuf,
-    /// Integrator (only whitted exists; path is not built yet).
-    #[arg(long, value_name = "whitted")]
+    /// Integrator: whitted (the lecture's recursion) or path (Monte Carlo path tracing).
+    #[arg(long, value_name = "whitted|path")]
     pub integrator: Option<String>,
+    /// Path integrator: Russian roulette from this bounce on (default 5).
+    #[arg(long, value_name = "N")]
+    pub rr_depth: Option<u32>,
     /// Seed of the per-pixel sample positions (0 = the default positions).
     #[arg(long)]
     pub seed: Option<u64>,
@@ -260,7 +266,7 @@ pub struct DiagramArgs {
     #[arg(long, value_name = "N")]
     pub draw_depth: Option<u32>,
     /// Ray kinds to draw, comma-separated.
-    #[arg(long, value_name = "camera,reflected,refracted,shadow")]
+    #[arg(long, value_name = "camera,reflected,refracted,shadow,diffuse")]
     pub kinds: Option<String>,
     /// Which sample of the pixel to draw (for spp > 1).
     #[arg(long, value_name = "K", default_value_t = 0)]

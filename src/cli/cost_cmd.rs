@@ -75,14 +75,14 @@ fn markdown(r: &CostReport, label: &str) -> String {
             .first()
             .map_or(0.0, |row| row.settings.offset.epsilon),
     );
-    s.push_str("| axis | value | median ms | rays | camera | reflected | refracted | shadow | RMSE | max err | pixels off >1/255 | Pareto |\n");
+    s.push_str("| axis | value | median ms | rays | camera | reflected | refracted | shadow | diffuse | RMSE | max err | pixels off >1/255 | Pareto |\n");
     s.push_str(
-        "| --- | --- | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | :---: |\n",
+        "| --- | --- | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | :---: |\n",
     );
     for row in &r.rows {
         let _ = writeln!(
             s,
-            "| {} | {} | {:.1} | {} | {} | {} | {} | {} | {} | {} | {} | {} |",
+            "| {} | {} | {:.1} | {} | {} | {} | {} | {} | {} | {} | {} | {} | {} |",
             row.axis,
             row.value,
             row.median_ms,
@@ -91,6 +91,7 @@ fn markdown(r: &CostReport, label: &str) -> String {
             row.rays.reflected,
             row.rays.refracted,
             row.rays.shadow,
+            row.rays.diffuse,
             fin(row.error.rmse, |v| format!("{v:.2e}")),
             fin(row.error.max, |v| {
                 if v < 1e6 {
@@ -108,12 +109,12 @@ fn markdown(r: &CostReport, label: &str) -> String {
 
 fn csv(r: &CostReport) -> String {
     let mut s = String::from(
-        "axis,value,median_ms,rays,camera,reflected,refracted,shadow,rmse,max_error,off_8bit,pareto\n",
+        "axis,value,median_ms,rays,camera,reflected,refracted,shadow,diffuse,rmse,max_error,off_8bit,pareto\n",
     );
     for row in &r.rows {
         let _ = writeln!(
             s,
-            "{},{},{},{},{},{},{},{},{},{},{},{}",
+            "{},{},{},{},{},{},{},{},{},{},{},{},{}",
             row.axis,
             row.value,
             row.median_ms,
@@ -122,6 +123,7 @@ fn csv(r: &CostReport) -> String {
             row.rays.reflected,
             row.rays.refracted,
             row.rays.shadow,
+            row.rays.diffuse,
             csv_num(row.error.rmse),
             csv_num(row.error.max),
             csv_num(row.error.off_8bit),

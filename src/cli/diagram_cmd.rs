@@ -22,7 +22,7 @@ fn parse_kinds(s: &str) -> Result<Vec<RayKind>> {
             .find(|k| k.name() == part)
             .ok_or_else(|| {
                 anyhow!(
-                    "--kinds: unknown kind {part:?} (expected camera, reflected, refracted, shadow)"
+                    "--kinds: unknown kind {part:?} (expected camera, reflected, refracted, shadow, diffuse)"
                 )
             })?;
         kinds.push(k);

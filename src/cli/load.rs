@@ -171,6 +171,9 @@ pub fn apply(scene: &mut Scene, o: &Overrides) -> Result<()> {
     if let Some(v) = o.seed {
         s.seed = v;
     }
+    if let Some(v) = o.rr_depth {
+        s.rr_depth = v;
+    }
     if let Some(v) = o.light_samples {
         s.light_samples = Some(v);
     }

@@ -59,6 +59,21 @@ pub fn run(a: &RenderArgs) -> Result<()> {
         r.refracted,
         r.shadow
     )?;
+    if scene.settings.integrator == raytree::scene::IntegratorKind::Path {
+        let samples = u64::from(w) * u64::from(h) * u64::from(scene.settings.spp);
+        sayln!(
+            "path: {samples} samples ({:.0} samples/s), diffuse bounces {}, rr depth {}",
+            samples as f64 / secs,
+            r.diffuse,
+            scene.settings.rr_depth
+        )?;
+    }
+    if let Some((x, y, s)) = r.first_dropped {
+        warnln!(
+            "warning: {} samples were NaN or infinite and were dropped (counted black); first: sample {s} of pixel {x},{y} (`raytree trace --pixel {x},{y}`, sample {s})",
+            r.dropped_samples
+        );
+    }
     if r.budget_samples > 0 {
         warnln!(
             "warning: {} samples reached the ray budget of {} rays per sample (--max-rays); {} secondary rays were cut there (`raytree trace` records the weight cut)",

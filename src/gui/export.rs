@@ -10,7 +10,7 @@ pub enum ExportKind {
     ImagePng,
     /// The image, linear float OpenEXR.
     ImageExr,
-    /// The selected pixel's tree, JSON (`raytree.tree/1`).
+    /// The selected pixel's tree, JSON (`raytree.tree/2`).
     TreeJson,
     /// The selected pixel's diagram, SVG.
     DiagramSvg,

@@ -12,6 +12,7 @@ pub fn kind_colour(kind: RayKind) -> Color32 {
         RayKind::Reflected => Color32::from_rgb(255, 107, 107),
         RayKind::Refracted => Color32::from_rgb(77, 171, 247),
         RayKind::Shadow => Color32::from_rgb(255, 212, 59),
+        RayKind::Diffuse => Color32::from_rgb(105, 219, 124),
     }
 }
 

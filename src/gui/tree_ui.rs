@@ -173,10 +173,15 @@ pub fn tree_ui(ui: &mut egui::Ui, doc: &Document, view: &mut TreeView, cmds: &mu
         square(ui, swatch(tree.radiance));
         ui.monospace(rgb(tree.radiance));
     });
-    let [c, r, t, s] = tree.count_by_kind();
+    let [c, r, t, s, d] = tree.count_by_kind();
     ui.horizontal(|ui| {
+        let diffuse = if d > 0 {
+            format!(", {d} diffuse")
+        } else {
+            String::new()
+        };
         ui.small(format!(
-            "{} rays: {c} camera, {r} reflected, {t} refracted, {s} shadow",
+            "{} rays: {c} camera, {r} reflected, {t} refracted, {s} shadow{diffuse}",
             tree.nodes.len()
         ));
     });

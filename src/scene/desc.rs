@@ -368,37 +368,43 @@ pub enum ShadowMode {
 
 /// Which integrator computes a camera ray's radiance (`settings.integrator`).
 ///
-/// Only the Whitted integrator exists; `"path"` is reserved for the path tracer and rejected
-/// with "the path integrator is not built yet" until it is (there is no stub that renders).
+/// `"whitted"` is the lecture's recursion, `"path"` the Monte Carlo path tracer
+/// ([`crate::trace::PathTracer`], `docs/path-tracing.md`).
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
 #[serde(rename_all = "lowercase", try_from = "String")]
 pub enum IntegratorKind {
     /// The lecture's recursion ([`crate::trace::Whitted`]).
     #[default]
     Whitted,
+    /// Unidirectional path tracing with next-event estimation, MIS and Russian roulette
+    /// ([`crate::trace::PathTracer`]).
+    Path,
 }
 
 impl IntegratorKind {
     /// Every integrator, in documentation order.
-    pub const ALL: [IntegratorKind; 1] = [IntegratorKind::Whitted];
+    pub const ALL: [IntegratorKind; 2] = [IntegratorKind::Whitted, IntegratorKind::Path];
 
     /// The name used in JSON and on the command line.
     #[must_use]
     pub fn name(self) -> &'static str {
         match self {
             IntegratorKind::Whitted => "whitted",
+            IntegratorKind::Path => "path",
         }
     }
 
     /// The integrator named `name`, or why there is none.
     ///
     /// # Errors
-    /// A message for reserved names not built yet and for unknown names.
+    /// A message for unknown names.
     pub fn from_name(name: &str) -> Result<Self, String> {
         match name {
             "whitted" => Ok(IntegratorKind::Whitted),
-            "path" => Err("the path integrator is not built yet (only \"whitted\" exists)".into()),
-            _ => Err(format!("unknown integrator {name:?}, expected \"whitted\"")),
+            "path" => Ok(IntegratorKind::Path),
+            _ => Err(format!(
+                "unknown integrator {name:?}, expected \"whitted\" or \"path\""
+            )),
         }
     }
 }
@@ -497,7 +503,7 @@ impl FilterDesc {
 #[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields, default)]
 pub struct Settings {
-    /// The integrator (`"whitted"`).
+    /// The integrator (`"whitted"` or `"path"`).
     pub integrator: IntegratorKind,
     /// Seed of the per-pixel sample positions and random numbers (0 = the historical positions).
     pub seed: u64,
@@ -529,6 +535,19 @@ pub struct Settings {
     /// mirror and refracted rays), not sampled as lights, as before area lights existed.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub light_samples: Option<u32>,
+    /// Path integrator: Russian roulette from this bounce on (the first bounce is 1; 0 plays
+    /// from the first bounce too), survival probability min(1, max component of the
+    /// throughput). Ignored by the Whitted integrator.
+    #[serde(skip_serializing_if = "is_default_rr_depth")]
+    pub rr_depth: u32,
+}
+
+/// Default [`Settings::rr_depth`].
+pub const DEFAULT_RR_DEPTH: u32 = 5;
+
+#[allow(clippy::trivially_copy_pass_by_ref)] // serde's skip_serializing_if passes a reference
+fn is_default_rr_depth(v: &u32) -> bool {
+    *v == DEFAULT_RR_DEPTH
 }
 
 /// Default [`Settings::tolerance`]: half an 8-bit display step.
@@ -551,6 +570,7 @@ impl Default for Settings {
             tolerance: DEFAULT_TOLERANCE,
             max_rays: DEFAULT_MAX_RAYS,
             light_samples: None,
+            rr_depth: DEFAULT_RR_DEPTH,
         }
     }
 }

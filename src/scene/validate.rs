@@ -354,6 +354,12 @@ pub fn check_settings(s: &Settings) -> Result<Settings, (String, String)> {
             format!("must be in 1..={MAX_LIGHT_SAMPLES}, got {n}"),
         ));
     }
+    if s.rr_depth > 1024 {
+        return Err((
+            "settings.rr_depth".into(),
+            format!("must be at most 1024, got {}", s.rr_depth),
+        ));
+    }
     check_filter(&s.filter)?;
     Ok(*s)
 }

@@ -4,10 +4,10 @@
 //!
 //! [`Integrator`] is the interface (generic methods, so it is used through generics, never as a
 //! trait object: the recorder stays a generic parameter and costs nothing when off).
-//! [`SceneIntegrator`] is the one a scene's `settings.integrator` chooses; today its only arm is
-//! [`Whitted`], the lecture's recursion ([`Tracer`]).
+//! [`SceneIntegrator`] is the one a scene's `settings.integrator` chooses: [`Whitted`], the
+//! lecture's recursion ([`Tracer`]), or [`PathTracer`], the Monte Carlo path tracer.
 
-use super::{RayCounts, Recorder, Tracer};
+use super::{PathTracer, RayCounts, Recorder, Tracer};
 use crate::bvh::TraversalCost;
 use crate::effects::EffectPlan;
 use crate::math::{Ray, Rgb};
@@ -105,12 +105,64 @@ impl Integrator for Tracer<'_> {
     }
 }
 
+impl Integrator for PathTracer<'_> {
+    fn kind(&self) -> IntegratorKind {
+        IntegratorKind::Path
+    }
+
+    #[inline]
+    fn scene(&self) -> &Scene {
+        PathTracer::scene(self)
+    }
+
+    #[inline]
+    fn film(&self) -> &Film<'_> {
+        PathTracer::film(self)
+    }
+
+    #[inline]
+    fn camera_radiance<R: Recorder, S: PixelSampler>(
+        &self,
+        ray: Ray,
+        sampler: &mut S,
+        rec: &mut R,
+        counts: &mut RayCounts,
+    ) -> (Rgb, Option<NodeId>) {
+        self.trace_camera(ray, sampler, rec, counts)
+    }
+
+    /// Never: every path draws from its pixel's sampler.
+    #[inline]
+    fn traces_packets(&self) -> bool {
+        false
+    }
+
+    /// Not called ([`Integrator::traces_packets`] is false); traces each ray alone, its
+    /// random numbers all 0.5.
+    fn camera_packet_radiance<R: Recorder>(
+        &self,
+        rays: &[Ray],
+        _: (&[Option<Hit>], &[TraversalCost]),
+        out: &mut [Rgb],
+        rec: &mut R,
+        counts: &mut RayCounts,
+    ) {
+        for (ray, o) in rays.iter().zip(out.iter_mut()) {
+            *o = self
+                .trace_camera(*ray, &mut super::lights::NoSamples, rec, counts)
+                .0;
+        }
+    }
+}
+
 /// The integrator a scene's `settings.integrator` names, ready to trace. Every command builds
 /// this one, so a new [`IntegratorKind`] is one more arm here and nothing else in the commands.
 #[derive(Clone, Copy, Debug)]
 pub enum SceneIntegrator<'a> {
     /// `"whitted"`.
     Whitted(Whitted<'a>),
+    /// `"path"`.
+    Path(PathTracer<'a>),
 }
 
 impl<'a> SceneIntegrator<'a> {
@@ -125,6 +177,8 @@ impl<'a> SceneIntegrator<'a> {
     pub fn with_plan(scene: &'a Scene, plan: EffectPlan) -> Self {
         match scene.settings.integrator {
             IntegratorKind::Whitted => Self::Whitted(Tracer::with_plan(scene, plan)),
+            // The path tracer runs every effect (its own plan): `plan` is Whitted's.
+            IntegratorKind::Path => Self::Path(PathTracer::new(scene)),
         }
     }
 
@@ -133,6 +187,7 @@ impl<'a> SceneIntegrator<'a> {
     pub fn whitted(&self) -> Option<&Whitted<'a>> {
         match self {
             Self::Whitted(t) => Some(t),
+            Self::Path(_) => None,
         }
     }
 }
@@ -141,6 +196,7 @@ impl Integrator for SceneIntegrator<'_> {
     fn kind(&self) -> IntegratorKind {
         match self {
             Self::Whitted(t) => t.kind(),
+            Self::Path(t) => t.kind(),
         }
     }
 
@@ -148,6 +204,7 @@ impl Integrator for SceneIntegrator<'_> {
     fn scene(&self) -> &Scene {
         match self {
             Self::Whitted(t) => Integrator::scene(t),
+            Self::Path(t) => Integrator::scene(t),
         }
     }
 
@@ -155,6 +212,7 @@ impl Integrator for SceneIntegrator<'_> {
     fn film(&self) -> &Film<'_> {
         match self {
             Self::Whitted(t) => Integrator::film(t),
+            Self::Path(t) => Integrator::film(t),
         }
     }
 
@@ -168,6 +226,7 @@ impl Integrator for SceneIntegrator<'_> {
     ) -> (Rgb, Option<NodeId>) {
         match self {
             Self::Whitted(t) => t.camera_radiance(ray, sampler, rec, counts),
+            Self::Path(t) => t.camera_radiance(ray, sampler, rec, counts),
         }
     }
 
@@ -175,6 +234,7 @@ impl Integrator for SceneIntegrator<'_> {
     fn traces_packets(&self) -> bool {
         match self {
             Self::Whitted(t) => t.traces_packets(),
+            Self::Path(t) => t.traces_packets(),
         }
     }
 
@@ -189,6 +249,7 @@ impl Integrator for SceneIntegrator<'_> {
     ) {
         match self {
             Self::Whitted(t) => t.camera_packet_radiance(rays, found, out, rec, counts),
+            Self::Path(t) => t.camera_packet_radiance(rays, found, out, rec, counts),
         }
     }
 }

@@ -9,6 +9,7 @@ mod integrator;
 mod lights;
 mod local;
 pub mod offset;
+mod path;
 mod recorder;
 mod recursive;
 mod shadow;
@@ -17,6 +18,7 @@ pub use crate::interaction::SurfaceInteraction;
 pub use crate::media::{MediaStack, Medium};
 pub use integrator::{Integrator, SceneIntegrator, Whitted};
 pub use lights::LightSample;
+pub use path::{PathStrategy, PathTracer};
 pub use recorder::{DiagnosticRecorder, NoopRecorder, Recorder, TreeRecorder};
 
 use crate::bvh::TraversalCost;
@@ -38,6 +40,8 @@ pub struct RayCounts {
     pub refracted: u64,
     /// Shadow rays actually cast.
     pub shadow: u64,
+    /// Diffuse bounces sampled from the BSDF (path integrator).
+    pub diffuse: u64,
     /// Spawned rays that re-hit the surface they left (counted only by diagnosing recorders).
     pub self_hits: u64,
     /// Spawned rays whose offset skipped a surface (counted only by diagnosing recorders).
@@ -46,13 +50,18 @@ pub struct RayCounts {
     pub budget_cuts: u64,
     /// Samples that reached `settings.max_rays` (their trees were cut).
     pub budget_samples: u64,
+    /// Samples whose radiance was not finite (NaN or infinite), dropped from their pixel's
+    /// mean (counted as black) by the render loop.
+    pub dropped_samples: u64,
+    /// The first dropped sample `(x, y, sample index)` in scan order, to trace it.
+    pub first_dropped: Option<(u32, u32, u32)>,
 }
 
 impl RayCounts {
     /// All rays.
     #[must_use]
     pub fn total(&self) -> u64 {
-        self.camera + self.reflected + self.refracted + self.shadow
+        self.camera + self.reflected + self.refracted + self.shadow + self.diffuse
     }
 
     fn add_kind(&mut self, kind: RayKind) {
@@ -61,6 +70,7 @@ impl RayCounts {
             RayKind::Reflected => self.reflected += 1,
             RayKind::Refracted => self.refracted += 1,
             RayKind::Shadow => self.shadow += 1,
+            RayKind::Diffuse => self.diffuse += 1,
         }
     }
 }
@@ -71,10 +81,20 @@ impl std::ops::AddAssign for RayCounts {
         self.reflected += o.reflected;
         self.refracted += o.refracted;
         self.shadow += o.shadow;
+        self.diffuse += o.diffuse;
         self.self_hits += o.self_hits;
         self.leaks += o.leaks;
         self.budget_cuts += o.budget_cuts;
         self.budget_samples += o.budget_samples;
+        self.dropped_samples += o.dropped_samples;
+        self.first_dropped = match (self.first_dropped, o.first_dropped) {
+            (Some(a), Some(b)) => Some(if (a.1, a.0, a.2) <= (b.1, b.0, b.2) {
+                a
+            } else {
+                b
+            }),
+            (a, b) => a.or(b),
+        };
     }
 }
 

@@ -39,7 +39,7 @@ pub struct Style {
     /// Normals and secondary lines.
     pub muted: Rgba,
     /// Ray colours in [`RayKind::ALL`] order.
-    pub rays: [Rgba; 4],
+    pub rays: [Rgba; RayKind::COUNT],
     /// Diffuse fill.
     pub diffuse: Rgba,
     /// Glass fill (before the absorption tint).
@@ -64,6 +64,7 @@ impl Style {
                     Rgba(214, 39, 40, 255),
                     Rgba(20, 110, 200, 255),
                     Rgba(225, 150, 0, 255),
+                    Rgba(30, 150, 60, 255),
                 ],
                 diffuse: Rgba(215, 215, 215, 255),
                 glass: Rgba(150, 205, 235, 110),
@@ -79,6 +80,7 @@ impl Style {
                     Rgba(255, 107, 107, 255),
                     Rgba(77, 171, 247, 255),
                     Rgba(255, 212, 59, 255),
+                    Rgba(105, 219, 124, 255),
                 ],
                 diffuse: Rgba(62, 65, 72, 255),
                 glass: Rgba(80, 160, 220, 90),

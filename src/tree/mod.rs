@@ -1,4 +1,5 @@
-//! The recorded ray tree of one pixel: plain data, serializable (`raytree.tree/1`).
+//! The recorded ray tree of one pixel: plain data, serializable (`raytree.tree/2`; `/1` trees,
+//! written before the path integrator, read as they are: every field added since has a default).
 //!
 //! Nodes live in one arena (`RayTree::nodes`) and refer to each other by [`NodeId`]. Every view
 //! (text, JSON, diagram, inspector) reads this structure; keep it stable.
@@ -9,8 +10,17 @@ use crate::scene::Settings;
 use glam::DVec3;
 use serde::{Deserialize, Serialize};
 
+mod path;
+#[cfg(test)]
+mod tests;
+
+pub use path::{DeltaTag, PathInfo, Pdf, Roulette};
+
 /// The JSON schema tag of a serialized tree.
-pub const TREE_SCHEMA: &str = "raytree.tree/1";
+pub const TREE_SCHEMA: &str = "raytree.tree/2";
+
+/// The schema tags a reader accepts: this one and `raytree.tree/1` (no path-tracing fields).
+pub const TREE_SCHEMAS_READ: [&str; 2] = [TREE_SCHEMA, "raytree.tree/1"];
 
 /// Index of a node in [`RayTree::nodes`].
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord, Serialize, Deserialize)]
@@ -37,15 +47,21 @@ pub enum RayKind {
     Refracted,
     /// Towards a light.
     Shadow,
+    /// A diffuse bounce sampled from the BSDF (path integrator).
+    Diffuse,
 }
 
 impl RayKind {
+    /// Number of kinds.
+    pub const COUNT: usize = 5;
+
     /// All kinds, in display order.
-    pub const ALL: [RayKind; 4] = [
+    pub const ALL: [RayKind; Self::COUNT] = [
         RayKind::Camera,
         RayKind::Reflected,
         RayKind::Refracted,
         RayKind::Shadow,
+        RayKind::Diffuse,
     ];
 
     /// Lower-case name.
@@ -56,6 +72,7 @@ impl RayKind {
             RayKind::Reflected => "reflected",
             RayKind::Refracted => "refracted",
             RayKind::Shadow => "shadow",
+            RayKind::Diffuse => "diffuse",
         }
     }
 }
@@ -86,6 +103,11 @@ pub enum EndReason {
     Blocked,
     /// The light is behind the surface (`N.L <= 0`): no shadow ray was cast.
     LightBehind,
+    /// Path integrator: Russian roulette ended the path here.
+    RussianRoulette,
+    /// Path integrator: the BSDF sample carried nothing (absorbed, below the horizon, or a
+    /// sampled direction on the wrong side of the geometric surface).
+    Absorbed,
 }
 
 /// The surface a ray hit.
@@ -274,6 +296,9 @@ pub struct RayNode {
     /// The spawn offset skipped this surface, which a zero offset would have met.
     #[serde(default)]
     pub leak: Option<Leak>,
+    /// Path integrator: the sample's estimator at this ray (absent in Whitted trees).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub path: Option<PathInfo>,
 }
 
 impl RayNode {
@@ -312,6 +337,7 @@ impl RayNode {
             traversal: TraversalCost::default(),
             self_hit: false,
             leak: None,
+            path: None,
         }
     }
 
@@ -373,8 +399,8 @@ impl RayTree {
 
     /// Number of nodes of each kind, in [`RayKind::ALL`] order.
     #[must_use]
-    pub fn count_by_kind(&self) -> [usize; 4] {
-        let mut c = [0; 4];
+    pub fn count_by_kind(&self) -> [usize; RayKind::COUNT] {
+        let mut c = [0; RayKind::COUNT];
         for n in &self.nodes {
             c[RayKind::ALL.iter().position(|k| *k == n.kind).unwrap_or(0)] += 1;
         }

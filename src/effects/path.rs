@@ -1,0 +1,67 @@
+//! `raytree effects` under the path integrator.
+
+use super::{EffectLine, nonzero};
+use crate::scene::{Material, Scene};
+
+/// The names of the used materials a predicate holds for (`EffectPlan::explain`'s `names`).
+type Names<'a> = &'a dyn Fn(&dyn Fn(&Material) -> bool) -> String;
+
+/// What the path integrator does with the scene, for `raytree effects`: it samples lights and
+/// BSDFs at every hit, and ignores Whitted's approximations (ambient, Blinn-Phong, translucent
+/// shadows).
+pub(super) fn lines(scene: &Scene, names: Names<'_>) -> Vec<EffectLine> {
+    let s = &scene.settings;
+    let line = |effect: &str, on: bool, reason: String| EffectLine {
+        effect: effect.to_string(),
+        on,
+        reason,
+    };
+    let emitters = (0..scene.objects.len())
+        .filter(|&i| scene.area_light(i).is_some())
+        .count();
+    vec![
+        line(
+            "path integrator",
+            true,
+            format!(
+                "next-event estimation over {} lights ({} point/directional, {emitters} \
+                 emissive spheres/quads/triangles), BSDF sampling, MIS (power heuristic), \
+                 Russian roulette from bounce {}, max depth {}",
+                scene.lights.len() + emitters,
+                scene.lights.len(),
+                s.rr_depth,
+                s.max_depth
+            ),
+        ),
+        line(
+            "ambient (path integrator ignores it)",
+            false,
+            if scene.ambient.max_element() > 0.0 {
+                "scene ambient > 0: a Whitted approximation of indirect light, which the path \
+                 integrator computes"
+                    .to_string()
+            } else {
+                "scene ambient is 0".to_string()
+            },
+        ),
+        line(
+            "Blinn-Phong specular (path integrator ignores it)",
+            false,
+            format!(
+                "specular/shininess are Whitted's highlight: {}",
+                names(&|m| nonzero(m.specular))
+            ),
+        ),
+        line(
+            "translucent shadows (path integrator ignores them)",
+            false,
+            format!(
+                "shadow rays are visibility tests; light through glass arrives by BSDF \
+                 sampling (caustics); shadows {:?}",
+                s.shadows
+            )
+            .to_lowercase()
+            .replace("bsdf", "BSDF"),
+        ),
+    ]
+}
