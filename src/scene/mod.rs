@@ -308,18 +308,6 @@ impl AreaEmitter<'_> {
             AreaEmitter::Mesh(m) => m.emitter_pdf(p, wi),
         }
     }
-
-    /// The solid-angle pdf of [`AreaEmitter::sample`] for direction `wi` from `p` (0 where it
-    /// cannot produce `wi`).
-    #[must_use]
-    pub fn pdf(&self, p: DVec3, wi: DVec3) -> f64 {
-        match *self {
-            AreaEmitter::Sphere { center, radius } => {
-                crate::lights::sphere_pdf(p, center, radius, wi)
-            }
-            AreaEmitter::Planar(e) => e.pdf(p, wi),
-        }
-    }
 }
 
 /// A named light.

@@ -58,7 +58,7 @@ pub struct PathTracer<'a> {
     tracer: Tracer<'a>,
     strategy: PathStrategy,
     /// Lights that light sampling chooses among: the scene's point and directional lights, then
-    /// every emissive sphere, quad and triangle ([`Scene::area_light`]).
+    /// every emissive sphere, quad, triangle and mesh ([`Scene::area_light`]).
     lights: usize,
 }
 

@@ -1,6 +1,6 @@
 //! Next-event estimation and the MIS weights of the path tracer: one light sample per hit,
 //! the light chosen uniformly among the scene's point and directional lights and its emissive
-//! spheres, quads and triangles, then a point (direction) on it from the light-sampling kernel
+//! spheres, quads, triangles and meshes, then a point (direction) on it from the light-sampling kernel
 //! ([`crate::scene::Light::sample`], [`crate::scene::AreaEmitter::sample`]).
 //!
 //! The light sample's estimator is `f |cos| Le V / (p_select p_light)`, weighted by the power
@@ -13,18 +13,16 @@ use crate::bsdf::{Bsdf, Lobe, LobeKind};
 use crate::interaction::SurfaceInteraction;
 use crate::math::{Rgb, beer};
 use crate::sampling::PixelSampler;
+use crate::trace::area::emitter_shadow_length;
 use crate::trace::local::{Cast, shadow_end};
 use crate::trace::{RayCounts, Recorder};
 use crate::tree::{
     AreaSample, DeltaTag, EndReason, NodeId, PathInfo, Pdf, RayKind, RayNode, ShadowInfo,
 };
 
-/// The shadow ray to a sampled point on an emitter stops this fraction short of where it first
-/// meets the emitter (as the Whitted area lights, `trace/area.rs`).
-const SHADOW_EPSILON: f64 = 1e-4;
-
 impl PathTracer<'_> {
-    /// The area light `k` (counting from 0 among the emissive spheres, quads and triangles):
+    /// The area light `k` (counting from 0 among the emissive spheres, quads, triangles and
+    /// meshes):
     /// its object index.
     fn area_object(&self, k: usize) -> Option<usize> {
         let scene = self.scene();
@@ -48,7 +46,7 @@ impl PathTracer<'_> {
             return 1.0;
         }
         let Some((emitter, _)) = self.scene().area_light(object) else {
-            // Not sampled by light sampling (a mesh, box or plane emitter): BSDF sampling is
+            // Not sampled by light sampling (a box or plane emitter): BSDF sampling is
             // the only strategy.
             return 1.0;
         };
@@ -92,7 +90,8 @@ impl PathTracer<'_> {
             let Some(object) = self.area_object(k - scene.lights.len()) else {
                 return (Rgb::ZERO, Rgb::ZERO);
             };
-            // A surface does not light itself (spheres, quads and triangles are convex).
+            // A surface does not light itself (spheres, quads and triangles are convex; a mesh
+            // does not light its own other triangles).
             let ls = (object != si.object)
                 .then(|| scene.area_light(object))
                 .flatten()
@@ -129,10 +128,7 @@ impl PathTracer<'_> {
             .tracer
             .shadow_ray(strategy, si.from(), si.p, side, wi, ls.distance);
         let seg = match area {
-            Some(object) => {
-                let own = scene.objects[object].shape.intersect(&ray, seg);
-                own.map_or(seg, |h| h.t) * (1.0 - SHADOW_EPSILON)
-            }
+            Some(object) => emitter_shadow_length(scene, object, &ray, seg, si.p),
             None => seg,
         };
         let mut event = String::new();
