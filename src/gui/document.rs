@@ -78,6 +78,17 @@ pub struct Progress {
     pub growth: Option<String>,
 }
 
+/// A tree kept aside to compare the current one with ("pin and compare").
+#[derive(Clone, Debug)]
+pub struct Pin {
+    /// The pinned tree.
+    pub tree: RayTree,
+    /// What it was traced with, in words (pixel, scene, settings).
+    pub label: String,
+    /// Bumped on every pin, so caches see a new pin of the same tree.
+    pub version: u64,
+}
+
 /// Everything the panels show.
 pub struct Document {
     /// The scene being traced (with the panel's settings).
@@ -113,6 +124,9 @@ pub struct Document {
     pub export_field: String,
     /// Bumped whenever the image or debug data changed, so the app re-uploads its texture.
     pub image_version: u64,
+    /// The pinned tree, compared with the current one (kept across settings, pixels and
+    /// reloads).
+    pub pin: Option<Pin>,
 }
 
 impl Document {
@@ -157,6 +171,7 @@ impl Document {
             export_error: None,
             status: String::new(),
             image_version: 0,
+            pin: None,
         }
     }
 
@@ -197,4 +212,8 @@ pub enum Command {
     SetPathField(String),
     /// Edit the export base field.
     SetExportField(String),
+    /// Pin the current tree to compare later trees with it.
+    Pin,
+    /// Drop the pinned tree.
+    Unpin,
 }

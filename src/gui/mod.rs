@@ -9,8 +9,11 @@
 
 mod app;
 pub mod breakdown;
+pub mod compare_ui;
+mod details_ui;
 pub mod diagram_ui;
 pub mod document;
+pub mod explain_ui;
 pub mod export;
 mod image_ui;
 pub mod project;

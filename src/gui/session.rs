@@ -90,8 +90,10 @@ impl Session {
                 let view = self.doc.view;
                 let selection = self.doc.selection;
                 let versions = (self.doc.tree_version, self.doc.image_version);
+                let pin = self.doc.pin.take();
                 self.doc = Document::new(scene, source);
                 self.doc.view = view;
+                self.doc.pin = pin;
                 // Versions keep counting: caches keyed on them must see a new document.
                 self.doc.tree_version = versions.0;
                 self.doc.image_version = versions.1 + 1;
@@ -209,6 +211,18 @@ impl Session {
             Command::Export(kind) => self.export(kind),
             Command::SetPathField(s) => self.doc.path_field = s,
             Command::SetExportField(s) => self.doc.export_field = s,
+            Command::Pin => {
+                if let Some(tree) = self.doc.tree.clone() {
+                    let version = self.doc.pin.as_ref().map_or(0, |p| p.version) + 1;
+                    let label = super::compare_ui::tree_label(&self.doc.source.label(), &tree);
+                    self.doc.pin = Some(super::document::Pin {
+                        tree,
+                        label,
+                        version,
+                    });
+                }
+            }
+            Command::Unpin => self.doc.pin = None,
         }
     }
 
