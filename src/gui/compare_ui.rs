@@ -135,8 +135,11 @@ pub fn compare_window(
     let mut open = true;
     egui::Window::new("Pin and compare")
         .open(&mut open)
-        .default_pos(pos2(300.0, 60.0))
-        .default_size(vec2(820.0, 520.0))
+        // Over the image, clear of the side panels at their default widths.
+        .default_pos(pos2(300.0, 40.0))
+        .default_size(vec2(700.0, 520.0))
+        .max_width(960.0)
+        .max_height(800.0)
         .resizable(true)
         .show(ctx, |ui| {
             ui.small(format!("pinned:  {}", pin.label));
@@ -392,6 +395,7 @@ fn fields_ui(ui: &mut egui::Ui, view: &CompareView, a: &RayTree, b: &RayTree) {
                     egui::Grid::new("compare-fields-grid")
                         .striped(true)
                         .num_columns(4)
+                        .max_col_width(260.0)
                         .show(ui, |ui| {
                             ui.strong("field");
                             ui.strong("pinned");
