@@ -84,6 +84,14 @@ fn select_node(h: &mut Harness<'static, InspectorApp>, id: NodeId) {
     h.run();
 }
 
+/// Scroll the widget labelled `label` into view and click it.
+fn click(h: &mut Harness<'static, InspectorApp>, label: &str) {
+    h.get_by_label(label).scroll_to_me();
+    h.run();
+    h.get_by_label(label).click();
+    h.run();
+}
+
 fn has(h: &Harness<'static, InspectorApp>, text: &str) -> bool {
     h.query_all_by_label_contains(text).next().is_some()
 }
@@ -98,7 +106,10 @@ fn explain_sentences_select_and_reveal_their_nodes() {
     select_pixel(&mut h, GLASS[0], GLASS[1]);
     let e = h.state().explanation().expect("explained").clone();
     let tree = h.state().session.doc.tree.clone().unwrap();
-    assert_eq!(e, raytree::analysis::explain::explain(&tree, &h.state().session.doc.scene));
+    assert_eq!(
+        e,
+        raytree::analysis::explain::explain(&tree, &h.state().session.doc.scene)
+    );
     assert!(has(&h, "what it sees") && has(&h, "where energy went"));
     // The floor seen through the glass: a deep node, collapsed in the tree at first.
     let s = e
@@ -108,7 +119,8 @@ fn explain_sentences_select_and_reveal_their_nodes() {
         .expect("the floor through the glass");
     let target = s.nodes[0];
     assert!(tree.node(target).depth >= 2, "a ray below the camera ray");
-    h.get_by_role_and_label(Role::Button, "collapse all").click();
+    h.get_by_role_and_label(Role::Button, "collapse all")
+        .click();
     h.run();
     let row = format!("#{} {} -> ", target.0, tree.node(target).kind.name());
     assert!(!has(&h, &row), "hidden before the click");
@@ -120,7 +132,10 @@ fn explain_sentences_select_and_reveal_their_nodes() {
     assert_eq!(h.state().session.doc.node, Some(target));
     let rect = h.get_by_label_contains(&row).rect();
     let list = h.get_by_label("expand all below").rect();
-    assert!(rect.top() > list.bottom() && rect.bottom() < 950.0, "{rect:?} revealed");
+    assert!(
+        rect.top() > list.bottom() && rect.bottom() < 950.0,
+        "{rect:?} revealed"
+    );
     // The blocked shadow rays' sentence lists its ids as buttons; one selects that ray.
     let blocked = e
         .sentences
@@ -150,7 +165,10 @@ fn details_give_degrees_the_critical_angle_weight_factors_and_medium_names() {
     let deg = |c: f64| c.acos().to_degrees();
     let want = format!("{:.4} (theta_i {:.2} deg)", i.cos_i, deg(i.cos_i));
     assert!(has(&h, &want), "degrees beside the cosine: {want}");
-    assert!(has(&h, &format!("theta_t {:.2} deg", deg(i.cos_t.unwrap()))));
+    assert!(has(
+        &h,
+        &format!("theta_t {:.2} deg", deg(i.cos_t.unwrap()))
+    ));
     assert!(has(&h, "(n 1.000 -> 1.500, no critical angle)"));
 
     // Total internal reflection in the TIR block, with the critical angle.
@@ -170,11 +188,18 @@ fn details_give_degrees_the_critical_angle_weight_factors_and_medium_names() {
     let doc = &h.state().session.doc;
     let (w, hh) = (doc.image.width, doc.image.height);
     let scene = doc.scene.clone();
-    let found = (0..hh).step_by(6).flat_map(|y| (0..w).step_by(6).map(move |x| (x, y))).find_map(|(x, y)| {
-        let t = raytree::trace_pixel(&scene, x, y)?;
-        let n = t.nodes.iter().find(|n| n.attenuation.as_ref().is_some_and(|a| a.factor != raytree::math::Rgb::ONE))?;
-        Some(([x, y], n.id, n.attenuation.as_ref()?.medium))
-    });
+    let found = (0..hh)
+        .step_by(6)
+        .flat_map(|y| (0..w).step_by(6).map(move |x| (x, y)))
+        .find_map(|(x, y)| {
+            let t = raytree::trace_pixel(&scene, x, y)?;
+            let n = t.nodes.iter().find(|n| {
+                n.attenuation
+                    .as_ref()
+                    .is_some_and(|a| a.factor != raytree::math::Rgb::ONE)
+            })?;
+            Some(([x, y], n.id, n.attenuation.as_ref()?.medium))
+        });
     let ([x, y], id, medium) = found.expect("a Beer segment");
     select_pixel(&mut h, x, y);
     select_node(&mut h, id);
@@ -202,11 +227,18 @@ fn pin_and_compare_shows_the_first_divergence_and_the_changed_numbers() {
     assert!(has(&h, "settings.fresnel: exact -> schlick"));
     assert!(has(&h, "first divergence: camera #0 (level 0)"));
     let first_row = h.get_by_label_contains("[first divergence,");
-    let label = first_row.accesskit_node().label().unwrap_or_default().to_string();
+    let label = first_row
+        .accesskit_node()
+        .label()
+        .unwrap_or_default()
+        .to_string();
     assert!(label.starts_with("#0 camera -> glass ball"), "{label}");
     // Its changed numbers, pinned -> current, the Fresnel R among them.
     assert!(has(&h, "interface.fresnel.r"));
-    let pinned = h.state().session.doc.pin.as_ref().unwrap().tree.nodes[0].interface.clone().unwrap();
+    let pinned = h.state().session.doc.pin.as_ref().unwrap().tree.nodes[0]
+        .interface
+        .clone()
+        .unwrap();
     assert!(has(&h, &format!("{:.6}", pinned.fresnel.r)));
     // Max depth 1: subtrees only the pinned tree has; a row of one is marked so.
     let mut s = h.state().session.doc.scene.settings;
@@ -223,4 +255,68 @@ fn pin_and_compare_shows_the_first_divergence_and_the_changed_numbers() {
     h.run();
     assert!(h.state().session.doc.pin.is_none());
     assert!(!has(&h, "Pin and compare"));
+}
+
+#[test]
+fn step_along_a_ray_moves_a_point_and_reveals_one_depth_at_a_time() {
+    let mut h = harness_on(CLASSIC);
+    select_pixel(&mut h, GLASS[0], GLASS[1]);
+    select_node(&mut h, NodeId(0));
+    h.get_by_label("Step along a ray").scroll_to_me();
+    h.run();
+    h.get_by_label("Step along a ray").click();
+    h.run();
+    h.get_by_label("show the point on the overlay and the diagram")
+        .scroll_to_me();
+    h.run();
+    h.get_by_label("show the point on the overlay and the diagram")
+        .click();
+    h.run();
+    let doc = &h.state().session.doc;
+    assert_eq!(doc.step.at, Some(1.0), "starts at the hit");
+    let tree = doc.tree.clone().unwrap();
+    let hit = tree.nodes[0].hit.clone().unwrap();
+    let (p, t, end) = raytree::gui::step_ui::step_point(doc).unwrap();
+    assert_eq!((t, end), (hit.t, hit.t));
+    assert!((p - hit.point).length() < 1e-9);
+    assert!(has(&h, "at t_hit"));
+    assert!(has(&h, "(n 1.000 -> 1.500, no critical angle)"));
+    // Halfway: R(t) = A + t d, no hit yet.
+    h.get_by_role_and_label(Role::Slider, "t")
+        .set_value_accesskit(hit.t / 2.0);
+    h.run();
+    h.run();
+    let doc = &h.state().session.doc;
+    let at = doc.step.at.unwrap();
+    assert!((at - 0.5).abs() < 1e-9, "{at}");
+    let (p, t, _) = raytree::gui::step_ui::step_point(doc).unwrap();
+    let n = &tree.nodes[0];
+    assert!((p - (n.origin + n.direction * t)).length() < 1e-12);
+    assert!(!has(&h, "at t_hit"));
+    // The recursion, one depth at a time, on the overlay and in the diagram.
+    let all = h.state().overlay_rays();
+    click(&mut h, "step >");
+    assert_eq!(h.state().session.doc.step.depth, Some(0));
+    // The camera ray and the shadow rays of its hit (they share its depth).
+    let depth0 = tree.nodes.iter().filter(|n| n.depth == 0).count();
+    assert!(depth0 >= 2 && tree.nodes[1].kind == RayKind::Shadow);
+    assert_eq!(h.state().overlay_rays(), depth0);
+    let mut last = depth0;
+    for depth in 1..=2 {
+        click(&mut h, "step >");
+        assert_eq!(h.state().session.doc.step.depth, Some(depth));
+        let drawn = h.state().overlay_rays();
+        assert!(drawn > last && drawn <= all, "{drawn} at depth {depth}");
+        last = drawn;
+        let (size, prims) = h.state().diagram_display_list().expect("a diagram");
+        let fresh =
+            raytree::gui::diagram_ui::build_display_list(&h.state().session.doc, size).unwrap();
+        assert!(
+            prims == fresh.as_slice(),
+            "the diagram is cut at depth {depth}"
+        );
+    }
+    click(&mut h, "all");
+    assert_eq!(h.state().session.doc.step.depth, None);
+    assert_eq!(h.state().overlay_rays(), all);
 }

@@ -159,6 +159,9 @@ impl InspectorApp {
                             .show(ui, |ui| {
                                 details_ui::details_ui(ui, doc);
                             });
+                        egui::CollapsingHeader::new("Step along a ray")
+                            .default_open(false)
+                            .show(ui, |ui| super::step_ui::step_ui(ui, doc, &mut cmds));
                         egui::CollapsingHeader::new("Contribution breakdown")
                             .default_open(true)
                             .show(ui, |ui| {

@@ -78,6 +78,17 @@ pub struct Progress {
     pub growth: Option<String>,
 }
 
+/// Step along a ray: where the point stands on the selected ray and how deep the recursion is
+/// shown.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct Step {
+    /// The point's place on the selected ray as a fraction of its `t` range (1 = at the hit);
+    /// `None`: no point drawn.
+    pub at: Option<f64>,
+    /// Draw rays down to this depth only (overlay and diagram); `None`: all.
+    pub depth: Option<u32>,
+}
+
 /// A tree kept aside to compare the current one with ("pin and compare").
 #[derive(Clone, Debug)]
 pub struct Pin {
@@ -127,6 +138,8 @@ pub struct Document {
     /// The pinned tree, compared with the current one (kept across settings, pixels and
     /// reloads).
     pub pin: Option<Pin>,
+    /// Step along a ray.
+    pub step: Step,
 }
 
 impl Document {
@@ -172,6 +185,7 @@ impl Document {
             status: String::new(),
             image_version: 0,
             pin: None,
+            step: Step::default(),
         }
     }
 
@@ -216,4 +230,6 @@ pub enum Command {
     Pin,
     /// Drop the pinned tree.
     Unpin,
+    /// Move the step point or change the depth shown.
+    SetStep(Step),
 }

@@ -20,6 +20,7 @@ pub mod project;
 mod session;
 mod settings_ui;
 pub mod stats;
+pub mod step_ui;
 mod style;
 mod tree_ui;
 pub mod worker;

@@ -90,10 +90,11 @@ impl Session {
                 let view = self.doc.view;
                 let selection = self.doc.selection;
                 let versions = (self.doc.tree_version, self.doc.image_version);
-                let pin = self.doc.pin.take();
+                let (pin, step) = (self.doc.pin.take(), self.doc.step);
                 self.doc = Document::new(scene, source);
                 self.doc.view = view;
                 self.doc.pin = pin;
+                self.doc.step = step;
                 // Versions keep counting: caches keyed on them must see a new document.
                 self.doc.tree_version = versions.0;
                 self.doc.image_version = versions.1 + 1;
@@ -223,6 +224,7 @@ impl Session {
                 }
             }
             Command::Unpin => self.doc.pin = None,
+            Command::SetStep(step) => self.doc.step = step,
         }
     }
 
