@@ -320,3 +320,66 @@ fn step_along_a_ray_moves_a_point_and_reveals_one_depth_at_a_time() {
     assert_eq!(h.state().session.doc.step.depth, None);
     assert_eq!(h.state().overlay_rays(), all);
 }
+
+#[test]
+fn the_acne_lab_counts_affected_pixels_and_plots_the_sweep_off_the_ui_thread() {
+    let mut h = harness_on(CLASSIC);
+    click(&mut h, "Acne lab");
+    click(&mut h, "run the acne lab");
+    h.state_mut().session.wait_lab();
+    h.run();
+    let lab = h.state().session.doc.lab.clone();
+    assert!(lab.done && lab.started);
+    assert_eq!(lab.sweep.len() + 1, raytree::gui::acne_lab::job_len());
+    let c = lab.current.clone().expect("the count");
+    // The scene where it is, with its own epsilon (1e-4): no acne (one pixel leaks).
+    assert_eq!(c.self_hit_pixels, 0, "{c:?}");
+    assert!(has(
+        &h,
+        &format!(
+            "normal: 0 of 14400 pixels with acne (0.0%), {} with leaks",
+            c.leak_pixels
+        )
+    ));
+    assert!(has(&h, "acne sweep plot: 40 renders"));
+    // A billion units out, epsilon 1e-9: acne, counted as `raytree acne` counts it.
+    h.get_by_role_and_label(Role::Slider, "scene scale")
+        .set_value_accesskit(1e6);
+    h.run();
+    h.get_by_role_and_label(Role::Slider, "distance from origin")
+        .set_value_accesskit(1e3);
+    h.run();
+    h.get_by_role_and_label(Role::Slider, "lab epsilon")
+        .set_value_accesskit(1e-9);
+    h.run();
+    h.state_mut().session.wait_lab();
+    h.run();
+    let lab = h.state().session.doc.lab.clone();
+    let p = lab.params;
+    assert_eq!((p.scale, p.shift, p.epsilon), (1e6, 1e3, 1e-9));
+    let c = lab.current.clone().unwrap();
+    let scene = h.state().session.doc.scene.clone();
+    let sized = raytree::Scene {
+        camera: scene.camera.with_size(160, 90),
+        ..(*scene).clone()
+    };
+    let want = raytree::analysis::acne::cell(
+        &raytree::analysis::acne::scaled_scene(&sized, 1e6, 1e3),
+        p.strategy,
+        1e-9,
+        1e6,
+    );
+    assert_eq!(c.self_hit_pixels, want.self_hit_pixels);
+    assert!(c.self_hit_pixels > 0, "acne far from the origin");
+    assert!(has(
+        &h,
+        &format!("{} of 14400 pixels with acne", c.self_hit_pixels)
+    ));
+    // The robust strategy stays clean at every epsilon of the sweep there.
+    let robust = lab
+        .sweep
+        .iter()
+        .filter(|c| c.strategy == raytree::scene::OffsetStrategy::Robust);
+    assert_eq!(robust.clone().count(), 10);
+    assert!(robust.clone().all(|c| c.clean()));
+}

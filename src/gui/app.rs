@@ -134,6 +134,9 @@ impl InspectorApp {
                     });
                     section(ui, "View", |ui| settings::view_ui(ui, doc, &mut cmds));
                     section(ui, "Export", |ui| settings::export_ui(ui, doc, &mut cmds));
+                    egui::CollapsingHeader::new(RichText::new("Acne lab").strong())
+                        .default_open(false)
+                        .show(ui, |ui| super::acne_ui::acne_ui(ui, doc, &mut cmds));
                 });
             });
         let tree_view = &mut self.tree_view;

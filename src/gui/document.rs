@@ -89,6 +89,23 @@ pub struct Step {
     pub depth: Option<u32>,
 }
 
+/// The acne lab: its parameters and what the lab's worker has delivered for them.
+#[derive(Clone, Debug, Default)]
+pub struct Lab {
+    /// What is rendered.
+    pub params: super::acne_lab::LabParams,
+    /// Whether the lab has been started (it re-runs on every scene or settings change then).
+    pub started: bool,
+    /// The lab job the results belong to.
+    pub generation: u64,
+    /// The chosen strategy and epsilon's render (affected pixels).
+    pub current: Option<crate::analysis::acne::AcneCell>,
+    /// The sweep's cells delivered so far.
+    pub sweep: Vec<crate::analysis::acne::AcneCell>,
+    /// Whether the job is complete.
+    pub done: bool,
+}
+
 /// A tree kept aside to compare the current one with ("pin and compare").
 #[derive(Clone, Debug)]
 pub struct Pin {
@@ -140,6 +157,8 @@ pub struct Document {
     pub pin: Option<Pin>,
     /// Step along a ray.
     pub step: Step,
+    /// The acne lab.
+    pub lab: Lab,
 }
 
 impl Document {
@@ -186,6 +205,7 @@ impl Document {
             image_version: 0,
             pin: None,
             step: Step::default(),
+            lab: Lab::default(),
         }
     }
 
@@ -232,4 +252,6 @@ pub enum Command {
     Unpin,
     /// Move the step point or change the depth shown.
     SetStep(Step),
+    /// Run the acne lab with these parameters (cancelling its last job).
+    SetLab(super::acne_lab::LabParams),
 }

@@ -7,6 +7,8 @@
 //! The library does no I/O itself: reading and writing files goes through the [`Files`] hook
 //! that the binary supplies.
 
+pub mod acne_lab;
+mod acne_ui;
 mod app;
 pub mod breakdown;
 pub mod compare_ui;

@@ -2,6 +2,7 @@
 //! commands, folds worker deliveries into the image, and reloads scenes. No egui here, so tests
 //! and benchmarks can drive it directly.
 
+use super::acne_lab::{LabDelivery, LabWorker};
 use super::document::{Command, Document, Source};
 use super::export::{self, ExportKind};
 use super::worker::{Delivery, Repaint, Worker};
@@ -19,6 +20,9 @@ pub struct Session {
     worker: Worker,
     files: Box<dyn Files>,
     adjust: Adjust,
+    repaint: Repaint,
+    /// The acne lab's thread, started on first use.
+    lab: Option<LabWorker>,
 }
 
 impl Session {
@@ -35,9 +39,11 @@ impl Session {
         let doc = Document::new(builtin, Source::default());
         let mut s = Self {
             doc,
-            worker: Worker::new(repaint),
+            worker: Worker::new(Arc::clone(&repaint)),
             files,
             adjust,
+            repaint,
+            lab: None,
         };
         s.doc.error = builtin_err;
         match path {
@@ -91,10 +97,12 @@ impl Session {
                 let selection = self.doc.selection;
                 let versions = (self.doc.tree_version, self.doc.image_version);
                 let (pin, step) = (self.doc.pin.take(), self.doc.step);
+                let lab = std::mem::take(&mut self.doc.lab);
                 self.doc = Document::new(scene, source);
                 self.doc.view = view;
                 self.doc.pin = pin;
                 self.doc.step = step;
+                self.doc.lab = lab;
                 // Versions keep counting: caches keyed on them must see a new document.
                 self.doc.tree_version = versions.0;
                 self.doc.image_version = versions.1 + 1;
@@ -147,6 +155,30 @@ impl Session {
         self.doc.progress.stats_rows = 0;
         self.doc.progress.stats_seconds = None;
         self.doc.progress.growth = None;
+        if self.doc.lab.started {
+            self.start_lab();
+        }
+    }
+
+    /// Start the acne lab on the current scene with its parameters.
+    fn start_lab(&mut self) {
+        if let Err(e) = self.doc.lab.params.check() {
+            self.doc.error = Some(format!("acne lab: {e}"));
+            return;
+        }
+        if self.lab.is_none() {
+            self.lab = LabWorker::new(Arc::clone(&self.repaint));
+        }
+        let Some(lab) = &self.lab else {
+            self.doc.error = Some("acne lab: cannot start its thread".into());
+            return;
+        };
+        let l = &mut self.doc.lab;
+        l.started = true;
+        l.generation = lab.start(Arc::clone(&self.doc.scene), l.params);
+        l.current = None;
+        l.sweep.clear();
+        l.done = false;
     }
 
     fn select(&mut self, [x, y]: [u32; 2]) {
@@ -225,6 +257,10 @@ impl Session {
             }
             Command::Unpin => self.doc.pin = None,
             Command::SetStep(step) => self.doc.step = step,
+            Command::SetLab(params) => {
+                self.doc.lab.params = params;
+                self.start_lab();
+            }
         }
     }
 
@@ -279,7 +315,35 @@ impl Session {
         while let Some(d) = self.worker.try_recv() {
             changed |= self.deliver(d);
         }
+        while let Some(d) = self.lab.as_ref().and_then(LabWorker::try_recv) {
+            changed |= self.deliver_lab(d);
+        }
         changed
+    }
+
+    /// Block until the acne lab's job is complete (tests; returns at once if never started).
+    pub fn wait_lab(&mut self) {
+        while self.doc.lab.started && !self.doc.lab.done {
+            match self.lab.as_ref().and_then(LabWorker::recv) {
+                Some(d) => {
+                    self.deliver_lab(d);
+                }
+                None => return,
+            }
+        }
+    }
+
+    fn deliver_lab(&mut self, d: LabDelivery) -> bool {
+        let lab = &mut self.doc.lab;
+        if d.generation() != lab.generation {
+            return false;
+        }
+        match d {
+            LabDelivery::Current(_, c) => lab.current = Some(c),
+            LabDelivery::Sweep(_, c) => lab.sweep.push(c),
+            LabDelivery::Done(_) => lab.done = true,
+        }
+        true
     }
 
     /// Block until the current render's image is complete (its debug statistics may still be
