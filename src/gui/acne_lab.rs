@@ -43,7 +43,6 @@ impl Default for LabParams {
 
 impl LabParams {
     /// Why these parameters cannot be rendered, if they cannot.
-    #[must_use]
     pub fn check(&self) -> Result<(), String> {
         if !(self.epsilon.is_finite() && self.epsilon >= 0.0) {
             return Err(format!("epsilon must be >= 0, got {}", self.epsilon));
