@@ -124,9 +124,10 @@ fn explain_sentences_select_and_reveal_their_nodes() {
     h.run();
     let row = format!("#{} {} -> ", target.0, tree.node(target).kind.name());
     assert!(!has(&h, &row), "hidden before the click");
-    h.get_by_label(&s.text).scroll_to_me();
+    let link = format!("{}  (#{})", s.text, target.0);
+    h.get_by_label(&link).scroll_to_me();
     h.run();
-    h.get_by_label(&s.text).click();
+    h.get_by_label(&link).click();
     h.run();
     h.run();
     assert_eq!(h.state().session.doc.node, Some(target));

@@ -1,7 +1,7 @@
 //! The "Explain" panel: `raytree explain`'s sentences for the selected pixel
 //! ([`crate::analysis::explain`]), under their four headings. Each sentence is a link: clicking
-//! it selects its first node (the tree panel opens its levels and scrolls to it), and its node
-//! ids are buttons of their own.
+//! it selects its first node (the tree panel opens its levels and scrolls to it); a sentence
+//! about several nodes has a button for each id under it.
 
 use super::document::{Command, Document};
 use super::style::SELECTED;
@@ -72,7 +72,13 @@ pub fn explain_ui(
             ui.label(RichText::new(heading(s.kind)).strong());
         }
         let selected = doc.node.is_some_and(|n| s.nodes.contains(&n));
-        let mut text = RichText::new(&s.text);
+        // One node: its id ends the sentence (the sentence is its link); several: a row of
+        // id buttons under it.
+        let line = match s.nodes.as_slice() {
+            [one] => format!("{}  (#{})", s.text, one.0),
+            _ => s.text.clone(),
+        };
+        let mut text = RichText::new(line);
         if colour(s.kind) != Color32::PLACEHOLDER {
             text = text.color(colour(s.kind));
         }
@@ -87,7 +93,7 @@ pub fn explain_ui(
         {
             cmds.push(Command::SelectNode(Some(*first)));
         }
-        if !s.nodes.is_empty() {
+        if s.nodes.len() > 1 {
             ui.horizontal_wrapped(|ui| {
                 ui.add_space(12.0);
                 for id in s.nodes.iter().take(IDS_SHOWN) {
