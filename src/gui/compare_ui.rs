@@ -9,7 +9,7 @@ use super::document::{Command, Document};
 use super::style::{SELECTED, kind_colour};
 use super::tree_ui::{node_name, node_numbers};
 use crate::analysis::diff::align::{AlignedRow, align};
-use crate::analysis::diff::{FieldChange, TreeDiff, diff};
+use crate::analysis::diff::{TreeDiff, diff};
 use crate::tree::{NodeId, RayTree};
 use egui::text::{LayoutJob, TextWrapping};
 use egui::{Color32, FontId, RichText, Sense, pos2, vec2};
@@ -19,11 +19,11 @@ use std::collections::HashMap;
 const ROW_HEIGHT: f32 = 18.0;
 const INDENT: f32 = 12.0;
 /// Background of a changed pair.
-const CHANGED_BG: Color32 = Color32::from_rgba_premultiplied(90, 70, 10, 90);
+const CHANGED_BG: Color32 = Color32::from_rgba_premultiplied(48, 36, 6, 48);
 /// Background of a ray only one tree has.
-const ONLY_BG: Color32 = Color32::from_rgba_premultiplied(40, 60, 110, 90);
+const ONLY_BG: Color32 = Color32::from_rgba_premultiplied(20, 32, 64, 64);
 /// Background of the first divergent pair.
-const FIRST_BG: Color32 = Color32::from_rgba_premultiplied(120, 25, 90, 140);
+const FIRST_BG: Color32 = Color32::from_rgba_premultiplied(96, 20, 72, 112);
 
 /// What a tree was traced with, in words: pixel, scene and the settings a teacher changes.
 #[must_use]
@@ -136,7 +136,7 @@ pub fn compare_window(
     egui::Window::new("Pin and compare")
         .open(&mut open)
         // Over the image, clear of the side panels at their default widths.
-        .default_pos(pos2(300.0, 40.0))
+        .default_pos(pos2(320.0, 40.0))
         .default_size(vec2(700.0, 520.0))
         .max_width(960.0)
         .max_height(800.0)
@@ -324,7 +324,8 @@ fn rows_ui(
                 } else {
                     text_colour
                 };
-                let width = (rect.left() + (side as f32 + 1.0) * half - x0 - 30.0).max(8.0);
+                // Room for the Δ count at the end of the pinned side.
+                let width = (rect.left() + (side as f32 + 1.0) * half - x0 - 48.0).max(8.0);
                 let mut job = LayoutJob::simple_singleline(text, font.clone(), colour);
                 job.wrap = TextWrapping::truncate_at_width(width);
                 let g = painter.layout_job(job);
@@ -353,86 +354,5 @@ fn rows_ui(
     }
 }
 
-/// The changed fields of the chosen pair: field, pinned, current, and for numbers the change.
-fn fields_ui(ui: &mut egui::Ui, view: &CompareView, a: &RayTree, b: &RayTree) {
-    let Some(r) = view.selected.and_then(|i| view.rows.get(i)) else {
-        ui.small("Click a row to see what changed in it.");
-        return;
-    };
-    let fields: &[FieldChange] = match (view.change_of(r), &view.diff) {
-        (Some(k), Some(d)) => &d.changed[k].fields,
-        _ => &[],
-    };
-    match (r.a, r.b) {
-        (Some(x), None) => {
-            ui.label(format!(
-                "only in the pinned tree: {} (subtree of {} rays)",
-                side_text(a, Some(x)),
-                a.depth_first(x).len()
-            ));
-        }
-        (None, Some(y)) => {
-            ui.label(format!(
-                "only in the current tree: {} (subtree of {} rays)",
-                side_text(b, Some(y)),
-                b.depth_first(y).len()
-            ));
-        }
-        (Some(x), Some(y)) if fields.is_empty() => {
-            ui.label(format!("{}: no field changed", pair_ids(x, y)));
-        }
-        (Some(x), Some(y)) => {
-            ui.label(format!(
-                "{} {}: {} changed field{}",
-                a.node(x).kind.name(),
-                pair_ids(x, y),
-                fields.len(),
-                if fields.len() == 1 { "" } else { "s" }
-            ));
-            egui::ScrollArea::vertical()
-                .id_salt("compare-fields")
-                .show(ui, |ui| {
-                    egui::Grid::new("compare-fields-grid")
-                        .striped(true)
-                        .num_columns(4)
-                        .max_col_width(260.0)
-                        .show(ui, |ui| {
-                            ui.strong("field");
-                            ui.strong("pinned");
-                            ui.strong("current");
-                            ui.strong("current - pinned");
-                            ui.end_row();
-                            for f in fields {
-                                ui.monospace(&f.field);
-                                ui.monospace(value_text(&f.a));
-                                ui.label(
-                                    RichText::new(value_text(&f.b)).monospace().color(WARNING),
-                                );
-                                match (f.a.as_f64(), f.b.as_f64()) {
-                                    (Some(x), Some(y)) => ui.monospace(format!("{:+.3e}", y - x)),
-                                    _ => ui.label(""),
-                                };
-                                ui.end_row();
-                            }
-                        });
-                });
-        }
-        (None, None) => {}
-    }
-}
-
-/// A JSON leaf as text: strings bare, `null` as "none", numbers to 6 significant digits.
-fn value_text(v: &Value) -> String {
-    match v {
-        Value::String(s) => s.clone(),
-        Value::Null => "none".into(),
-        Value::Number(n) => match n.as_f64() {
-            Some(x) if n.is_f64() && (x == 0.0 || (1e-3..1e5).contains(&x.abs())) => {
-                format!("{x:.6}")
-            }
-            Some(x) if n.is_f64() => format!("{x:.4e}"),
-            _ => n.to_string(),
-        },
-        v => v.to_string(),
-    }
-}
+mod fields;
+use fields::{fields_ui, value_text};

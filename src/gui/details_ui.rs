@@ -140,9 +140,13 @@ pub fn breakdown_ui(ui: &mut egui::Ui, doc: &Document, view: &TreeView, cmds: &m
         .iter()
         .partition(|t| amount(t.value.max_element()) != "0");
     let total = tree.radiance.element_sum().max(1e-12);
+    // Numbers are never wrapped (a wrapping grid squeezed them to a few characters a line);
+    // a long label is cut instead.
+    ui.style_mut().wrap_mode = Some(egui::TextWrapMode::Extend);
     egui::Grid::new("breakdown")
         .striped(true)
         .num_columns(3)
+        .max_col_width(200.0)
         .show(ui, |ui| {
             for t in terms.iter().take(TERMS_SHOWN) {
                 let share = t.value.element_sum() / total;
@@ -153,9 +157,12 @@ pub fn breakdown_ui(ui: &mut egui::Ui, doc: &Document, view: &TreeView, cmds: &m
                     kind_colour(kind)
                 };
                 if ui
-                    .selectable_label(
-                        doc.node == Some(t.node),
-                        RichText::new(&t.label).color(colour),
+                    .add(
+                        egui::Button::selectable(
+                            doc.node == Some(t.node),
+                            RichText::new(&t.label).color(colour),
+                        )
+                        .truncate(),
                     )
                     .clicked()
                 {
@@ -179,6 +186,7 @@ pub fn breakdown_ui(ui: &mut egui::Ui, doc: &Document, view: &TreeView, cmds: &m
             ui.label("100%");
             ui.end_row();
         });
+    ui.style_mut().wrap_mode = Some(egui::TextWrapMode::Wrap);
     let shadows = tree
         .nodes
         .iter()

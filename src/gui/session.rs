@@ -2,7 +2,7 @@
 //! commands, folds worker deliveries into the image, and reloads scenes. No egui here, so tests
 //! and benchmarks can drive it directly.
 
-use super::acne_lab::{LabDelivery, LabWorker};
+use super::acne_lab::LabWorker;
 use super::document::{Command, Document, Source};
 use super::export::{self, ExportKind};
 use super::worker::{Delivery, Repaint, Worker};
@@ -160,27 +160,6 @@ impl Session {
         }
     }
 
-    /// Start the acne lab on the current scene with its parameters.
-    fn start_lab(&mut self) {
-        if let Err(e) = self.doc.lab.params.check() {
-            self.doc.error = Some(format!("acne lab: {e}"));
-            return;
-        }
-        if self.lab.is_none() {
-            self.lab = LabWorker::new(Arc::clone(&self.repaint));
-        }
-        let Some(lab) = &self.lab else {
-            self.doc.error = Some("acne lab: cannot start its thread".into());
-            return;
-        };
-        let l = &mut self.doc.lab;
-        l.started = true;
-        l.generation = lab.start(Arc::clone(&self.doc.scene), l.params);
-        l.current = None;
-        l.sweep.clear();
-        l.done = false;
-    }
-
     fn select(&mut self, [x, y]: [u32; 2]) {
         let keep = self.doc.node;
         self.doc.selection = Some([x, y]);
@@ -321,31 +300,6 @@ impl Session {
         changed
     }
 
-    /// Block until the acne lab's job is complete (tests; returns at once if never started).
-    pub fn wait_lab(&mut self) {
-        while self.doc.lab.started && !self.doc.lab.done {
-            match self.lab.as_ref().and_then(LabWorker::recv) {
-                Some(d) => {
-                    self.deliver_lab(d);
-                }
-                None => return,
-            }
-        }
-    }
-
-    fn deliver_lab(&mut self, d: LabDelivery) -> bool {
-        let lab = &mut self.doc.lab;
-        if d.generation() != lab.generation {
-            return false;
-        }
-        match d {
-            LabDelivery::Current(_, c) => lab.current = Some(c),
-            LabDelivery::Sweep(_, c) => lab.sweep.push(c),
-            LabDelivery::Done(_) => lab.done = true,
-        }
-        true
-    }
-
     /// Block until the current render's image is complete (its debug statistics may still be
     /// on the way).
     pub fn wait_image(&mut self) {
@@ -429,3 +383,5 @@ fn diagram_bytes(doc: &Document, kind: ExportKind) -> Result<(Vec<u8>, Option<St
         }
     })
 }
+
+mod lab;

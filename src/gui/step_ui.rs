@@ -59,6 +59,7 @@ pub fn step_ui(ui: &mut egui::Ui, doc: &Document, cmds: &mut Vec<Command>) {
     ui.checkbox(&mut on, "show the point on the overlay and the diagram");
     let end = teach::t_end(n, miss_length(tree));
     let mut t = step.at.unwrap_or(1.0).clamp(0.0, 1.0) * end;
+    ui.spacing_mut().slider_width = (ui.available_width() - 110.0).max(80.0);
     let resp = ui.add_enabled(
         on,
         Slider::new(&mut t, 0.0..=end)
@@ -71,6 +72,7 @@ pub fn step_ui(ui: &mut egui::Ui, doc: &Document, cmds: &mut Vec<Command>) {
     }
     egui::Grid::new("step-grid")
         .num_columns(2)
+        .min_col_width(90.0)
         .striped(true)
         .show(ui, |ui| {
             let mut row = |k: &str, v: String| {
