@@ -93,6 +93,29 @@ pub fn scaled_scene(scene: &Scene, scale: f64, shift: f64) -> Scene {
     transformed(scene, scale, DVec3::splat(scale * shift))
 }
 
+/// One render of the sweep: `scaled` (already at the cell's size, scale and place, see
+/// [`scaled_scene`]) with `strategy` and `epsilon`, diagnosed; `scale` is recorded as given.
+#[must_use]
+pub fn cell(scaled: &Scene, strategy: OffsetStrategy, epsilon: f64, scale: f64) -> AcneCell {
+    let mut sc = scaled.clone();
+    sc.settings.offset.strategy = strategy;
+    sc.settings.offset.epsilon = epsilon;
+    let (image, stats, map) = render_diagnosed(&sc, &|_| {});
+    AcneCell {
+        strategy,
+        epsilon,
+        scale,
+        pixels: u64::from(sc.camera.width) * u64::from(sc.camera.height),
+        self_hit_pixels: stats.self_hit_pixels,
+        leak_pixels: stats.leak_pixels,
+        self_hit_rays: stats.rays.self_hits,
+        leak_rays: stats.rays.leaks,
+        rays: stats.rays.total(),
+        image,
+        map,
+    }
+}
+
 /// Run the sweep; `progress` receives the number of renders finished.
 #[must_use]
 pub fn sweep(scene: &Scene, config: &AcneConfig, progress: &(dyn Fn(usize) + Sync)) -> AcneReport {
@@ -109,23 +132,7 @@ pub fn sweep(scene: &Scene, config: &AcneConfig, progress: &(dyn Fn(usize) + Syn
     for &strategy in &config.strategies {
         for &epsilon in &config.epsilons {
             for (scaled, &scale) in scenes.iter().zip(&config.scales) {
-                let mut sc = scaled.clone();
-                sc.settings.offset.strategy = strategy;
-                sc.settings.offset.epsilon = epsilon;
-                let (image, stats, map) = render_diagnosed(&sc, &|_| {});
-                cells.push(AcneCell {
-                    strategy,
-                    epsilon,
-                    scale,
-                    pixels: u64::from(config.width) * u64::from(config.height),
-                    self_hit_pixels: stats.self_hit_pixels,
-                    leak_pixels: stats.leak_pixels,
-                    self_hit_rays: stats.rays.self_hits,
-                    leak_rays: stats.rays.leaks,
-                    rays: stats.rays.total(),
-                    image,
-                    map,
-                });
+                cells.push(cell(scaled, strategy, epsilon, scale));
                 progress(cells.len());
             }
         }

@@ -157,6 +157,33 @@ fn node_changes(ta: &RayTree, a: &RayNode, tb: &RayTree, b: &RayNode) -> Vec<Fie
     out
 }
 
+/// The children of `na` (in `a`) and `nb` (in `b`) paired by kind and order: the i-th
+/// reflected child with the i-th reflected child, and so on for every kind in
+/// [`RayKind::ALL`] order; a child without a partner is paired with `None`.
+#[must_use]
+pub fn matched_children(
+    a: &RayTree,
+    na: &RayNode,
+    b: &RayTree,
+    nb: &RayNode,
+) -> Vec<(Option<NodeId>, Option<NodeId>)> {
+    let mut out = Vec::new();
+    for kind in RayKind::ALL {
+        let of = |t: &RayTree, n: &RayNode| -> Vec<NodeId> {
+            n.children
+                .iter()
+                .copied()
+                .filter(|c| t.node(*c).kind == kind)
+                .collect()
+        };
+        let (ca, cb) = (of(a, na), of(b, nb));
+        for i in 0..ca.len().max(cb.len()) {
+            out.push((ca.get(i).copied(), cb.get(i).copied()));
+        }
+    }
+    out
+}
+
 /// Compare trees `a` and `b` (normally of one pixel under two settings).
 #[must_use]
 pub fn diff(a: &RayTree, b: &RayTree) -> TreeDiff {
@@ -196,24 +223,13 @@ pub fn diff(a: &RayTree, b: &RayTree) -> TreeDiff {
                 fields,
             });
         }
-        for kind in RayKind::ALL {
-            let ca: Vec<NodeId> = na
-                .children
-                .iter()
-                .copied()
-                .filter(|c| a.node(*c).kind == kind)
-                .collect();
-            let cb: Vec<NodeId> = nb
-                .children
-                .iter()
-                .copied()
-                .filter(|c| b.node(*c).kind == kind)
-                .collect();
-            for (x, y) in ca.iter().zip(&cb) {
-                queue.push_back((*x, *y, level + 1));
+        for pair in matched_children(a, na, b, nb) {
+            match pair {
+                (Some(x), Some(y)) => queue.push_back((x, y, level + 1)),
+                (Some(x), None) => only_a.push(x),
+                (None, Some(y)) => only_b.push(y),
+                (None, None) => {}
             }
-            only_a.extend(ca.iter().skip(cb.len()));
-            only_b.extend(cb.iter().skip(ca.len()));
         }
     }
     TreeDiff {
@@ -346,6 +362,8 @@ pub fn diff_text(d: &TreeDiff, a: &RayTree, b: &RayTree) -> String {
     );
     s
 }
+
+pub mod align;
 
 #[cfg(test)]
 mod tests {

@@ -8,3 +8,4 @@ pub mod diff;
 pub mod explain;
 pub mod growth;
 pub mod invariants;
+pub mod teach;

@@ -1,12 +1,14 @@
 //! The thin `eframe::App`: lays out the panels, owns the image texture, applies commands.
 
+use super::compare_ui::{CompareView, compare_window, pin_bar};
 use super::diagram_ui::{DiagramCache, diagram_ui};
 use super::document::{Command, Document};
+use super::explain_ui::{ExplainCache, explain_ui};
 use super::image_ui::{ImagePlacement, OverlayCache, image_ui};
 use super::session::Session;
 use super::stats::{self, DebugView};
 use super::tree_ui::TreeView;
-use super::{settings_ui as settings, tree_ui};
+use super::{details_ui, settings_ui as settings, tree_ui};
 use egui::{Color32, ColorImage, Key, RichText, TextureHandle, TextureOptions};
 
 /// The colour of error messages.
@@ -28,6 +30,8 @@ pub struct InspectorApp {
     diagram: DiagramCache,
     tree_view: TreeView,
     overlay: OverlayCache,
+    explain: ExplainCache,
+    compare: CompareView,
 }
 
 impl InspectorApp {
@@ -43,6 +47,8 @@ impl InspectorApp {
             diagram: DiagramCache::default(),
             tree_view: TreeView::default(),
             overlay: OverlayCache::default(),
+            explain: ExplainCache::default(),
+            compare: CompareView::default(),
         }
     }
 
@@ -69,6 +75,18 @@ impl InspectorApp {
     #[must_use]
     pub fn overlay_rays(&self) -> usize {
         self.overlay.rays
+    }
+
+    /// The explanation the Explain panel shows (for tests).
+    #[must_use]
+    pub fn explanation(&self) -> Option<&crate::analysis::explain::Explanation> {
+        self.explain.explanation()
+    }
+
+    /// The pinned-versus-current difference the compare window shows (for tests).
+    #[must_use]
+    pub fn compare_diff(&self) -> Option<&crate::analysis::diff::TreeDiff> {
+        self.compare.diff()
     }
 
     /// Open every level of the selected tree (as the "expand all below" button on the root).
@@ -116,9 +134,13 @@ impl InspectorApp {
                     });
                     section(ui, "View", |ui| settings::view_ui(ui, doc, &mut cmds));
                     section(ui, "Export", |ui| settings::export_ui(ui, doc, &mut cmds));
+                    egui::CollapsingHeader::new(RichText::new("Acne lab").strong())
+                        .default_open(false)
+                        .show(ui, |ui| super::acne_ui::acne_ui(ui, doc, &mut cmds));
                 });
             });
         let tree_view = &mut self.tree_view;
+        let explain = &mut self.explain;
         egui::Panel::right("tree")
             .resizable(true)
             .default_size(470.0)
@@ -126,20 +148,27 @@ impl InspectorApp {
             .show(ui, |ui| {
                 ui.style_mut().wrap_mode = Some(egui::TextWrapMode::Wrap);
                 ui.heading("Ray tree");
+                pin_bar(ui, doc, &mut cmds);
                 tree_ui::tree_ui(ui, doc, tree_view, &mut cmds);
                 ui.separator();
                 egui::ScrollArea::vertical()
                     .id_salt("details-scroll")
                     .show(ui, |ui| {
+                        egui::CollapsingHeader::new("Explain")
+                            .default_open(true)
+                            .show(ui, |ui| explain_ui(ui, doc, explain, &mut cmds));
                         egui::CollapsingHeader::new("Details")
                             .default_open(true)
                             .show(ui, |ui| {
-                                tree_ui::details_ui(ui, doc);
+                                details_ui::details_ui(ui, doc);
                             });
+                        egui::CollapsingHeader::new("Step along a ray")
+                            .default_open(false)
+                            .show(ui, |ui| super::step_ui::step_ui(ui, doc, &mut cmds));
                         egui::CollapsingHeader::new("Contribution breakdown")
                             .default_open(true)
                             .show(ui, |ui| {
-                                tree_ui::breakdown_ui(ui, doc, tree_view, &mut cmds);
+                                details_ui::breakdown_ui(ui, doc, tree_view, &mut cmds);
                             });
                     });
             });
@@ -156,6 +185,7 @@ impl InspectorApp {
             placement = Some(image_ui(ui, doc, tex, overlay, &mut cmds));
         });
         self.placement = placement;
+        compare_window(&ctx, doc, &mut self.compare, &mut cmds);
         keys_ui(ui, doc, &mut cmds);
         for c in cmds {
             self.session.apply(c);

@@ -22,6 +22,8 @@ struct Key {
     plane: PlaneSpec,
     zoom_offsets: bool,
     size: [u32; 2],
+    /// Deepest depth drawn (step along a ray).
+    depth: Option<u32>,
 }
 
 /// A figure to rasterise: the key it is for, the diagram, and whom to wake when it is done.
@@ -71,6 +73,8 @@ pub struct DiagramCache {
     texture: Option<(TextureHandle, Key)>,
     /// Whether the figure for `key` is still being drawn.
     pending: bool,
+    /// The world-to-canvas mapping of the figure for `key` (for the step point).
+    frame: Option<crate::diagram::PlaneFrame>,
     rasteriser: Option<Rasteriser>,
 }
 
@@ -81,6 +85,7 @@ impl Default for DiagramCache {
             prims: Ok(Vec::new()),
             texture: None,
             pending: false,
+            frame: None,
             rasteriser: None,
         }
     }
@@ -98,6 +103,7 @@ impl DiagramCache {
     fn rebuild(&mut self, ctx: &egui::Context, doc: &Document, key: Key) {
         self.key = Some(key);
         self.pending = false;
+        self.frame = None;
         let built = doc
             .tree
             .as_ref()
@@ -114,6 +120,7 @@ impl DiagramCache {
             }
         };
         self.prims = Ok(display_list(&d, &Style::new(Theme::Dark)));
+        self.frame = Some(d.frame);
         if self.rasteriser.is_none() {
             self.rasteriser = Rasteriser::start();
         }
@@ -153,6 +160,7 @@ pub fn diagram_options(doc: &Document, size: [u32; 2]) -> DiagramOptions {
         height: size[1],
         zoom_offsets: doc.view.zoom_offsets,
         highlight: doc.node,
+        max_depth: doc.step.depth,
         ..DiagramOptions::default()
     }
 }
@@ -225,6 +233,7 @@ pub fn diagram_ui(
         plane: doc.view.plane,
         zoom_offsets: doc.view.zoom_offsets,
         size,
+        depth: doc.step.depth,
     };
     if cache.key != Some(key) {
         cache.rebuild(ui.ctx(), doc, key);
@@ -247,6 +256,9 @@ pub fn diagram_ui(
         let rect = egui::Rect::from_min_size(area.min, egui::vec2(w as f32, h as f32));
         let uv = egui::Rect::from_min_max(pos2(0.0, 0.0), pos2(1.0, 1.0));
         painter.image(tex.id(), rect, uv, Color32::WHITE);
+        if let Some(frame) = &cache.frame {
+            super::step_ui::paint_on_diagram(&painter, doc, frame, area.min);
+        }
     }
     if cache.pending {
         painter.text(

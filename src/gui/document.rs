@@ -78,6 +78,45 @@ pub struct Progress {
     pub growth: Option<String>,
 }
 
+/// Step along a ray: where the point stands on the selected ray and how deep the recursion is
+/// shown.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct Step {
+    /// The point's place on the selected ray as a fraction of its `t` range (1 = at the hit);
+    /// `None`: no point drawn.
+    pub at: Option<f64>,
+    /// Draw rays down to this depth only (overlay and diagram); `None`: all.
+    pub depth: Option<u32>,
+}
+
+/// The acne lab: its parameters and what the lab's worker has delivered for them.
+#[derive(Clone, Debug, Default)]
+pub struct Lab {
+    /// What is rendered.
+    pub params: super::acne_lab::LabParams,
+    /// Whether the lab has been started (it re-runs on every scene or settings change then).
+    pub started: bool,
+    /// The lab job the results belong to.
+    pub generation: u64,
+    /// The chosen strategy and epsilon's render (affected pixels).
+    pub current: Option<crate::analysis::acne::AcneCell>,
+    /// The sweep's cells delivered so far.
+    pub sweep: Vec<crate::analysis::acne::AcneCell>,
+    /// Whether the job is complete.
+    pub done: bool,
+}
+
+/// A tree kept aside to compare the current one with ("pin and compare").
+#[derive(Clone, Debug)]
+pub struct Pin {
+    /// The pinned tree.
+    pub tree: RayTree,
+    /// What it was traced with, in words (pixel, scene, settings).
+    pub label: String,
+    /// Bumped on every pin, so caches see a new pin of the same tree.
+    pub version: u64,
+}
+
 /// Everything the panels show.
 pub struct Document {
     /// The scene being traced (with the panel's settings).
@@ -113,6 +152,13 @@ pub struct Document {
     pub export_field: String,
     /// Bumped whenever the image or debug data changed, so the app re-uploads its texture.
     pub image_version: u64,
+    /// The pinned tree, compared with the current one (kept across settings, pixels and
+    /// reloads).
+    pub pin: Option<Pin>,
+    /// Step along a ray.
+    pub step: Step,
+    /// The acne lab.
+    pub lab: Lab,
 }
 
 impl Document {
@@ -157,6 +203,9 @@ impl Document {
             export_error: None,
             status: String::new(),
             image_version: 0,
+            pin: None,
+            step: Step::default(),
+            lab: Lab::default(),
         }
     }
 
@@ -197,4 +246,12 @@ pub enum Command {
     SetPathField(String),
     /// Edit the export base field.
     SetExportField(String),
+    /// Pin the current tree to compare later trees with it.
+    Pin,
+    /// Drop the pinned tree.
+    Unpin,
+    /// Move the step point or change the depth shown.
+    SetStep(Step),
+    /// Run the acne lab with these parameters (cancelling its last job).
+    SetLab(super::acne_lab::LabParams),
 }

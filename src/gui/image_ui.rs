@@ -24,6 +24,8 @@ struct OverlayKey {
     node: Option<crate::tree::NodeId>,
     rect: Rect,
     pixels_per_point: f32,
+    /// Deepest depth drawn (step along a ray).
+    depth: Option<u32>,
 }
 
 /// The ray overlay tessellated once per change (selection, node, zoom, pan): a frame adds one
@@ -155,6 +157,7 @@ fn overlay(
         node: doc.node,
         rect: place.rect,
         pixels_per_point: ui.ctx().pixels_per_point(),
+        depth: doc.step.depth,
     };
     if cache.key != Some(key) {
         cache.key = Some(key);
@@ -172,9 +175,11 @@ fn overlay(
         }
         cache.mesh = Arc::new(mesh);
     }
-    painter
-        .with_clip_rect(place.rect.intersect(area))
-        .add(Shape::Mesh(Arc::clone(&cache.mesh)));
+    let clipped = painter.with_clip_rect(place.rect.intersect(area));
+    clipped.add(Shape::Mesh(Arc::clone(&cache.mesh)));
+    super::step_ui::paint_on_image(&clipped, doc, |p| {
+        place.rect.min + vec2(p[0] as f32, p[1] as f32) * place.zoom
+    });
 }
 
 /// The overlay's shapes (selected ray last, on top) and the number of rays drawn.
@@ -188,7 +193,15 @@ fn overlay_shapes(
     let mut shapes = Vec::new();
     let mut top = Vec::new();
     let mut rays = 0;
-    for seg in sample_segments(&doc.scene.camera, tree, doc.node) {
+    let shown = |seg: &crate::gui::project::PathSegment| {
+        doc.step
+            .depth
+            .is_none_or(|d| tree.node(seg.node).depth <= d)
+    };
+    for seg in sample_segments(&doc.scene.camera, tree, doc.node)
+        .into_iter()
+        .filter(shown)
+    {
         let Some(film) = clip_to_film(seg.film, w, h) else {
             continue;
         };

@@ -7,16 +7,22 @@
 //! The library does no I/O itself: reading and writing files goes through the [`Files`] hook
 //! that the binary supplies.
 
+pub mod acne_lab;
+mod acne_ui;
 mod app;
 pub mod breakdown;
+pub mod compare_ui;
+mod details_ui;
 pub mod diagram_ui;
 pub mod document;
+pub mod explain_ui;
 pub mod export;
 mod image_ui;
 pub mod project;
 mod session;
 mod settings_ui;
 pub mod stats;
+pub mod step_ui;
 mod style;
 mod tree_ui;
 pub mod worker;

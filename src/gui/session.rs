@@ -2,6 +2,7 @@
 //! commands, folds worker deliveries into the image, and reloads scenes. No egui here, so tests
 //! and benchmarks can drive it directly.
 
+use super::acne_lab::LabWorker;
 use super::document::{Command, Document, Source};
 use super::export::{self, ExportKind};
 use super::worker::{Delivery, Repaint, Worker};
@@ -19,6 +20,9 @@ pub struct Session {
     worker: Worker,
     files: Box<dyn Files>,
     adjust: Adjust,
+    repaint: Repaint,
+    /// The acne lab's thread, started on first use.
+    lab: Option<LabWorker>,
 }
 
 impl Session {
@@ -35,9 +39,11 @@ impl Session {
         let doc = Document::new(builtin, Source::default());
         let mut s = Self {
             doc,
-            worker: Worker::new(repaint),
+            worker: Worker::new(Arc::clone(&repaint)),
             files,
             adjust,
+            repaint,
+            lab: None,
         };
         s.doc.error = builtin_err;
         match path {
@@ -90,8 +96,13 @@ impl Session {
                 let view = self.doc.view;
                 let selection = self.doc.selection;
                 let versions = (self.doc.tree_version, self.doc.image_version);
+                let (pin, step) = (self.doc.pin.take(), self.doc.step);
+                let lab = std::mem::take(&mut self.doc.lab);
                 self.doc = Document::new(scene, source);
                 self.doc.view = view;
+                self.doc.pin = pin;
+                self.doc.step = step;
+                self.doc.lab = lab;
                 // Versions keep counting: caches keyed on them must see a new document.
                 self.doc.tree_version = versions.0;
                 self.doc.image_version = versions.1 + 1;
@@ -144,6 +155,9 @@ impl Session {
         self.doc.progress.stats_rows = 0;
         self.doc.progress.stats_seconds = None;
         self.doc.progress.growth = None;
+        if self.doc.lab.started {
+            self.start_lab();
+        }
     }
 
     fn select(&mut self, [x, y]: [u32; 2]) {
@@ -209,6 +223,23 @@ impl Session {
             Command::Export(kind) => self.export(kind),
             Command::SetPathField(s) => self.doc.path_field = s,
             Command::SetExportField(s) => self.doc.export_field = s,
+            Command::Pin => {
+                if let Some(tree) = self.doc.tree.clone() {
+                    let version = self.doc.pin.as_ref().map_or(0, |p| p.version) + 1;
+                    let label = super::compare_ui::tree_label(&self.doc.source.label(), &tree);
+                    self.doc.pin = Some(super::document::Pin {
+                        tree,
+                        label,
+                        version,
+                    });
+                }
+            }
+            Command::Unpin => self.doc.pin = None,
+            Command::SetStep(step) => self.doc.step = step,
+            Command::SetLab(params) => {
+                self.doc.lab.params = params;
+                self.start_lab();
+            }
         }
     }
 
@@ -262,6 +293,9 @@ impl Session {
         let mut changed = false;
         while let Some(d) = self.worker.try_recv() {
             changed |= self.deliver(d);
+        }
+        while let Some(d) = self.lab.as_ref().and_then(LabWorker::try_recv) {
+            changed |= self.deliver_lab(d);
         }
         changed
     }
@@ -349,3 +383,5 @@ fn diagram_bytes(doc: &Document, kind: ExportKind) -> Result<(Vec<u8>, Option<St
         }
     })
 }
+
+mod lab;

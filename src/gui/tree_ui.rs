@@ -4,8 +4,8 @@
 
 use super::breakdown::{Term, breakdown, pixel_contribution};
 use super::document::{Command, Document};
-use super::style::{SELECTED, amount, kind_colour, num, rgb, square, swatch, vec3, weight};
-use crate::tree::{NodeId, RayKind, RayNode, RayTree};
+use super::style::{SELECTED, amount, kind_colour, num, rgb, square, swatch, weight};
+use crate::tree::{NodeId, RayNode, RayTree};
 use egui::text::{LayoutJob, TextWrapping};
 use egui::{FontId, Rect, RichText, Sense, pos2, vec2};
 
@@ -17,8 +17,6 @@ const ROW_HEIGHT: f32 = 18.0;
 const INDENT: f32 = 14.0;
 /// Width of each of the `w=` and `c=` columns (points).
 const NUMBER_COLUMN: f32 = 84.0;
-/// Breakdown terms listed one by one; the rest are summed in one line.
-const TERMS_SHOWN: usize = 24;
 
 /// What a node's ray reached, with its Fresnel split: the start of its tree row.
 #[must_use]
@@ -87,6 +85,13 @@ pub struct TreeView {
     /// Rows on screen last frame.
     shown: std::ops::Range<usize>,
     terms: Vec<Term>,
+}
+
+impl TreeView {
+    /// The breakdown terms of the current tree, largest first.
+    pub(super) fn terms(&self) -> &[Term] {
+        &self.terms
+    }
 }
 
 impl TreeView {
@@ -355,171 +360,4 @@ fn node_row(
     let y = rect.center().y - galley.size().y / 2.0;
     painter.galley(pos2(name_left, y), galley, text_colour);
     toggle_clicked
-}
-
-/// Every recorded field of the selected node.
-pub fn details_ui(ui: &mut egui::Ui, doc: &Document) {
-    let (Some(tree), Some(id)) = (&doc.tree, doc.node) else {
-        ui.label("Select a node to see its fields.");
-        return;
-    };
-    let n = tree.node(id);
-    ui.colored_label(
-        kind_colour(n.kind),
-        RichText::new(format!("#{} {} ray", n.id.0, n.kind.name())).strong(),
-    );
-    egui::Grid::new("details")
-        .striped(true)
-        .num_columns(2)
-        .max_col_width((ui.available_width() - 110.0).max(120.0))
-        .show(ui, |ui| {
-            let mut row = |k: &str, v: String| {
-                ui.label(k);
-                ui.add(egui::Label::new(RichText::new(v).monospace()).wrap());
-                ui.end_row();
-            };
-            row("depth", n.depth.to_string());
-            row(
-                "parent",
-                n.parent.map_or("-".into(), |p| format!("#{}", p.0)),
-            );
-            row(
-                "children",
-                n.children
-                    .iter()
-                    .map(|c| format!("#{}", c.0))
-                    .collect::<Vec<_>>()
-                    .join(" "),
-            );
-            row("spawn point", vec3(n.spawn_point));
-            row("offset", vec3(n.offset));
-            row("origin", vec3(n.origin));
-            row("direction", vec3(n.direction));
-            row("t_min", num(n.t_min));
-            if let Some(h) = &n.hit {
-                row(
-                    "hit object",
-                    format!("{} (#{}) [{}]", h.object_name, h.object, h.material),
-                );
-                row("hit t", num(h.t));
-                row("hit point", vec3(h.point));
-                row("hit normal", vec3(h.normal));
-                row("entering", h.entering.to_string());
-                row("cos_i", num(h.cos_i));
-            }
-            if let Some(i) = &n.interface {
-                row("n1 -> n2", format!("{} -> {}", num(i.n1), num(i.n2)));
-                row(
-                    "cos_i / cos_t",
-                    format!(
-                        "{} / {}",
-                        num(i.cos_i),
-                        i.cos_t.map_or("- (TIR)".into(), num)
-                    ),
-                );
-                row(
-                    "Fresnel R / T",
-                    format!("{} / {}", num(i.fresnel.r), num(i.fresnel.t)),
-                );
-                row("TIR", i.tir.to_string());
-            }
-            if let Some(a) = &n.attenuation {
-                row("medium", format!("#{}", a.medium));
-                row("distance", num(a.distance));
-                row("absorption", rgb(a.absorption));
-                row("Beer factor", rgb(a.factor));
-            }
-            row("weight", rgb(n.weight));
-            row("throughput", rgb(n.throughput));
-            row("emitted", rgb(n.emitted));
-            row("ambient", rgb(n.ambient));
-            row("local", rgb(n.local));
-            row("radiance", rgb(n.radiance));
-            row("share of the pixel", rgb(pixel_contribution(tree, id)));
-            row("truncated", rgb(n.truncated));
-            row("end", format!("{:?}", n.end));
-            if let Some(s) = &n.shadow {
-                row("light", format!("{} (#{})", s.light_name, s.light));
-                row("light distance", num(s.distance));
-                row("cos theta", num(s.cos_theta));
-                row("BRDF", rgb(s.brdf));
-                if let Some(a) = &s.area {
-                    // An area-light sample: the emitted radiance, its solid-angle pdf and the
-                    // Monte Carlo weight L / pdf (not an irradiance).
-                    row("sampled point", vec3(a.point));
-                    row("emitted radiance L", rgb(a.radiance));
-                    row("pdf (solid angle)", num(a.pdf));
-                    row("L / pdf", rgb(s.irradiance));
-                } else {
-                    row("irradiance", rgb(s.irradiance));
-                }
-                row("transmittance", rgb(s.transmittance));
-                for b in &s.blockers {
-                    row(
-                        "blocker",
-                        format!(
-                            "{} t={} chord={} factor={}",
-                            b.object_name,
-                            num(b.t),
-                            num(b.chord),
-                            rgb(b.factor)
-                        ),
-                    );
-                }
-            }
-        });
-}
-
-/// How the pixel value adds up; clicking a term selects its node (and reveals it in the tree).
-pub fn breakdown_ui(ui: &mut egui::Ui, doc: &Document, view: &TreeView, cmds: &mut Vec<Command>) {
-    let Some(tree) = &doc.tree else { return };
-    let terms = &view.terms;
-    let total = tree.radiance.element_sum().max(1e-12);
-    egui::Grid::new("breakdown")
-        .striped(true)
-        .num_columns(3)
-        .show(ui, |ui| {
-            for t in terms.iter().take(TERMS_SHOWN) {
-                let share = t.value.element_sum() / total;
-                let kind = tree.node(t.node).kind;
-                let colour = if doc.node == Some(t.node) {
-                    SELECTED
-                } else {
-                    kind_colour(kind)
-                };
-                if ui
-                    .selectable_label(
-                        doc.node == Some(t.node),
-                        RichText::new(&t.label).color(colour),
-                    )
-                    .clicked()
-                {
-                    cmds.push(Command::SelectNode(Some(t.node)));
-                }
-                ui.monospace(rgb(t.value));
-                ui.label(format!("{:5.1}%", share * 100.0));
-                ui.end_row();
-            }
-            if terms.len() > TERMS_SHOWN {
-                let rest = terms[TERMS_SHOWN..]
-                    .iter()
-                    .fold(crate::math::Rgb::ZERO, |acc, t| acc + t.value);
-                ui.label(format!("{} smaller terms", terms.len() - TERMS_SHOWN));
-                ui.monospace(rgb(rest));
-                ui.label(format!("{:5.1}%", rest.element_sum() / total * 100.0));
-                ui.end_row();
-            }
-            ui.label(RichText::new("pixel").strong());
-            ui.monospace(rgb(tree.radiance));
-            ui.label("100%");
-            ui.end_row();
-        });
-    let shadows = tree
-        .nodes
-        .iter()
-        .filter(|n| n.kind == RayKind::Shadow)
-        .count();
-    ui.small(format!(
-        "local = emitted + ambient + direct light from {shadows} shadow rays"
-    ));
 }
