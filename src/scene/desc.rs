@@ -118,6 +118,10 @@ pub struct MaterialDesc {
     pub absorption: Triple,
     /// Emitted radiance from the outer side.
     pub emission: Triple,
+    /// GGX (Trowbridge-Reitz) alpha of the `reflectivity` and `transmissivity` lobes, in
+    /// [0, 1]; 0 (the default) is smooth.
+    #[serde(skip_serializing_if = "is_zero")]
+    pub roughness: f64,
 }
 
 /// One object: a shape, its material and an optional name.
@@ -529,6 +533,14 @@ pub struct Settings {
     /// mirror and refracted rays), not sampled as lights, as before area lights existed.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub light_samples: Option<u32>,
+    /// Rays sampled per rough (`roughness > 0`) reflection or refraction lobe in the Whitted
+    /// integrator, at the first rough hit of a path (below a sampled ray, one per lobe).
+    #[serde(skip_serializing_if = "is_one")]
+    pub glossy_samples: u32,
+}
+
+fn is_one(v: &u32) -> bool {
+    *v == 1
 }
 
 /// Default [`Settings::tolerance`]: half an 8-bit display step.
@@ -551,6 +563,7 @@ impl Default for Settings {
             tolerance: DEFAULT_TOLERANCE,
             max_rays: DEFAULT_MAX_RAYS,
             light_samples: None,
+            glossy_samples: 1,
         }
     }
 }

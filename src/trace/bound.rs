@@ -14,8 +14,12 @@
 //!   the irradiance of a directional light, or `I / d^2` of a point light with `d` the least
 //!   distance from the light to any surface (a lower bound on it: the sphere's, plane's or box's
 //!   distance, a triangle's plane and box, a mesh's box, or its triangles' when the light is
-//!   inside the box). The weights of a hit's secondary rays sum to
-//!   `reflectivity + transmissivity (R + T) = reflectivity + transmissivity <= s` per channel.
+//!   inside the box); a rough (GGX) lobe adds at most `weight / (2 pi alpha^3)` to the
+//!   BRDF x cosine of a point or directional light (see `radiance_bound`). The weights of a
+//!   hit's secondary rays sum to `reflectivity + transmissivity (R + T) = reflectivity +
+//!   transmissivity <= s` per channel; a ray sampled from a rough lobe (visible normals) has
+//!   `f cos / pdf = weight G1(wi) <= weight`, so one sample's estimate obeys the same sum (the
+//!   cut compares the throughput of one sample's estimate, `trace::glossy`).
 //!
 //! So a ray with `k` bounces left carries at most `max(background, B) (1 + s + ... + s^k)`, and
 //! `max_depth` bounds `k`. A pixel's 8-bit sRGB value moves at most 12.92 times its linear
@@ -99,8 +103,20 @@ pub fn radiance_bound(scene: &Scene, max_depth: u32, shadows: ShadowMode) -> f64
     if shadows == ShadowMode::Translucent && through > 1.0 {
         return f64::INFINITY;
     }
+    // A rough lobe's reflection lit by a point or directional light: `f cos_i = weight D G F /
+    // (4 cos_o) <= weight D_max G1(wo) / (4 cos_o)`, with `D_max = 1 / (pi a^2)` and
+    // `G1(wo) / cos_o = 2 / (cos_o + sqrt(cos_o^2 + a^2 sin_o^2)) <= 2 / a` (the denominator
+    // grows with cos_o from a), so at most `weight / (2 pi a^3)` (Walter et al. 2007 eq. 20,
+    // 33, 34). Strict, and large for small alpha.
+    let glossy = used()
+        .filter(|m| m.is_rough())
+        .map(|m| {
+            let a = m.roughness;
+            max(m.reflectivity + m.transmissivity) / (2.0 * std::f64::consts::PI * a * a * a)
+        })
+        .fold(0.0, f64::max);
     let direct = if irradiance > 0.0 {
-        (albedo * std::f64::consts::FRAC_1_PI + specular) * irradiance
+        (albedo * std::f64::consts::FRAC_1_PI + specular + glossy) * irradiance
     } else {
         0.0
     };

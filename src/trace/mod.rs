@@ -5,6 +5,7 @@ mod area;
 pub mod bound;
 pub mod diagnose;
 mod direct_only;
+mod glossy;
 mod integrator;
 mod lights;
 mod local;
@@ -89,6 +90,8 @@ struct Spawn {
     /// For meshes: the stored triangle the ray leaves.
     triangle: Option<u32>,
     weight: Rgb,
+    /// For a ray sampled from a rough lobe: the sample, recorded on its node.
+    glossy: Option<crate::tree::GlossySample>,
 }
 
 /// What the secondary rays of one hit add up to.
@@ -107,6 +110,10 @@ struct PathState<'m> {
     media: &'m MediaStack,
     /// No secondary ray is spawned once `RayCounts::total` reaches this (the sample's budget).
     ray_limit: u64,
+    /// Below a ray sampled from a rough lobe: the number of samples `n` that lobe drew. Rough
+    /// lobes below draw one ray each, and the min-weight cut compares `n x throughput` (the
+    /// throughput of one sample's estimate, as with `spp`).
+    glossy: Option<u32>,
 }
 
 /// Traces rays through one scene, running only the effects of its [`EffectPlan`].
@@ -248,6 +255,7 @@ impl<'a> Tracer<'a> {
             object: None,
             triangle: None,
             weight: Rgb::ONE,
+            glossy: None,
         };
         let cuts = counts.budget_cuts;
         let state = PathState {
@@ -255,6 +263,7 @@ impl<'a> Tracer<'a> {
             throughput: Rgb::ONE,
             media: &MediaStack::AIR,
             ray_limit: counts.total().saturating_add(self.scene.settings.max_rays),
+            glossy: None,
         };
         let out = self.trace_ray(ray, found, spawn, state, sampler, rec, counts);
         counts.budget_samples += u64::from(counts.budget_cuts > cuts);

@@ -38,6 +38,7 @@ impl Tracer<'_> {
             n.t_min = ray.t_min;
             n.weight = spawn.weight;
             n.throughput = state.throughput;
+            n.glossy = spawn.glossy;
             n
         });
         let (hit, cost) = found.unwrap_or_else(|| {
@@ -159,10 +160,15 @@ impl Tracer<'_> {
             });
             return local;
         }
-        // Dielectric split (only where the material transmits).
-        let mut reflect_w = m.reflectivity;
+        // Rough lobes are sampled (glossy.rs); the smooth ones split as the lecture's. An
+        // index-matched rough interface stays a smooth pass-through (every microfacet sends
+        // light straight on).
+        let rough = self.plan.glossy && m.is_rough();
+        let rough_dielectric = rough && m.is_transmissive() && super::glossy::refracts(&si);
+        let mut reflect_w = if rough { Rgb::ZERO } else { m.reflectivity };
         let mut refraction = None;
-        if self.plan.refraction && m.is_transmissive() {
+        // Dielectric split (only where the material transmits).
+        if self.plan.refraction && m.is_transmissive() && !rough_dielectric {
             let (event, dir) = self.interface(&si, ns, cos_i);
             let f = event.fresnel;
             reflect_w += m.transmissivity * f.r;
@@ -178,6 +184,7 @@ impl Tracer<'_> {
             object: Some(hit.object),
             triangle: hit.triangle,
             weight: Rgb::ZERO,
+            glossy: None,
         };
         let mut acc = Secondary {
             total: local,
@@ -224,6 +231,13 @@ impl Tracer<'_> {
             };
             self.secondary(&mut acc, spawn, dir, -n, state, sampler, rec, counts);
         }
+        if rough {
+            let state = PathState {
+                throughput,
+                ..state
+            };
+            self.glossy_rays(&mut acc, &si, at, state, sampler, rec, counts);
+        }
         let Secondary {
             total,
             end,
@@ -254,7 +268,7 @@ impl Tracer<'_> {
     /// Trace one secondary ray (or record why it was cut) and add its weighted radiance;
     /// `state` is the parent's, with the throughput at its hit and the child's media.
     #[allow(clippy::too_many_arguments)]
-    fn secondary<R: Recorder, S: PixelSampler>(
+    pub(super) fn secondary<R: Recorder, S: PixelSampler>(
         &self,
         acc: &mut Secondary,
         spawn: Spawn,
@@ -267,9 +281,14 @@ impl Tracer<'_> {
     ) {
         let depth = state.depth;
         let child_throughput = state.throughput * spawn.weight;
+        // Below a glossy split of n samples, one sample's estimate has n times the throughput.
+        let estimate = match state.glossy {
+            None => child_throughput,
+            Some(n) => child_throughput * f64::from(n),
+        };
         let cut = if depth >= self.scene.settings.max_depth {
             Some(EndReason::MaxDepth)
-        } else if child_throughput.max_element() < self.min_weight {
+        } else if estimate.max_element() < self.min_weight {
             Some(EndReason::MinWeight)
         } else if counts.total() >= state.ray_limit {
             counts.budget_cuts += 1;
