@@ -299,3 +299,25 @@ fn effects_say_glossy_is_simulated() {
         "{line:?}"
     );
 }
+
+/// The min-weight cut compares one sample's estimate (`n x` the throughput of a sampled ray,
+/// as with spp), so more glossy samples do not cut more: at min weight 0.05, each of 64 samples
+/// of the brushed ball (weight about 0.9 / 64 = 0.014) is traced.
+#[test]
+fn the_cut_compares_one_samples_estimate() {
+    let mut scene = Scene::from_json(GLOSSY).unwrap();
+    scene.settings.min_weight = Some(0.05);
+    scene.settings.glossy_samples = 64;
+    let tree = trace_pixel(&scene, 100, 110).unwrap();
+    let root = tree.node(tree.samples[0].root);
+    assert_eq!(root.hit.as_ref().unwrap().object_name, "brushed ball");
+    let sampled: Vec<_> = root
+        .children
+        .iter()
+        .map(|&c| tree.node(c))
+        .filter(|n| n.glossy.is_some())
+        .collect();
+    assert!(sampled.len() > 60, "{}", sampled.len());
+    assert!(sampled.iter().all(|n| n.weight.max_element() < 0.05));
+    assert_eq!(root.truncated, glam::DVec3::ZERO);
+}
