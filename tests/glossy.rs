@@ -146,6 +146,7 @@ fn glossy_estimate_matches_the_lobe_albedo_under_a_uniform_sky() {
         let var = values.iter().map(|v| (v - mean).powi(2)).sum::<f64>() / f64::from(n - 1);
         let se = (var / f64::from(n)).sqrt();
         let expect = albedo(&lobe, wo);
+        eprintln!("{material}: estimate {mean} +- {se}, quadrature {expect}");
         assert!(expect < 1.0 && mean < 1.0, "{material}: {mean} {expect}");
         assert!(se > 0.0 && se < 0.01, "{material}: s.e. {se}");
         assert!(
@@ -258,6 +259,18 @@ fn bad_roughness_and_glossy_samples_are_refused() {
         &["effects", "s.json"],
         &["explain", "s.json", "--pixel", "1,1"],
         &["cost", "s.json", "--quick", "--repeats", "1", "-o", "cost"],
+        &[
+            "acne",
+            "s.json",
+            "--size",
+            "8x6",
+            "--scales",
+            "1",
+            "--epsilons",
+            "1e-4",
+            "-o",
+            "acne",
+        ],
     ] {
         fails_with(
             d,
@@ -320,4 +333,29 @@ fn the_cut_compares_one_samples_estimate() {
     assert!(sampled.len() > 60, "{}", sampled.len());
     assert!(sampled.iter().all(|n| n.weight.max_element() < 0.05));
     assert_eq!(root.truncated, glam::DVec3::ZERO);
+}
+
+/// Glossy trees keep every tree invariant (sums, throughputs, finiteness) and `explain`'s
+/// shares add up to the pixel value, at 1 and 4 samples per pixel.
+#[test]
+fn glossy_trees_keep_the_invariants_and_explain_adds_up() {
+    use raytree::analysis::{explain::explain, invariants::tree_violations};
+    for spp in [1, 4] {
+        let mut scene = Scene::from_json(GLOSSY).unwrap();
+        scene.settings.spp = spp;
+        scene.settings.light_samples = Some(2);
+        for (x, y) in [(100, 110), (215, 110), (160, 40), (60, 60), (250, 160)] {
+            let tree = trace_pixel(&scene, x, y).unwrap();
+            let v = tree_violations(&tree, scene.background);
+            assert!(v.is_empty(), "({x}, {y}) spp {spp}: {v:?}");
+            let e = explain(&tree, &scene);
+            let sum = e.shares.iter().fold(glam::DVec3::ZERO, |a, s| a + s.value);
+            let d = (sum - tree.radiance).abs().max_element();
+            assert!(
+                d <= 1e-12 * (1.0 + tree.radiance.max_element()),
+                "({x}, {y}): {sum} vs {}",
+                tree.radiance
+            );
+        }
+    }
 }

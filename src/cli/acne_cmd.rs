@@ -62,6 +62,8 @@ pub fn run(a: &AcneArgs) -> Result<()> {
     let overrides = Overrides {
         integrator: a.integrator.clone(),
         seed: a.seed,
+        light_samples: a.light_samples,
+        glossy_samples: a.glossy_samples,
         aperture: a.aperture,
         focus: a.focus,
         filter: a.filter.clone(),

@@ -169,6 +169,13 @@ pub struct AcneArgs {
     /// Seed of the per-pixel sample positions (0 = the default positions).
     #[arg(long)]
     pub seed: Option<u64>,
+    /// Shadow rays per area light (emissive sphere, quad, triangle) per hit; turns area
+    /// lights on.
+    #[arg(long, value_name = "N")]
+    pub light_samples: Option<u32>,
+    /// Rays sampled per rough reflection or refraction lobe at the first rough hit of a path.
+    #[arg(long, value_name = "N")]
+    pub glossy_samples: Option<u32>,
     /// Thin-lens aperture radius in world units (0 = pinhole); scaled with the scene.
     #[arg(long, value_name = "R", allow_hyphen_values = true)]
     pub aperture: Option<f64>,
