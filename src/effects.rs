@@ -257,7 +257,9 @@ impl EffectPlan {
                 self.glossy,
                 if self.glossy {
                     format!(
-                        "roughness > 0 on reflectivity or transmissivity: {}; {} GGX-sampled rays                          per rough lobe at a path's first rough hit, 1 below it; point and                          directional lights give a glossy highlight; rough glass uses exact Fresnel",
+                        "roughness > 0 on reflectivity or transmissivity: {}; {} GGX-sampled rays per rough \
+                         lobe at a path's first rough hit, 1 below it; glossy highlight from \
+                         point and directional lights; exact Fresnel",
                         names(&crate::scene::Material::is_rough),
                         s.glossy_samples
                     )

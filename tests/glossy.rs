@@ -311,6 +311,12 @@ fn effects_say_glossy_is_simulated() {
         line.on && line.reason.contains("brushed, frosted, wall"),
         "{line:?}"
     );
+    // A rough dielectric draws one ray per sample: the frosted ball does not split (the smooth
+    // copy's glass does, and its tree can grow exponentially).
+    use raytree::analysis::growth::{Growth, tree_growth};
+    assert_eq!(tree_growth(&small(4, 4, 1)).growth, Growth::Polynomial(1));
+    let smooth = Scene::from_json(&GLOSSY.replace(", \"roughness\": 0.15", "")).unwrap();
+    assert_eq!(tree_growth(&smooth).growth, Growth::Exponential);
 }
 
 /// The min-weight cut compares one sample's estimate (`n x` the throughput of a sampled ray,

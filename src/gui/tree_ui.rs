@@ -424,6 +424,20 @@ pub fn details_ui(ui: &mut egui::Ui, doc: &Document) {
                 row("absorption", rgb(a.absorption));
                 row("Beer factor", rgb(a.factor));
             }
+            if let Some(g) = &n.glossy {
+                row(
+                    "sampled from",
+                    format!(
+                        "{} ({} of {}{})",
+                        g.lobe.name(),
+                        g.sample + 1,
+                        g.count,
+                        if g.transmitted { ", through" } else { "" }
+                    ),
+                );
+                row("pdf", num(g.pdf));
+                row("BSDF / cos", format!("{} / {}", rgb(g.bsdf), num(g.cos)));
+            }
             row("weight", rgb(n.weight));
             row("throughput", rgb(n.throughput));
             row("emitted", rgb(n.emitted));
