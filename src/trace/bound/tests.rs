@@ -224,10 +224,10 @@ fn the_rough_lobes_highlight_bound_holds_and_is_tight() {
         ];
         let mut most = 0.0f64;
         for i in 0..=400 {
-            let to = f64::from(i) / 400.0 * 1.5707;
+            let to = f64::from(i) / 400.0 * (std::f64::consts::FRAC_PI_2 - 1e-4);
             let wo = DVec3::new(to.sin(), 0.0, to.cos());
             for j in 0..=400 {
-                let ti = f64::from(j) / 400.0 * 1.5707;
+                let ti = f64::from(j) / 400.0 * (std::f64::consts::FRAC_PI_2 - 1e-4);
                 for phi in [0.0, 1.0, 3.0, std::f64::consts::PI] {
                     let wi =
                         DVec3::new(ti.sin() * f64::cos(phi), ti.sin() * f64::sin(phi), ti.cos());
