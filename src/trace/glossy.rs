@@ -36,7 +36,9 @@ use crate::tree::{GlossyLobe, GlossySample, RayKind};
 use glam::{DVec2, DVec3};
 
 /// Whether a rough `transmissivity` lobe at `si` refracts (not index-matched), as
-/// [`Bsdf::from_material`] decides.
+/// [`Bsdf::from_material`] decides. Never inlined: `eta` builds a media stack, which would
+/// otherwise sit in every recursion level's stack frame.
+#[inline(never)]
 pub(super) fn refracts(si: &SurfaceInteraction) -> bool {
     (si.eta() - 1.0).abs() > 1e-9
 }
@@ -68,7 +70,9 @@ fn rough_lobes(si: &SurfaceInteraction) -> [Option<(GlossyLobe, Lobe)>; 2] {
 impl Tracer<'_> {
     /// The rough lobes' BSDF value for light arriving from `wi` (world) on the side the ray
     /// came from (reflection only: light through the surface is not sampled, as for smooth
-    /// glass). Zero unless the material is rough and the plan has glossy lobes.
+    /// glass). Zero unless the material is rough and the plan has glossy lobes. Never inlined:
+    /// its locals would otherwise sit in every recursion level's stack frame.
+    #[inline(never)]
     pub(super) fn glossy_brdf(&self, si: &SurfaceInteraction, wi: DVec3) -> Rgb {
         if !(self.plan.glossy && si.material.is_rough()) {
             return Rgb::ZERO;
@@ -87,8 +91,11 @@ impl Tracer<'_> {
     }
 
     /// The sampled rays of the rough lobes at `si` (children of `at.parent`), added into `acc`;
-    /// `state` is the parent's with the throughput at the hit.
+    /// `state` is the parent's with the throughput at the hit. Never inlined into `shade`: its
+    /// locals (a BSDF, a media stack) would grow every recursion level's stack frame
+    /// (`max_depth` 1024 overflowed a worker's stack).
     #[allow(clippy::too_many_arguments)]
+    #[inline(never)]
     pub(super) fn glossy_rays<R: Recorder, S: PixelSampler>(
         &self,
         acc: &mut Secondary,
@@ -140,7 +147,6 @@ impl Tracer<'_> {
                         RayKind::Reflected
                     },
                     weight,
-                    glossy: Some(glossy),
                     ..at
                 };
                 let entered;
@@ -160,7 +166,8 @@ impl Tracer<'_> {
                     glossy: Some(split),
                     ..state
                 };
-                self.secondary(acc, spawn, wi, side, state, sampler, rec, counts);
+                let id = self.secondary(acc, spawn, wi, side, state, sampler, rec, counts);
+                rec.update(id, |n| n.glossy = Some(glossy));
             }
         }
     }

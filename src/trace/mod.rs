@@ -28,6 +28,13 @@ use crate::scene::{Film, Hit, Scene};
 use crate::tree::{EndReason, NodeId, RayKind};
 use glam::DVec3;
 
+/// Stack for a thread that traces: the recursion goes `settings.max_depth` (up to 1024) levels
+/// deep at about 2 KiB a level when rendering and 2.5 KiB when recording (measured from the
+/// release build's frames), more than std's 2 MiB default for spawned threads (which
+/// `max_depth` 1024 nearly filled before glossy lobes and overflowed after). The command line
+/// gives rayon's render threads and the inspector's worker this much.
+pub const THREAD_STACK_BYTES: usize = 16 << 20;
+
 /// Rays traced, by kind.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub struct RayCounts {
@@ -90,8 +97,6 @@ struct Spawn {
     /// For meshes: the stored triangle the ray leaves.
     triangle: Option<u32>,
     weight: Rgb,
-    /// For a ray sampled from a rough lobe: the sample, recorded on its node.
-    glossy: Option<crate::tree::GlossySample>,
 }
 
 /// What the secondary rays of one hit add up to.
@@ -255,7 +260,6 @@ impl<'a> Tracer<'a> {
             object: None,
             triangle: None,
             weight: Rgb::ONE,
-            glossy: None,
         };
         let cuts = counts.budget_cuts;
         let state = PathState {

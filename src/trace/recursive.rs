@@ -38,7 +38,6 @@ impl Tracer<'_> {
             n.t_min = ray.t_min;
             n.weight = spawn.weight;
             n.throughput = state.throughput;
-            n.glossy = spawn.glossy;
             n
         });
         let (hit, cost) = found.unwrap_or_else(|| {
@@ -184,7 +183,6 @@ impl Tracer<'_> {
             object: Some(hit.object),
             triangle: hit.triangle,
             weight: Rgb::ZERO,
-            glossy: None,
         };
         let mut acc = Secondary {
             total: local,
@@ -266,7 +264,8 @@ impl Tracer<'_> {
     }
 
     /// Trace one secondary ray (or record why it was cut) and add its weighted radiance;
-    /// `state` is the parent's, with the throughput at its hit and the child's media.
+    /// `state` is the parent's, with the throughput at its hit and the child's media. The
+    /// child's node, unless cut.
     #[allow(clippy::too_many_arguments)]
     pub(super) fn secondary<R: Recorder, S: PixelSampler>(
         &self,
@@ -278,7 +277,7 @@ impl Tracer<'_> {
         sampler: &mut S,
         rec: &mut R,
         counts: &mut RayCounts,
-    ) {
+    ) -> Option<NodeId> {
         let depth = state.depth;
         let child_throughput = state.throughput * spawn.weight;
         // Below a glossy split of n samples, one sample's estimate has n times the throughput.
@@ -301,7 +300,7 @@ impl Tracer<'_> {
             if acc.end != EndReason::MaxDepth {
                 acc.end = reason;
             }
-            return;
+            return None;
         }
         if acc.end == EndReason::Surface {
             acc.end = EndReason::Continued;
@@ -313,8 +312,9 @@ impl Tracer<'_> {
             throughput: child_throughput,
             ..state
         };
-        let (l, _) = self.trace_ray(ray, None, spawn, state, sampler, rec, counts);
+        let (l, id) = self.trace_ray(ray, None, spawn, state, sampler, rec, counts);
         acc.total += spawn.weight * l;
+        id
     }
 
     /// n1, n2, Snell and Fresnel at transmissive `si` with shading normal `n` (incident side)
