@@ -40,6 +40,10 @@ pub struct EffectPlan {
     /// Emissive spheres, quads and triangles are sampled as area lights
     /// (`settings.light_samples` is set, something is shaded, and such an emitter exists).
     pub area_lights: bool,
+    /// Some material has a rough (GGX) `reflectivity` or `transmissivity` lobe
+    /// (`roughness >= bsdf::SMOOTH_ALPHA`): its rays are sampled (`settings.glossy_samples`)
+    /// and point and directional lights give it a glossy highlight.
+    pub glossy: bool,
 }
 
 /// One line of the plan: an effect, whether it runs, and why.
@@ -75,6 +79,7 @@ impl EffectPlan {
             recursion: s.max_depth > 0,
             supersampling: s.spp > 1,
             area_lights: s.light_samples.is_some(),
+            glossy: true,
         }
     }
 
@@ -88,6 +93,7 @@ impl EffectPlan {
         let reflective = mats.iter().any(|m| nonzero(m.reflectivity));
         let fresnel = transmissive && s.fresnel != FresnelModel::None;
         let tir = transmissive && max_ior_step(scene).is_some();
+        let glossy = mats.iter().any(|m| m.is_rough());
         let shaded = mats
             .iter()
             .any(|m| !m.diffuse.is_black() || nonzero(m.specular));
@@ -97,7 +103,7 @@ impl EffectPlan {
                 LightKind::Point { intensity, .. } => intensity,
                 LightKind::Directional { irradiance, .. } => irradiance,
             };
-            if shaded && nonzero(power) || i >= 64 {
+            if (shaded || glossy) && nonzero(power) || i >= 64 {
                 lights |= 1 << i.min(63);
             }
         }
@@ -118,6 +124,7 @@ impl EffectPlan {
             area_lights: s.light_samples.is_some()
                 && shaded
                 && (0..scene.objects.len()).any(|i| scene.area_light(i).is_some()),
+            glossy,
         }
     }
 
@@ -247,6 +254,21 @@ impl EffectPlan {
                     None => format!("{list}; settings.light_samples absent (seen, not sampled)"),
                 }
             }),
+            line(
+                "glossy (rough lobes)",
+                self.glossy,
+                if self.glossy {
+                    format!(
+                        "roughness > 0 on reflectivity or transmissivity: {}; {} GGX-sampled rays per rough \
+                         lobe at a path's first rough hit, 1 below it; glossy highlight from \
+                         point and directional lights; exact Fresnel",
+                        names(&crate::scene::Material::is_rough),
+                        s.glossy_samples
+                    )
+                } else {
+                    "no material with roughness > 0 on reflectivity or transmissivity".to_string()
+                },
+            ),
         ];
         if s.integrator == crate::scene::IntegratorKind::Path {
             out.extend(path::lines(scene, &names));

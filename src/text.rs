@@ -229,6 +229,19 @@ fn node_summary(n: &RayNode) -> String {
     if n.kind != RayKind::Camera {
         let _ = write!(s, "  weight {}", w(n.weight));
     }
+    if let Some(g) = &n.glossy {
+        let _ = write!(
+            s,
+            "  sampled {} {}/{}{}  pdf {}  bsdf {}  cos {}",
+            g.lobe.name(),
+            g.sample + 1,
+            g.count,
+            if g.transmitted { " (through)" } else { "" },
+            num(g.pdf, 4),
+            w(g.bsdf),
+            num(g.cos, 4)
+        );
+    }
     if let Some(i) = &n.interface {
         let _ = write!(s, "  n1 {} -> n2 {}", num(i.n1, 3), num(i.n2, 3));
         match i.cos_t {

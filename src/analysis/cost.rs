@@ -10,6 +10,9 @@ use crate::trace::bound::auto_min_weight;
 use serde::Serialize;
 use std::time::Instant;
 
+mod sweep;
+pub use sweep::Sweep;
+
 /// Error of an image against a reference.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Serialize)]
 pub struct ErrorMetrics {
@@ -56,119 +59,6 @@ pub fn error_map(a: &Image, b: &Image) -> Option<Vec<f64>> {
             .map(|(p, q)| (*p - *q).abs().max_element())
             .collect()
     })
-}
-
-/// The sweep: which values each axis takes.
-#[derive(Clone, Debug, PartialEq)]
-pub struct Sweep {
-    /// Max depths.
-    pub depths: Vec<u32>,
-    /// Fresnel models.
-    pub fresnels: Vec<FresnelModel>,
-    /// Samples per pixel.
-    pub spps: Vec<u32>,
-    /// Offset strategies.
-    pub offsets: Vec<OffsetStrategy>,
-    /// Min weights; `None` is the automatic cut (the default, `crate::trace::bound`).
-    pub min_weights: Vec<Option<f64>>,
-    /// Reference max depth.
-    pub reference_depth: u32,
-    /// Reference samples per pixel (for the spp axis).
-    pub reference_spp: u32,
-    /// Timed repeats per setting (median reported).
-    pub repeats: u32,
-}
-
-impl Sweep {
-    /// The full sweep of the issue: depth 0..16, every Fresnel model, 1/4/16 spp, every offset
-    /// strategy, and min_weight from off to coarse with the automatic cut beside them.
-    #[must_use]
-    pub fn full() -> Self {
-        Self {
-            depths: vec![0, 1, 2, 4, 8, 16],
-            fresnels: vec![
-                FresnelModel::None,
-                FresnelModel::Schlick,
-                FresnelModel::Exact,
-            ],
-            spps: vec![1, 4, 16],
-            offsets: OffsetStrategy::ALL.to_vec(),
-            // 1 / (255 * 12.92): the smallest linear step visible in 8-bit sRGB near black.
-            min_weights: vec![
-                Some(0.0),
-                None,
-                Some(3.0e-4),
-                Some(1.0e-3),
-                Some(1.0e-2),
-                Some(5.0e-2),
-            ],
-            reference_depth: 32,
-            reference_spp: 64,
-            repeats: 5,
-        }
-    }
-
-    /// A small sweep for a quick look.
-    #[must_use]
-    pub fn quick() -> Self {
-        Self {
-            depths: vec![0, 1, 4, 16],
-            spps: vec![1, 4],
-            min_weights: vec![Some(0.0), None, Some(1.0e-2)],
-            reference_spp: 16,
-            repeats: 3,
-            ..Self::full()
-        }
-    }
-
-    /// The settings of every row, as `(axis, value label, settings)`, from `base`. The
-    /// automatic min_weight row is labelled `auto (w)` with the cut it takes on `scene`.
-    #[must_use]
-    pub fn settings(&self, scene: &Scene, base: &Settings) -> Vec<(String, String, Settings)> {
-        let mut out = Vec::new();
-        let mut push =
-            |axis: &str, value: String, s: Settings| out.push((axis.to_string(), value, s));
-        for &d in &self.depths {
-            push(
-                "max_depth",
-                d.to_string(),
-                Settings {
-                    max_depth: d,
-                    ..*base
-                },
-            );
-        }
-        for &f in &self.fresnels {
-            push(
-                "fresnel",
-                format!("{f:?}").to_lowercase(),
-                Settings {
-                    fresnel: f,
-                    ..*base
-                },
-            );
-        }
-        for &n in &self.spps {
-            push("spp", n.to_string(), Settings { spp: n, ..*base });
-        }
-        for &o in &self.offsets {
-            let mut s = *base;
-            s.offset.strategy = o;
-            push("offset", o.name().to_string(), s);
-        }
-        for &w in &self.min_weights {
-            let s = Settings {
-                min_weight: w,
-                ..*base
-            };
-            let label = match w {
-                Some(w) => format!("{w:e}"),
-                None => format!("auto ({:.1e})", auto_min_weight(scene, &s)),
-            };
-            push("min_weight", label, s);
-        }
-        out
-    }
 }
 
 /// One measured setting.
@@ -227,8 +117,12 @@ pub struct CostReport {
     pub size: [u32; 2],
     /// Settings of the spp = 1 reference (every axis but spp is compared with it).
     pub reference: Settings,
-    /// Reference samples per pixel for the spp axis.
+    /// Reference samples per pixel for the spp and filter axes.
     pub reference_spp: u32,
+    /// Reference light samples for the light-samples axis.
+    pub reference_light_samples: u32,
+    /// Reference glossy samples for the glossy-samples axis.
+    pub reference_glossy_samples: u32,
     /// The base every row changes one setting of (min_weight `None`: the automatic cut).
     pub base: Settings,
     /// The automatic cut at the base settings.
@@ -279,26 +173,31 @@ pub fn run(scene: &Scene, sweep: &Sweep, progress: &dyn Fn(usize, usize)) -> Cos
     base.offset.strategy = OffsetStrategy::Robust;
     let configs = sweep.settings(scene, &base);
     let repeats = sweep.repeats.max(1) as usize;
-    let total = 2 + configs.len() * repeats;
-    let mut done = 0;
     let reference = reference_settings(&base, sweep);
-    // The first render also warms the thread pool and caches before anything is timed.
-    let ref1 = render(&with_settings(scene, reference), &|_| {}).0;
-    done += 1;
-    progress(done, total);
-    let ref_many = render(
-        &with_settings(
-            scene,
-            Settings {
-                spp: sweep.reference_spp,
-                ..reference
-            },
-        ),
-        &|_| {},
-    )
-    .0;
-    done += 1;
-    progress(done, total);
+    // The references: the pixel-centre one and the spp one first (the first render also warms
+    // the thread pool and caches before anything is timed), then those of the other
+    // stochastic axes, each once.
+    let mut wanted = vec![
+        reference,
+        Settings {
+            spp: sweep.reference_spp,
+            ..reference
+        },
+    ];
+    for (axis, _, s) in &configs {
+        let r = sweep.reference_for(axis, s, &reference);
+        if !wanted.contains(&r) {
+            wanted.push(r);
+        }
+    }
+    let total = wanted.len() + configs.len() * repeats;
+    let mut done = 0;
+    let mut refs = Vec::new();
+    for r in wanted {
+        refs.push((r, render(&with_settings(scene, r), &|_| {}).0));
+        done += 1;
+        progress(done, total);
+    }
     let mut rows = Vec::new();
     for (axis, value, settings) in configs {
         let s = with_settings(scene, settings);
@@ -313,7 +212,12 @@ pub fn run(scene: &Scene, sweep: &Sweep, progress: &dyn Fn(usize, usize)) -> Cos
             progress(done, total);
         }
         let (image, stats) = last.expect("at least one repeat");
-        let reference = if axis == "spp" { &ref_many } else { &ref1 };
+        let want = sweep.reference_for(&axis, &settings, &reference);
+        let reference = &refs
+            .iter()
+            .find(|(r, _)| *r == want)
+            .expect("every reference rendered")
+            .1;
         rows.push(CostRow {
             axis,
             value,
@@ -329,6 +233,8 @@ pub fn run(scene: &Scene, sweep: &Sweep, progress: &dyn Fn(usize, usize)) -> Cos
         size: [scene.camera.width, scene.camera.height],
         reference,
         reference_spp: sweep.reference_spp,
+        reference_light_samples: sweep.reference_light_samples,
+        reference_glossy_samples: sweep.reference_glossy_samples,
         base,
         base_min_weight: auto_min_weight(scene, &base),
         rows,
@@ -348,75 +254,4 @@ pub fn mark_pareto(rows: &mut [CostRow]) {
 }
 
 #[cfg(test)]
-mod tests {
-    use super::*;
-
-    fn img(p: &[Rgb]) -> Image {
-        Image {
-            width: p.len() as u32,
-            height: 1,
-            pixels: p.to_vec(),
-        }
-    }
-
-    #[test]
-    fn metrics_closed_form() {
-        let a = img(&[Rgb::ZERO, Rgb::splat(0.5)]);
-        assert_eq!(compare(&a, &a).unwrap(), ErrorMetrics::default());
-        let b = img(&[Rgb::new(0.3, 0.0, 0.0), Rgb::splat(0.5)]);
-        let m = compare(&a, &b).unwrap();
-        assert!((m.rmse - (0.09f64 / 6.0).sqrt()).abs() < 1e-15);
-        assert_eq!(m.max, 0.3);
-        assert_eq!(m.off_8bit, 0.5);
-        assert!(compare(&a, &img(&[Rgb::ZERO])).is_none());
-    }
-
-    #[test]
-    fn the_sweep_has_an_auto_min_weight_row_and_an_exhaustive_reference() {
-        let mut scene = Scene::default_scene();
-        scene.camera = scene.camera.with_size(32, 18);
-        let sweep = Sweep {
-            depths: vec![],
-            fresnels: vec![],
-            spps: vec![],
-            offsets: vec![],
-            repeats: 1,
-            reference_spp: 1,
-            ..Sweep::quick()
-        };
-        let r = run(&scene, &sweep, &|_, _| {});
-        assert_eq!(r.reference.min_weight, Some(0.0));
-        assert_eq!(r.base.min_weight, None);
-        let auto = crate::trace::bound::auto_min_weight(&scene, &r.base);
-        assert!(auto > 0.0 && auto == r.base_min_weight);
-        let values: Vec<&str> = r.rows.iter().map(|row| row.value.as_str()).collect();
-        assert_eq!(values, ["0e0", &format!("auto ({auto:.1e})"), "1e-2"]);
-        let [exhaustive, auto_row, coarse] = &r.rows[..] else {
-            unreachable!()
-        };
-        assert_eq!(auto_row.settings.min_weight, None);
-        // The cut traces fewer rays than the exhaustive tree at depth 16, more than 1e-2.
-        assert!(auto_row.rays.total < exhaustive.rays.total, "{r:?}");
-        assert!(auto_row.rays.total > coarse.rays.total, "{r:?}");
-    }
-
-    #[test]
-    fn pareto_front() {
-        let row = |t: f64, e: f64| CostRow {
-            axis: String::new(),
-            value: String::new(),
-            settings: Settings::default(),
-            median_ms: t,
-            rays: RaysByKind::default(),
-            error: ErrorMetrics {
-                rmse: e,
-                ..ErrorMetrics::default()
-            },
-            pareto: false,
-        };
-        let mut rows = vec![row(1.0, 0.5), row(2.0, 0.1), row(3.0, 0.2), row(4.0, 0.0)];
-        mark_pareto(&mut rows);
-        let front: Vec<bool> = rows.iter().map(|r| r.pareto).collect();
-        assert_eq!(front, [true, true, false, true]);
-    }
-}
+mod tests;

@@ -149,8 +149,13 @@ fn volume(shape: &Shape) -> f64 {
 }
 
 /// Whether a hit on `m` spawns two rays at once: transmissive with a Fresnel model (reflection
-/// and refraction except under TIR) or with reflectivity.
+/// and refraction except under TIR) or with reflectivity. A rough material (`trace::glossy`)
+/// draws one ray per rough lobe below a path's first rough hit (which fans out
+/// `glossy_samples` rays once, a constant factor), so it branches only with both lobes.
 fn branches(scene: &Scene, m: &Material) -> bool {
+    if m.is_rough() {
+        return m.is_transmissive() && m.reflectivity.max_element() > 0.0;
+    }
     m.is_transmissive()
         && (scene.settings.fresnel != FresnelModel::None || m.reflectivity.max_element() > 0.0)
 }

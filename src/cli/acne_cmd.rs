@@ -63,6 +63,8 @@ pub fn run(a: &AcneArgs) -> Result<()> {
         integrator: a.integrator.clone(),
         rr_depth: a.rr_depth,
         seed: a.seed,
+        light_samples: a.light_samples,
+        glossy_samples: a.glossy_samples,
         aperture: a.aperture,
         focus: a.focus,
         filter: a.filter.clone(),

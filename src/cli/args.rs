@@ -91,6 +91,10 @@ pub struct Overrides {
     /// lights on.
     #[arg(long, value_name = "N")]
     pub light_samples: Option<u32>,
+    /// Rays sampled per rough reflection or refraction lobe (materials with roughness > 0)
+    /// at the first rough hit of a path.
+    #[arg(long, value_name = "N")]
+    pub glossy_samples: Option<u32>,
     /// Thin-lens aperture radius in world units (0 = pinhole); sets camera.aperture_radius.
     #[arg(long, value_name = "R", allow_hyphen_values = true)]
     pub aperture: Option<f64>,
@@ -171,6 +175,13 @@ pub struct AcneArgs {
     /// Seed of the per-pixel sample positions (0 = the default positions).
     #[arg(long)]
     pub seed: Option<u64>,
+    /// Shadow rays per area light (emissive sphere, quad, triangle) per hit; turns area
+    /// lights on.
+    #[arg(long, value_name = "N")]
+    pub light_samples: Option<u32>,
+    /// Rays sampled per rough reflection or refraction lobe at the first rough hit of a path.
+    #[arg(long, value_name = "N")]
+    pub glossy_samples: Option<u32>,
     /// Thin-lens aperture radius in world units (0 = pinhole); scaled with the scene.
     #[arg(long, value_name = "R", allow_hyphen_values = true)]
     pub aperture: Option<f64>,

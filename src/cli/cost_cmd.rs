@@ -75,6 +75,17 @@ fn markdown(r: &CostReport, label: &str) -> String {
             .first()
             .map_or(0.0, |row| row.settings.offset.epsilon),
     );
+    let _ = write!(
+        s,
+        "Stochastic axes: light_samples rows (only for scenes with an area light) against {} light samples, glossy_samples rows (only for scenes with a rough material) against {} glossy samples, both at the pixel centres; filter rows at {} spp against the same filter at {} spp.\n\n",
+        r.reference_light_samples,
+        r.reference_glossy_samples,
+        r.rows
+            .iter()
+            .find(|row| row.axis == "filter")
+            .map_or(0, |row| row.settings.spp),
+        r.reference_spp,
+    );
     s.push_str("| axis | value | median ms | rays | camera | reflected | refracted | shadow | diffuse | RMSE | max err | pixels off >1/255 | Pareto |\n");
     s.push_str(
         "| --- | --- | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | :---: |\n",

@@ -177,6 +177,9 @@ pub fn apply(scene: &mut Scene, o: &Overrides) -> Result<()> {
     if let Some(v) = o.light_samples {
         s.light_samples = Some(v);
     }
+    if let Some(v) = o.glossy_samples {
+        s.glossy_samples = v;
+    }
     if let Some(v) = &o.filter {
         s.filter =
             raytree::scene::FilterDesc::parse(v).map_err(|msg| anyhow!("--filter: {msg}"))?;

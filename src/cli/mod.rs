@@ -31,6 +31,11 @@ pub use args::{Cli, Command};
 /// Parse arguments, run, and map errors to exit code 2.
 pub fn run() -> ExitCode {
     cleanup::install();
+    // Deep recursion (max_depth up to 1024) needs more than std's 2 MiB thread stacks. Fails
+    // only if a global pool already exists, which then keeps its own.
+    let _ = rayon::ThreadPoolBuilder::new()
+        .stack_size(raytree::trace::THREAD_STACK_BYTES)
+        .build_global();
     let cli = Cli::parse();
     let result = match cli.command {
         Command::Render(a) => render_cmd::run(&a),

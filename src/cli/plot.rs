@@ -18,12 +18,15 @@ fn register_font() {
     });
 }
 
-const AXES: [(&str, RGBColor); 5] = [
+const AXES: [(&str, RGBColor); 8] = [
     ("max_depth", RGBColor(31, 119, 180)),
     ("fresnel", RGBColor(255, 127, 14)),
     ("spp", RGBColor(44, 160, 44)),
     ("offset", RGBColor(214, 39, 40)),
     ("min_weight", RGBColor(148, 103, 189)),
+    ("light_samples", RGBColor(140, 86, 75)),
+    ("glossy_samples", RGBColor(227, 119, 194)),
+    ("filter", RGBColor(23, 190, 207)),
 ];
 
 /// Draw RMSE (log) against median time (log) as RGB bytes of `w x h`; Pareto points ringed

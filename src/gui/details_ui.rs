@@ -91,6 +91,20 @@ pub fn details_ui(ui: &mut egui::Ui, doc: &Document) {
                 row("absorption", rgb(a.absorption));
                 row("Beer factor", rgb(a.factor));
             }
+            if let Some(g) = &n.glossy {
+                row(
+                    "sampled from",
+                    format!(
+                        "{} ({} of {}{})",
+                        g.lobe.name(),
+                        g.sample + 1,
+                        g.count,
+                        if g.transmitted { ", through" } else { "" }
+                    ),
+                );
+                row("pdf", num(g.pdf));
+                row("BSDF / cos", format!("{} / {}", rgb(g.bsdf), num(g.cos)));
+            }
             row(
                 "weight",
                 teach::weight_factors(scene, tree, id).unwrap_or_else(|| rgb(n.weight)),

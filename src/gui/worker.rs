@@ -112,6 +112,7 @@ impl Worker {
         let current = Arc::clone(&generation);
         let thread = std::thread::Builder::new()
             .name("raytree-render".into())
+            .stack_size(crate::trace::THREAD_STACK_BYTES)
             .spawn(move || {
                 while let Ok(mut job) = job_rx.recv() {
                     // Only the newest queued job matters.

@@ -118,6 +118,10 @@ pub struct MaterialDesc {
     pub absorption: Triple,
     /// Emitted radiance from the outer side.
     pub emission: Triple,
+    /// GGX (Trowbridge-Reitz) alpha of the `reflectivity` and `transmissivity` lobes, in
+    /// [0, 1]; 0 (the default) is smooth.
+    #[serde(skip_serializing_if = "is_zero")]
+    pub roughness: f64,
 }
 
 /// One object: a shape, its material and an optional name.
@@ -540,6 +544,10 @@ pub struct Settings {
     /// throughput). Ignored by the Whitted integrator.
     #[serde(skip_serializing_if = "is_default_rr_depth")]
     pub rr_depth: u32,
+    /// Rays sampled per rough (`roughness > 0`) reflection or refraction lobe in the Whitted
+    /// integrator, at the first rough hit of a path (below a sampled ray, one per lobe).
+    #[serde(skip_serializing_if = "is_one")]
+    pub glossy_samples: u32,
 }
 
 /// Default [`Settings::rr_depth`].
@@ -548,6 +556,10 @@ pub const DEFAULT_RR_DEPTH: u32 = 5;
 #[allow(clippy::trivially_copy_pass_by_ref)] // serde's skip_serializing_if passes a reference
 fn is_default_rr_depth(v: &u32) -> bool {
     *v == DEFAULT_RR_DEPTH
+}
+
+fn is_one(v: &u32) -> bool {
+    *v == 1
 }
 
 /// Default [`Settings::tolerance`]: half an 8-bit display step.
@@ -571,6 +583,7 @@ impl Default for Settings {
             max_rays: DEFAULT_MAX_RAYS,
             light_samples: None,
             rr_depth: DEFAULT_RR_DEPTH,
+            glossy_samples: 1,
         }
     }
 }

@@ -219,6 +219,9 @@ pub struct Material {
     pub absorption: Rgb,
     /// Emitted radiance (outer side).
     pub emission: Rgb,
+    /// GGX alpha of the `reflectivity` and `transmissivity` lobes, in [0, 1] (0: smooth; below
+    /// [`crate::bsdf::SMOOTH_ALPHA`] the lobes are traced as smooth).
+    pub roughness: f64,
 }
 
 impl Material {
@@ -226,6 +229,14 @@ impl Material {
     #[must_use]
     pub fn is_transmissive(&self) -> bool {
         self.transmissivity != Rgb::ZERO
+    }
+
+    /// Whether the material has a rough (GGX) lobe: a roughness of at least
+    /// [`crate::bsdf::SMOOTH_ALPHA`] on a nonzero `reflectivity` or `transmissivity`.
+    #[must_use]
+    pub fn is_rough(&self) -> bool {
+        self.roughness >= crate::bsdf::SMOOTH_ALPHA
+            && (self.reflectivity != Rgb::ZERO || self.is_transmissive())
     }
 }
 

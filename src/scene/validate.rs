@@ -162,6 +162,13 @@ fn material(ck: &Check, name: &str, m: &MaterialDesc) -> Result<Material, SceneE
     if shininess < 0.0 {
         return ck.fail(format!("{p}.shininess"), "must not be negative");
     }
+    let roughness = ck.finite(&format!("{p}.roughness"), m.roughness)?;
+    if !(0.0..=1.0).contains(&roughness) {
+        return ck.fail(
+            format!("{p}.roughness"),
+            format!("must be in [0, 1] (the GGX alpha), got {roughness}"),
+        );
+    }
     let ior = match m.ior {
         Some(n) => Some(ck.positive(&format!("{p}.ior"), n)?),
         None => None,
@@ -176,6 +183,7 @@ fn material(ck: &Check, name: &str, m: &MaterialDesc) -> Result<Material, SceneE
         ior,
         absorption: ck.color(&format!("{p}.absorption"), m.absorption)?,
         emission: ck.color(&format!("{p}.emission"), m.emission)?,
+        roughness,
     })
 }
 
@@ -360,9 +368,21 @@ pub fn check_settings(s: &Settings) -> Result<Settings, (String, String)> {
             format!("must be at most 1024, got {}", s.rr_depth),
         ));
     }
+    if !(1..=MAX_GLOSSY_SAMPLES).contains(&s.glossy_samples) {
+        return Err((
+            "settings.glossy_samples".into(),
+            format!(
+                "must be in 1..={MAX_GLOSSY_SAMPLES}, got {}",
+                s.glossy_samples
+            ),
+        ));
+    }
     check_filter(&s.filter)?;
     Ok(*s)
 }
+
+/// Largest accepted `settings.glossy_samples`.
+pub const MAX_GLOSSY_SAMPLES: u32 = 65_536;
 
 /// Largest accepted `settings.light_samples`.
 pub const MAX_LIGHT_SAMPLES: u32 = 65_536;

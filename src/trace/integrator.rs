@@ -89,7 +89,7 @@ impl Integrator for Tracer<'_> {
     /// Packets only without area lights (their shadow rays draw from the pixel's sampler).
     #[inline]
     fn traces_packets(&self) -> bool {
-        !self.plan().area_lights
+        !(self.plan().area_lights || self.plan().glossy)
     }
 
     #[inline]

@@ -80,11 +80,13 @@ impl Tracer<'_> {
         let emitted = if si.entering { m.emission } else { Rgb::ZERO };
         let ambient = self.scene.ambient * albedo;
         let mut total = emitted + ambient;
-        if !m.diffuse.is_black() || m.specular != Rgb::ZERO {
+        let shaded = !m.diffuse.is_black() || m.specular != Rgb::ZERO;
+        if shaded || self.plan.glossy && m.is_rough() {
             for (i, light) in self.lights_on() {
                 total += self.direct((i, light), (si, albedo), (id, depth), rec, counts);
             }
-            if self.plan.area_lights {
+            // Area lights reach rough lobes through their sampled rays instead (glossy.rs).
+            if self.plan.area_lights && shaded {
                 total += self.area_direct(si, albedo, (id, depth), sampler, rec, counts);
             }
         }
@@ -116,8 +118,13 @@ impl Tracer<'_> {
             node.t_min = ray.t_min;
             node
         });
-        let (brdf, weight) =
+        let (mut brdf, mut weight) =
             Self::light_weight(self.plan.specular, m, albedo, si.ns, (wi, si.wo), cos);
+        if self.plan.glossy && cos > 0.0 && m.is_rough() {
+            // The rough lobes' glossy highlight (glossy.rs).
+            brdf += self.glossy_brdf(si, wi);
+            weight = brdf * cos;
+        }
         if cos <= 0.0 {
             rec.update(id, |node| {
                 node.weight = weight;

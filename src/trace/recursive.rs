@@ -159,10 +159,15 @@ impl Tracer<'_> {
             });
             return local;
         }
-        // Dielectric split (only where the material transmits).
-        let mut reflect_w = m.reflectivity;
+        // Rough lobes are sampled (glossy.rs); the smooth ones split as the lecture's. An
+        // index-matched rough interface stays a smooth pass-through (every microfacet sends
+        // light straight on).
+        let rough = self.plan.glossy && m.is_rough();
+        let rough_dielectric = rough && m.is_transmissive() && super::glossy::refracts(&si);
+        let mut reflect_w = if rough { Rgb::ZERO } else { m.reflectivity };
         let mut refraction = None;
-        if self.plan.refraction && m.is_transmissive() {
+        // Dielectric split (only where the material transmits).
+        if self.plan.refraction && m.is_transmissive() && !rough_dielectric {
             let (event, dir) = self.interface(&si, ns, cos_i);
             let f = event.fresnel;
             reflect_w += m.transmissivity * f.r;
@@ -224,6 +229,13 @@ impl Tracer<'_> {
             };
             self.secondary(&mut acc, spawn, dir, -n, state, sampler, rec, counts);
         }
+        if rough {
+            let state = PathState {
+                throughput,
+                ..state
+            };
+            self.glossy_rays(&mut acc, &si, at, state, sampler, rec, counts);
+        }
         let Secondary {
             total,
             end,
@@ -252,9 +264,10 @@ impl Tracer<'_> {
     }
 
     /// Trace one secondary ray (or record why it was cut) and add its weighted radiance;
-    /// `state` is the parent's, with the throughput at its hit and the child's media.
+    /// `state` is the parent's, with the throughput at its hit and the child's media. The
+    /// child's node, unless cut.
     #[allow(clippy::too_many_arguments)]
-    fn secondary<R: Recorder, S: PixelSampler>(
+    pub(super) fn secondary<R: Recorder, S: PixelSampler>(
         &self,
         acc: &mut Secondary,
         spawn: Spawn,
@@ -264,12 +277,17 @@ impl Tracer<'_> {
         sampler: &mut S,
         rec: &mut R,
         counts: &mut RayCounts,
-    ) {
+    ) -> Option<NodeId> {
         let depth = state.depth;
         let child_throughput = state.throughput * spawn.weight;
+        // Below a glossy split of n samples, one sample's estimate has n times the throughput.
+        let estimate = match state.glossy {
+            None => child_throughput,
+            Some(n) => child_throughput * f64::from(n),
+        };
         let cut = if depth >= self.scene.settings.max_depth {
             Some(EndReason::MaxDepth)
-        } else if child_throughput.max_element() < self.min_weight {
+        } else if estimate.max_element() < self.min_weight {
             Some(EndReason::MinWeight)
         } else if counts.total() >= state.ray_limit {
             counts.budget_cuts += 1;
@@ -282,7 +300,7 @@ impl Tracer<'_> {
             if acc.end != EndReason::MaxDepth {
                 acc.end = reason;
             }
-            return;
+            return None;
         }
         if acc.end == EndReason::Surface {
             acc.end = EndReason::Continued;
@@ -294,8 +312,9 @@ impl Tracer<'_> {
             throughput: child_throughput,
             ..state
         };
-        let (l, _) = self.trace_ray(ray, None, spawn, state, sampler, rec, counts);
+        let (l, id) = self.trace_ray(ray, None, spawn, state, sampler, rec, counts);
         acc.total += spawn.weight * l;
+        id
     }
 
     /// n1, n2, Snell and Fresnel at transmissive `si` with shading normal `n` (incident side)

@@ -205,7 +205,8 @@ pub struct ShadowInfo {
     pub distance: f64,
     /// `N.L` at the shaded point.
     pub cos_theta: f64,
-    /// BRDF value (diffuse/pi + Blinn-Phong).
+    /// BRDF value (diffuse/pi + Blinn-Phong, + the rough lobes' GGX reflection for point and
+    /// directional lights).
     pub brdf: Rgb,
     /// Unshadowed irradiance on a surface facing the light.
     pub irradiance: Rgb,
@@ -239,6 +240,49 @@ pub struct AreaSample {
     pub sample: u32,
 }
 
+/// Which rough lobe a sampled ray was drawn from (`GlossySample::lobe`).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum GlossyLobe {
+    /// The GGX rough mirror of `reflectivity` (no Fresnel).
+    RoughMirror,
+    /// The GGX rough dielectric of `transmissivity` (exact Fresnel per microfacet).
+    RoughDielectric,
+}
+
+impl GlossyLobe {
+    /// Words for the text tree.
+    #[must_use]
+    pub fn name(self) -> &'static str {
+        match self {
+            Self::RoughMirror => "rough mirror",
+            Self::RoughDielectric => "rough dielectric",
+        }
+    }
+}
+
+/// A reflected or refracted ray sampled from a rough lobe (`RayNode::glossy`). Its node's
+/// `weight` is `bsdf * cos / pdf / count`.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+pub struct GlossySample {
+    /// The lobe it was drawn from.
+    pub lobe: GlossyLobe,
+    /// Which of the `count` samples of this lobe at this hit (from 0). A sample whose
+    /// direction carries nothing (below the surface) is not traced, so indices may skip.
+    pub sample: u32,
+    /// Samples drawn from this lobe at this hit (`settings.glossy_samples` at a path's first
+    /// rough hit, 1 below a sampled ray).
+    pub count: u32,
+    /// Solid-angle pdf of the direction.
+    pub pdf: f64,
+    /// The lobe's BSDF value `f(wo, wi)` (no cosine).
+    pub bsdf: Rgb,
+    /// `abs(cos)` of the direction against the shading normal.
+    pub cos: f64,
+    /// The direction crosses the surface (refraction through the sampled microfacet).
+    pub transmitted: bool,
+}
+
 /// One ray of the tree.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 pub struct RayNode {
@@ -268,7 +312,8 @@ pub struct RayNode {
     pub interface: Option<Interface>,
     /// Beer's law on this ray's segment.
     pub attenuation: Option<Attenuation>,
-    /// Weight relative to the parent (reflectivity + T*R, T*(1-R), or BRDF*cos for shadows).
+    /// Weight relative to the parent (reflectivity + T*R, T*(1-R), BRDF*cos for shadows, or
+    /// `bsdf * cos / pdf / count` for a sampled glossy ray).
     pub weight: Rgb,
     /// Product of weights and attenuations from the camera to this ray's origin.
     pub throughput: Rgb,
@@ -299,6 +344,10 @@ pub struct RayNode {
     /// Path integrator: the sample's estimator at this ray (absent in Whitted trees).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub path: Option<PathInfo>,
+    /// For a reflected or refracted ray sampled from a rough lobe: the sample (absent for the
+    /// smooth lobes' rays and in trees written before glossy sampling).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub glossy: Option<GlossySample>,
 }
 
 impl RayNode {
@@ -338,6 +387,7 @@ impl RayNode {
             self_hit: false,
             leak: None,
             path: None,
+            glossy: None,
         }
     }
 

@@ -45,10 +45,8 @@ pub enum PathStrategy {
 }
 
 /// The GGX roughness of `m`'s reflection and transmission lobes.
-// TODO(merge): m.roughness once the glossy branch lands
 fn material_roughness(m: &Material) -> f64 {
-    let _ = m;
-    0.0
+    m.roughness
 }
 
 /// The path integrator (`settings.integrator: "path"`).

@@ -1,0 +1,209 @@
+//! The sweep of `raytree cost`: which values each axis takes, the settings of every row and the
+//! reference each row is compared with.
+
+use super::with_settings;
+use crate::effects::EffectPlan;
+use crate::math::FresnelModel;
+use crate::scene::{FilterDesc, OffsetStrategy, Scene, Settings};
+use crate::trace::bound::auto_min_weight;
+
+/// The sweep: which values each axis takes.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Sweep {
+    /// Max depths.
+    pub depths: Vec<u32>,
+    /// Fresnel models.
+    pub fresnels: Vec<FresnelModel>,
+    /// Samples per pixel.
+    pub spps: Vec<u32>,
+    /// Offset strategies.
+    pub offsets: Vec<OffsetStrategy>,
+    /// Min weights; `None` is the automatic cut (the default, `crate::trace::bound`).
+    pub min_weights: Vec<Option<f64>>,
+    /// Shadow rays per area light (rows only when the scene has an emissive sphere, quad or
+    /// triangle to sample and something it lights).
+    pub light_samples: Vec<u32>,
+    /// Rays per rough lobe (rows only when the scene has a rough material).
+    pub glossy_samples: Vec<u32>,
+    /// Pixel filters as `--filter` writes them (`box`, `tent:R`, `gaussian:SIGMA`), rendered at
+    /// [`Sweep::filter_spp`] samples per pixel.
+    pub filters: Vec<String>,
+    /// Samples per pixel of the filter rows (one sample sits at the pixel centre whatever the
+    /// filter).
+    pub filter_spp: u32,
+    /// Light samples of the light-samples axis's reference.
+    pub reference_light_samples: u32,
+    /// Glossy samples of the glossy-samples axis's reference.
+    pub reference_glossy_samples: u32,
+    /// Reference max depth.
+    pub reference_depth: u32,
+    /// Reference samples per pixel (for the spp axis).
+    pub reference_spp: u32,
+    /// Timed repeats per setting (median reported).
+    pub repeats: u32,
+}
+
+impl Sweep {
+    /// The full sweep of the issue: depth 0..16, every Fresnel model, 1/4/16 spp, every offset
+    /// strategy, and min_weight from off to coarse with the automatic cut beside them.
+    #[must_use]
+    pub fn full() -> Self {
+        Self {
+            depths: vec![0, 1, 2, 4, 8, 16],
+            fresnels: vec![
+                FresnelModel::None,
+                FresnelModel::Schlick,
+                FresnelModel::Exact,
+            ],
+            spps: vec![1, 4, 16],
+            offsets: OffsetStrategy::ALL.to_vec(),
+            // 1 / (255 * 12.92): the smallest linear step visible in 8-bit sRGB near black.
+            min_weights: vec![
+                Some(0.0),
+                None,
+                Some(3.0e-4),
+                Some(1.0e-3),
+                Some(1.0e-2),
+                Some(5.0e-2),
+            ],
+            light_samples: vec![1, 4, 16],
+            glossy_samples: vec![1, 4, 16],
+            filters: vec!["box".into(), "tent:1".into(), "gaussian:0.5".into()],
+            filter_spp: 4,
+            reference_depth: 32,
+            reference_spp: 64,
+            reference_light_samples: 1024,
+            reference_glossy_samples: 256,
+            repeats: 5,
+        }
+    }
+
+    /// A small sweep for a quick look.
+    #[must_use]
+    pub fn quick() -> Self {
+        Self {
+            depths: vec![0, 1, 4, 16],
+            spps: vec![1, 4],
+            min_weights: vec![Some(0.0), None, Some(1.0e-2)],
+            light_samples: vec![1, 4],
+            glossy_samples: vec![1, 4],
+            filters: vec!["box".into(), "gaussian:0.5".into()],
+            reference_spp: 16,
+            reference_light_samples: 256,
+            reference_glossy_samples: 64,
+            repeats: 3,
+            ..Self::full()
+        }
+    }
+
+    /// The settings of every row, as `(axis, value label, settings)`, from `base`. The
+    /// automatic min_weight row is labelled `auto (w)` with the cut it takes on `scene`.
+    #[must_use]
+    pub fn settings(&self, scene: &Scene, base: &Settings) -> Vec<(String, String, Settings)> {
+        let mut out = Vec::new();
+        let mut push =
+            |axis: &str, value: String, s: Settings| out.push((axis.to_string(), value, s));
+        for &d in &self.depths {
+            push(
+                "max_depth",
+                d.to_string(),
+                Settings {
+                    max_depth: d,
+                    ..*base
+                },
+            );
+        }
+        for &f in &self.fresnels {
+            push(
+                "fresnel",
+                format!("{f:?}").to_lowercase(),
+                Settings {
+                    fresnel: f,
+                    ..*base
+                },
+            );
+        }
+        for &n in &self.spps {
+            push("spp", n.to_string(), Settings { spp: n, ..*base });
+        }
+        for &o in &self.offsets {
+            let mut s = *base;
+            s.offset.strategy = o;
+            push("offset", o.name().to_string(), s);
+        }
+        for &w in &self.min_weights {
+            let s = Settings {
+                min_weight: w,
+                ..*base
+            };
+            let label = match w {
+                Some(w) => format!("{w:e}"),
+                None => format!("auto ({:.1e})", auto_min_weight(scene, &s)),
+            };
+            push("min_weight", label, s);
+        }
+        let plan = |s: Settings| EffectPlan::for_scene(&with_settings(scene, s));
+        let area = plan(Settings {
+            light_samples: Some(1),
+            ..*base
+        })
+        .area_lights;
+        for &n in self.light_samples.iter().filter(|_| area) {
+            let s = Settings {
+                light_samples: Some(n),
+                ..*base
+            };
+            push("light_samples", n.to_string(), s);
+        }
+        let glossy = plan(*base).glossy;
+        for &n in self.glossy_samples.iter().filter(|_| glossy) {
+            let s = Settings {
+                glossy_samples: n,
+                ..*base
+            };
+            push("glossy_samples", n.to_string(), s);
+        }
+        for f in &self.filters {
+            // The sweep's own strings; a bad one is a programming error, skipped.
+            if let Ok(filter) = FilterDesc::parse(f) {
+                let s = Settings {
+                    filter,
+                    spp: self.filter_spp,
+                    ..*base
+                };
+                push("filter", f.clone(), s);
+            }
+        }
+        out
+    }
+
+    /// The reference a row of `axis` with `settings` is compared with: [`reference_settings`]
+    /// (one sample at each pixel centre), except for the stochastic axes: `spp` against
+    /// `reference_spp` samples, `light_samples` against `reference_light_samples` light
+    /// samples, `glossy_samples` against `reference_glossy_samples` glossy samples, and
+    /// `filter` against the same filter at `reference_spp` samples.
+    #[must_use]
+    pub fn reference_for(&self, axis: &str, settings: &Settings, reference: &Settings) -> Settings {
+        let r = *reference;
+        match axis {
+            "spp" => Settings {
+                spp: self.reference_spp,
+                ..r
+            },
+            "light_samples" => Settings {
+                light_samples: Some(self.reference_light_samples),
+                ..r
+            },
+            "glossy_samples" => Settings {
+                glossy_samples: self.reference_glossy_samples,
+                ..r
+            },
+            "filter" => Settings {
+                spp: self.reference_spp,
+                filter: settings.filter,
+                ..r
+            },
+            _ => r,
+        }
+    }
+}

@@ -1,0 +1,135 @@
+//! Tests of the cost sweep.
+use super::*;
+
+fn img(p: &[Rgb]) -> Image {
+    Image {
+        width: p.len() as u32,
+        height: 1,
+        pixels: p.to_vec(),
+    }
+}
+
+#[test]
+fn metrics_closed_form() {
+    let a = img(&[Rgb::ZERO, Rgb::splat(0.5)]);
+    assert_eq!(compare(&a, &a).unwrap(), ErrorMetrics::default());
+    let b = img(&[Rgb::new(0.3, 0.0, 0.0), Rgb::splat(0.5)]);
+    let m = compare(&a, &b).unwrap();
+    assert!((m.rmse - (0.09f64 / 6.0).sqrt()).abs() < 1e-15);
+    assert_eq!(m.max, 0.3);
+    assert_eq!(m.off_8bit, 0.5);
+    assert!(compare(&a, &img(&[Rgb::ZERO])).is_none());
+}
+
+#[test]
+fn the_sweep_has_an_auto_min_weight_row_and_an_exhaustive_reference() {
+    let mut scene = Scene::default_scene();
+    scene.camera = scene.camera.with_size(32, 18);
+    let sweep = Sweep {
+        depths: vec![],
+        fresnels: vec![],
+        spps: vec![],
+        offsets: vec![],
+        filters: vec![],
+        repeats: 1,
+        reference_spp: 1,
+        ..Sweep::quick()
+    };
+    let r = run(&scene, &sweep, &|_, _| {});
+    assert_eq!(r.reference.min_weight, Some(0.0));
+    assert_eq!(r.base.min_weight, None);
+    let auto = crate::trace::bound::auto_min_weight(&scene, &r.base);
+    assert!(auto > 0.0 && auto == r.base_min_weight);
+    let values: Vec<&str> = r.rows.iter().map(|row| row.value.as_str()).collect();
+    assert_eq!(values, ["0e0", &format!("auto ({auto:.1e})"), "1e-2"]);
+    let [exhaustive, auto_row, coarse] = &r.rows[..] else {
+        unreachable!()
+    };
+    assert_eq!(auto_row.settings.min_weight, None);
+    // The cut traces fewer rays than the exhaustive tree at depth 16, more than 1e-2.
+    assert!(auto_row.rays.total < exhaustive.rays.total, "{r:?}");
+    assert!(auto_row.rays.total > coarse.rays.total, "{r:?}");
+}
+
+#[test]
+fn pareto_front() {
+    let row = |t: f64, e: f64| CostRow {
+        axis: String::new(),
+        value: String::new(),
+        settings: Settings::default(),
+        median_ms: t,
+        rays: RaysByKind::default(),
+        error: ErrorMetrics {
+            rmse: e,
+            ..ErrorMetrics::default()
+        },
+        pareto: false,
+    };
+    let mut rows = vec![row(1.0, 0.5), row(2.0, 0.1), row(3.0, 0.2), row(4.0, 0.0)];
+    mark_pareto(&mut rows);
+    let front: Vec<bool> = rows.iter().map(|r| r.pareto).collect();
+    assert_eq!(front, [true, true, false, true]);
+}
+
+/// The light-samples, glossy-samples and filter axes: rows only where the scene uses the knob,
+/// each against its own converged reference, and more samples err less.
+#[test]
+fn stochastic_axes_are_measured_against_their_references() {
+    let sweep = Sweep {
+        depths: vec![],
+        fresnels: vec![],
+        spps: vec![],
+        offsets: vec![],
+        min_weights: vec![],
+        light_samples: vec![1, 16],
+        glossy_samples: vec![1, 16],
+        filters: vec!["box".into(), "tent:1".into()],
+        filter_spp: 4,
+        reference_spp: 16,
+        reference_light_samples: 256,
+        reference_glossy_samples: 256,
+        repeats: 1,
+        ..Sweep::quick()
+    };
+    let rows = |src: &str| {
+        let mut scene = Scene::from_json(src).unwrap();
+        scene.camera = scene.camera.with_size(32, 20);
+        run(&scene, &sweep, &|_, _| {}).rows
+    };
+    let labels = |r: &[CostRow]| -> Vec<String> {
+        r.iter()
+            .map(|row| format!("{} {}", row.axis, row.value))
+            .collect()
+    };
+    let soft = rows(include_str!("../../../fixtures/soft-shadows.json"));
+    assert_eq!(
+        labels(&soft),
+        [
+            "light_samples 1",
+            "light_samples 16",
+            "filter box",
+            "filter tent:1"
+        ]
+    );
+    assert!(soft[1].error.rmse < 0.5 * soft[0].error.rmse, "{soft:?}");
+    assert!(soft[1].rays.shadow > 10 * soft[0].rays.shadow);
+    let glossy = rows(include_str!("../../../fixtures/glossy.json"));
+    assert_eq!(
+        labels(&glossy),
+        [
+            "light_samples 1",
+            "light_samples 16",
+            "glossy_samples 1",
+            "glossy_samples 16",
+            "filter box",
+            "filter tent:1"
+        ]
+    );
+    assert!(
+        glossy[3].error.rmse < 0.5 * glossy[2].error.rmse,
+        "{glossy:?}"
+    );
+    assert_eq!(glossy[4].settings.spp, 4);
+    let classic = rows(include_str!("../../../fixtures/classic.json"));
+    assert_eq!(labels(&classic), ["filter box", "filter tent:1"]);
+}

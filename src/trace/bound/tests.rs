@@ -1,0 +1,244 @@
+//! Tests of the automatic min-weight bound.
+use super::*;
+
+fn scene(extra: &str) -> Scene {
+    let src = format!(
+        r#"{{"camera": {{"position": [0,0,5], "look_at": [0,0,0], "fov_y": 40,
+             "width": 4, "height": 3}},
+           "background": [0.1, 0.1, 0.1], "ambient": [0, 0, 0],
+           "materials": {{"m": {{"diffuse": [0.5, 0.5, 0.5]}},
+                         "g": {{"transmissivity": [0.9, 0.9, 0.9], "ior": 1.5}}}},
+           "objects": [{{"type": "plane", "point": [0,-1,0], "normal": [0,1,0],
+                         "material": "m"}},
+                       {{"type": "sphere", "center": [0,0,0], "radius": 1,
+                         "material": "g"}}],
+           "lights": [{{"type": "point", "position": [0,3,0], "intensity": [8,8,8]}}]
+           {extra}}}"#
+    );
+    Scene::from_json(&src).unwrap()
+}
+
+/// Sampled area lights add their expected direct light to the bound:
+/// `(max albedo + pi max specular) x max emission` (pbrt's `E <= pi L_max` over the hemisphere).
+#[test]
+fn sampled_area_lights_raise_the_bound_by_their_direct_light() {
+    let src = include_str!("../../../fixtures/soft-shadows.json");
+    let mut s = Scene::from_json(src).unwrap();
+    assert!(s.settings.light_samples.is_some());
+    let on = radiance_bound(&s, 0, ShadowMode::Opaque);
+    s.settings.light_samples = None;
+    let off = radiance_bound(&s, 0, ShadowMode::Opaque);
+    // The fixture: emission 10 (max channel), albedo 0.8, specular 0.3.
+    let expect = (0.8 + std::f64::consts::PI * 0.3) * 10.0;
+    assert!((on - off - expect).abs() < 1e-9 * on, "on {on}, off {off}");
+}
+
+#[test]
+fn the_bound_follows_the_closed_form() {
+    let s = scene("");
+    // Nearest surface to the light: the sphere, 3 - 1 = 2 away: E <= 8 / 4 = 2; local
+    // <= (0.5 / pi + 0) * 2; s = 0.9; 16 bounces.
+    let local = 0.5 / std::f64::consts::PI * 2.0;
+    let sum = (1.0 - 0.9f64.powi(17)) / 0.1;
+    let b = radiance_bound(&s, 16, ShadowMode::Opaque);
+    assert!((b - local * sum).abs() < 1e-12, "{b}");
+    let w = auto_min_weight(&s, &s.settings);
+    assert!(
+        (w - (1.0 / 510.0) / (12.92 * local * sum)).abs() < 1e-15,
+        "{w}"
+    );
+    assert_eq!(effective_min_weight(&s), w);
+}
+
+#[test]
+fn exhaustive_and_unbounded_cases_cut_nothing() {
+    let s = scene(r#", "settings": {"min_weight": 0}"#);
+    assert_eq!(effective_min_weight(&s), 0.0);
+    let s = scene(r#", "settings": {"tolerance": 0}"#);
+    assert_eq!(effective_min_weight(&s), 0.0);
+    // A light on the plane: irradiance without bound.
+    let mut s = scene("");
+    s.lights[0].kind = LightKind::Point {
+        position: DVec3::new(5.0, -1.0, 0.0),
+        intensity: Rgb::ONE,
+    };
+    assert_eq!(radiance_bound(&s, 4, ShadowMode::Opaque), f64::INFINITY);
+    assert_eq!(effective_min_weight(&s), 0.0);
+}
+
+#[test]
+fn distances_never_exceed_the_true_distance() {
+    let p = DVec3::new(0.3, 0.2, 0.1);
+    assert!((box_surface_distance(DVec3::ZERO, DVec3::ONE, p) - 0.1).abs() < 1e-15);
+    assert!(
+        (box_surface_distance(DVec3::ZERO, DVec3::ONE, DVec3::splat(2.0)) - 3f64.sqrt()).abs()
+            < 1e-12
+    );
+    let v = [DVec3::ZERO, DVec3::X, DVec3::Y];
+    // Above the triangle: the plane distance; beside it in its plane: the box distance.
+    assert_eq!(
+        triangle_distance(&v, DVec3::Z, DVec3::new(0.2, 0.2, 0.5)),
+        0.5
+    );
+    assert_eq!(
+        triangle_distance(&v, DVec3::Z, DVec3::new(3.0, 0.0, 0.0)),
+        2.0
+    );
+    assert_eq!(geometric_sum(1.0, 3), 4.0);
+    assert_eq!(geometric_sum(2.0, 3), 15.0);
+    assert_eq!(geometric_sum(3.0, 1024), f64::INFINITY);
+}
+
+#[test]
+fn the_ray_budget_cuts_each_sample_and_keeps_the_tree_whole() {
+    use crate::render::{render_pixel, trace_pixel};
+    use crate::trace::{NoopRecorder, RayCounts};
+    use crate::tree::EndReason;
+    let mut s =
+        scene(r#", "settings": {"max_depth": 40, "min_weight": 0, "max_rays": 50, "spp": 2}"#);
+    s.camera = s.camera.with_size(8, 6);
+    let mut cut_trees = 0;
+    for (x, y) in [(4, 3), (3, 2), (0, 0)] {
+        let t = trace_pixel(&s, x, y).unwrap();
+        assert!(crate::analysis::invariants::tree_violations(&t, s.background).is_empty());
+        let cut = t
+            .nodes
+            .iter()
+            .filter(|n| n.end == EndReason::RayBudget)
+            .count();
+        cut_trees += usize::from(cut > 0);
+        // Per sample: at most the budget, plus the last ray's shadow rays.
+        assert!(
+            t.nodes.len() <= 2 * (50 + s.lights.len() + 1),
+            "{}",
+            t.nodes.len()
+        );
+        let mut counts = RayCounts::default();
+        let l = render_pixel(&s, x, y, &mut NoopRecorder, &mut counts, |_| {});
+        assert_eq!(l, t.radiance);
+        assert_eq!(counts.budget_samples > 0, cut > 0);
+    }
+    assert!(cut_trees > 0);
+}
+
+mod nested_dielectrics {
+    //! Random nested-dielectric scenes: the automatic cut changes each pixel by no more than
+    //! its cut branches could carry (strict), and by at most one 8-bit sRGB step.
+    use super::super::*;
+    use crate::analysis::invariants::tree_violations;
+    use crate::math::linear_to_srgb;
+    use crate::render::trace_pixel;
+    use crate::tree::EndReason;
+    use proptest::prelude::*;
+
+    fn scene(ior: (f64, f64), t: (f64, f64), r: f64, depth: u32) -> Scene {
+        let src = format!(
+            r#"{{"camera": {{"position": [0,1,5], "look_at": [0,0.6,0], "fov_y": 35,
+                 "width": 12, "height": 8}},
+               "background": [0.35, 0.55, 0.85], "ambient": [0.05, 0.05, 0.05],
+               "materials": {{
+                 "floor": {{"diffuse": {{"checker": {{"even": [0.9,0.1,0.1],
+                            "odd": [0.9,0.9,0.2], "size": 0.5}}}}}},
+                 "outer": {{"transmissivity": [{t0},{t0},{t0}], "ior": {i0},
+                            "specular": [0.5,0.5,0.5], "shininess": 100}},
+                 "inner": {{"transmissivity": [{t1},{t1},{t1}], "ior": {i1},
+                            "reflectivity": [{r},{r},{r}]}}}},
+               "objects": [
+                 {{"type": "plane", "point": [0,-0.4,0], "normal": [0,1,0],
+                   "material": "floor"}},
+                 {{"type": "sphere", "center": [0,0.6,0], "radius": 1,
+                   "material": "outer"}},
+                 {{"type": "sphere", "center": [0.1,0.6,0.1], "radius": 0.5,
+                   "material": "inner"}}],
+               "lights": [{{"type": "point", "position": [3,5,4],
+                            "intensity": [60,60,60]}}],
+               "settings": {{"max_depth": {depth}}}}}"#,
+            i0 = ior.0,
+            i1 = ior.1,
+            t0 = t.0,
+            t1 = t.1,
+        );
+        Scene::from_json(&src).unwrap()
+    }
+
+    proptest! {
+        #![proptest_config(ProptestConfig::with_cases(24))]
+        #[test]
+        fn the_cut_changes_pixels_by_less_than_its_bound(
+            ior in (1.05f64..2.4, 1.05f64..2.4),
+            t in (0.5f64..1.0, 0.3f64..0.9),
+            r in 0.0f64..0.1,
+            depth in 4u32..14,
+        ) {
+            let cut = scene(ior, t, r, depth);
+            let mut full = cut.clone();
+            full.settings.min_weight = Some(0.0);
+            let bound = radiance_bound(&cut, depth, cut.settings.shadows);
+            let w = effective_min_weight(&cut);
+            prop_assert!(w > 0.0);
+            for y in 0..8 {
+                for x in 0..12 {
+                    let a = trace_pixel(&cut, x, y).unwrap();
+                    let b = trace_pixel(&full, x, y).unwrap();
+                    prop_assert!(tree_violations(&a, cut.background).is_empty());
+                    // What the cut branches could have carried: their throughput (at most
+                    // the parent's times the weight cut) times the radiance bound.
+                    let mut could = 0.0;
+                    for n in a.nodes.iter().filter(|n| n.end == EndReason::MinWeight) {
+                        could += (n.throughput * n.truncated).max_element() * bound;
+                    }
+                    let diff = (a.radiance - b.radiance).abs().max_element();
+                    prop_assert!(diff <= could * (1.0 + 1e-9) + 1e-15,
+                        "pixel {x},{y}: {diff} > {could}");
+                    let enc = |c: Rgb| c.to_array().map(linear_to_srgb);
+                    let (ea, eb) = (enc(a.radiance), enc(b.radiance));
+                    for k in 0..3 {
+                        prop_assert!((ea[k] - eb[k]).abs() <= 1.0 / 255.0,
+                            "pixel {x},{y}: {ea:?} vs {eb:?}");
+                    }
+                }
+            }
+        }
+    }
+}
+
+/// The rough lobes' highlight bound `weight / (2 pi a^3)` holds for every direction pair and is
+/// nearly reached (grazing `wo`, `wi` on the mirror direction): it is the strict maximum of
+/// `f cos_i`, for the rough mirror and the rough dielectric's reflection.
+#[test]
+fn the_rough_lobes_highlight_bound_holds_and_is_tight() {
+    use crate::bsdf::{Ggx, Lobe};
+    for a in [0.05, 0.2, 0.6, 1.0] {
+        let bound = 1.0 / (2.0 * std::f64::consts::PI * a * a * a);
+        let ggx = Ggx::new(a);
+        let lobes = [
+            Lobe::RoughMirror {
+                weight: Rgb::ONE,
+                ggx,
+            },
+            Lobe::RoughDielectric {
+                weight: Rgb::ONE,
+                eta: 1.5,
+                ggx,
+            },
+        ];
+        let mut most = 0.0f64;
+        for i in 0..=400 {
+            let to = f64::from(i) / 400.0 * (std::f64::consts::FRAC_PI_2 - 1e-4);
+            let wo = DVec3::new(to.sin(), 0.0, to.cos());
+            for j in 0..=400 {
+                let ti = f64::from(j) / 400.0 * (std::f64::consts::FRAC_PI_2 - 1e-4);
+                for phi in [0.0, 1.0, 3.0, std::f64::consts::PI] {
+                    let wi =
+                        DVec3::new(ti.sin() * f64::cos(phi), ti.sin() * f64::sin(phi), ti.cos());
+                    for lobe in &lobes {
+                        let v = lobe.eval(wo, wi).x * wi.z;
+                        assert!(v <= bound * (1.0 + 1e-12), "alpha {a}: {v} > {bound}");
+                        most = most.max(v);
+                    }
+                }
+            }
+        }
+        assert!(most > 0.3 * bound, "alpha {a}: at most {most} of {bound}");
+    }
+}
