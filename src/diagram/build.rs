@@ -79,10 +79,10 @@ impl Diagram {
                 (lo.min(*p), hi.max(*p))
             });
         let extent3 = (extent3.1 - extent3.0).max_element().max(1e-9);
+        let shares = share::shares(tree);
         let (mut frame, plane_text) = match opts.plane {
             PlaneSpec::Auto => {
                 let ids: Vec<NodeId> = segs.iter().map(|s| s.node.id).collect();
-                let shares = share::shares(tree);
                 plane_pick::auto(scene, tree, opts.sample, &ids, &shares, extent3)
             }
             spec => plane::choose(spec, scene, tree, opts.sample),
@@ -96,14 +96,15 @@ impl Diagram {
         );
         let mut extras: Vec<(DVec3, f64)> = Vec::new();
         if camera_drawn {
-            extras.extend([cam.position, pixel3].map(|p| (p, framing::EYE_NEAR)));
+            // The pixel lies between the eye and the first hit: framed with the eye.
+            extras.push((cam.position, framing::EYE_NEAR));
         }
         for s in &segs {
             if s.end_kind == RayEnd::Light {
                 extras.extend(s.end.map(|p| (p, framing::LIGHT_NEAR)));
             }
         }
-        let fit = framing::choose(scene, &segs, &frame, &extras, extent3);
+        let fit = framing::choose(scene, &segs, &frame, &extras, &shares, extent3);
         let pad = 3.0 * fs;
         let size = (fit.fit.hi - fit.fit.lo).max(DVec2::splat(extent3 * 0.05));
         let avail = (view.size() - DVec2::splat(2.0 * pad)).max(DVec2::splat(10.0));

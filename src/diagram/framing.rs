@@ -14,7 +14,7 @@ use super::plane::PlaneFrame;
 use super::segments::Seg3;
 use super::slice::{PlaneSlice, slice};
 use crate::scene::Scene;
-use crate::tree::RayKind;
+use crate::tree::{NodeId, RayKind};
 use glam::{DVec2, DVec3};
 
 /// A box in plane coordinates.
@@ -54,25 +54,25 @@ impl Box2 {
 
 /// The interaction points of the drawn rays with their depths and the objects they are on:
 /// spawn points, hits, opaque blockers, and where shadow rays cross translucent blockers.
-fn interactions(segs: &[Seg3]) -> Vec<(u32, DVec3, Option<usize>)> {
+fn interactions(segs: &[Seg3]) -> Vec<(u32, DVec3, Option<usize>, NodeId)> {
     let mut out = Vec::new();
     for s in segs {
         let n = s.node;
         if n.kind != RayKind::Camera {
-            out.push((n.depth, s.start, None));
+            out.push((n.depth, s.start, None, n.id));
         }
         if let Some(e) = s
             .end
             .filter(|_| matches!(s.end_kind, RayEnd::Hit | RayEnd::Blocked))
         {
             let on = n.hit.as_ref().map(|h| h.object);
-            out.push((n.depth, e, on));
+            out.push((n.depth, e, on, n.id));
         }
         if let Some(sh) = &n.shadow {
             for b in &sh.blockers {
                 for t in [b.t, b.t + b.chord] {
                     if t.is_finite() {
-                        out.push((n.depth, n.origin + t * n.direction, Some(b.object)));
+                        out.push((n.depth, n.origin + t * n.direction, Some(b.object), n.id));
                     }
                 }
             }
@@ -84,9 +84,15 @@ fn interactions(segs: &[Seg3]) -> Vec<(u32, DVec3, Option<usize>)> {
 /// How far from the first hit and its object an interaction may lie to be framed, in sizes
 /// of that object.
 const NEAR: f64 = 1.5;
-/// How far from the region the eye (and the pixel) may lie to be framed, in sizes of it.
+/// The same for the rays carrying a major share of the pixel ([`MAJOR`]): where the light
+/// the pixel sees comes from (the floor seen through a glass ball) is worth a smaller figure.
+const NEAR_MAJOR: f64 = 4.0;
+/// A major share of the pixel.
+const MAJOR: f64 = 0.2;
+/// How far from the region the eye (and the pixel) may lie to be framed, in sizes of the
+/// first object.
 pub(super) const EYE_NEAR: f64 = 1.5;
-/// How far from the region a light may lie to be framed, in sizes of it.
+/// How far from the region a light may lie to be framed, in sizes of the first object.
 pub(super) const LIGHT_NEAR: f64 = 1.0;
 
 /// The bounds of object `o`'s slice (empty for planes and objects the plane misses).
@@ -124,6 +130,7 @@ pub(super) fn choose(
     segs: &[Seg3],
     frame: &PlaneFrame,
     extras: &[(DVec3, f64)],
+    shares: &[f64],
     extent3: f64,
 ) -> Fit {
     let q = |p: DVec3| frame.plane_coords(p);
@@ -159,10 +166,10 @@ pub(super) fn choose(
     // the nearest interaction.
     let seed_size = first_object
         .and_then(object_size)
-        .or_else(|| pts.iter().find_map(|(_, _, o)| o.and_then(object_size)))
+        .or_else(|| pts.iter().find_map(|(_, _, o, _)| o.and_then(object_size)))
         .unwrap_or_else(|| {
             pts.iter()
-                .map(|(_, p, _)| (*p - origin).length())
+                .map(|(_, p, _, _)| (*p - origin).length())
                 .filter(|d| *d > 1e-9 * extent3)
                 .fold(f64::INFINITY, f64::min)
         });
@@ -182,8 +189,13 @@ pub(super) fn choose(
         }
     }
     let mut touched: Vec<usize> = first_object.into_iter().collect();
-    for (_, p, o) in &pts {
-        if seed.is_empty() || seed.distance(q(*p)) <= NEAR * seed_size {
+    for (_, p, o, id) in &pts {
+        let near = if shares.get(id.index()).is_some_and(|s| *s >= MAJOR) {
+            NEAR_MAJOR
+        } else {
+            NEAR
+        };
+        if seed.is_empty() || seed.distance(q(*p)) <= near * seed_size {
             core.add(q(*p));
             touched.extend(*o);
         }
@@ -203,7 +215,13 @@ pub(super) fn choose(
     }
     let core = objects;
     let mut fit = core;
-    let size = core.size().max(seed_size).max(extent3 * 1e-3);
+    // The camera ray comes in over at least half the first object's size.
+    if let Some((s, e)) = first {
+        let back = (e - s.start).length().min(0.5 * seed_size);
+        fit.add(q(e - s.node.direction * back));
+    }
+    // Measured in sizes of the first object, like the interactions.
+    let size = seed_size;
     for (p, near) in extras {
         if core.is_empty() || core.distance(q(*p)) <= near * size {
             fit.add(q(*p));

@@ -106,7 +106,7 @@ fn crosses(r: &Rect, a: Point, b: Point) -> bool {
 /// or lie on rays.
 fn ring(pos: Point, size: f64) -> Vec<Point> {
     let mut out = Vec::new();
-    for step in [1.0, 2.0, 3.0] {
+    for step in [1.0, 2.0] {
         for (dx, dy) in [
             (0.0, -1.1),
             (0.0, 1.1),
