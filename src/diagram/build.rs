@@ -5,7 +5,8 @@ use super::marks::{camera_mark, light_marks};
 use super::model::{Anchor, Diagram, LabelRole, RayEnd, Rect};
 use super::segments::{Seg3, clip_to, project, seg3};
 use super::{
-    DiagramError, DiagramOptions, PlaneSpec, annotate, framing, inset, objects, plane, plane_pick, share,
+    DiagramError, DiagramOptions, PlaneSpec, annotate, framing, inset, objects, plane, plane_pick,
+    share,
 };
 use crate::scene::Scene;
 use crate::tree::{NodeId, RayKind, RayTree};

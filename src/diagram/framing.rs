@@ -147,10 +147,16 @@ pub(super) fn choose(
             .get(o)
             .and_then(|o| o.shape.bounds())
             .map(|(lo, hi)| (hi - lo).max_element());
-        let size = if b.is_empty() { bounds } else { bounds.map(|_| b.size()) };
+        let size = if b.is_empty() {
+            bounds
+        } else {
+            bounds.map(|_| b.size())
+        };
         size.filter(|v| v.is_finite() && *v > 0.0)
     };
-    let first_object = first.and_then(|(s, _)| s.node.hit.as_ref()).map(|h| h.object);
+    let first_object = first
+        .and_then(|(s, _)| s.node.hit.as_ref())
+        .map(|h| h.object);
     let mut core = Box2::EMPTY;
     if let Some((_, e)) = first {
         core.add(q(e));
@@ -258,7 +264,8 @@ pub(super) fn centre(f: &Fit, win: DVec2, pad: DVec2) -> DVec2 {
         let hi = f.fit.lo[i] - pad[i] + win[i] * 0.5;
         let mid = (f.fit.lo[i] + f.fit.hi[i]) * 0.5;
         let (lo, hi) = if lo <= hi { (lo, hi) } else { (mid, mid) };
-        let want = (f.reach.lo[i].max(f.fit.lo[i] - win[i]) + f.reach.hi[i].min(f.fit.hi[i] + win[i]))
+        let want = (f.reach.lo[i].max(f.fit.lo[i] - win[i])
+            + f.reach.hi[i].min(f.fit.hi[i] + win[i]))
             * 0.5;
         c[i] = want.clamp(lo, hi);
     }

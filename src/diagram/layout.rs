@@ -139,7 +139,9 @@ pub(super) fn place(
     for p in pending {
         let mut cands = p.cands.clone();
         let own = cands.len();
-        if !p.fixed && let Some(&(pos, anchor)) = p.cands.first() {
+        if !p.fixed
+            && let Some(&(pos, anchor)) = p.cands.first()
+        {
             cands.extend(ring(pos, p.size).into_iter().map(|q| (q, anchor)));
         }
         let boxes: Vec<Rect> = cands
@@ -151,7 +153,11 @@ pub(super) fn place(
         };
         let cost = |i: usize, b: &Rect| {
             let hits = lines.iter().filter(|(a, c)| crosses(b, *a, *c)).count();
-            let far = if i < own { 0.0 } else { 1.0 + ((i - own) / 8) as f64 };
+            let far = if i < own {
+                0.0
+            } else {
+                1.0 + ((i - own) / 8) as f64
+            };
             hits as f64 * 2.5 + far + i as f64 * 1e-3
         };
         let chosen = if p.fixed {

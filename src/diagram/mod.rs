@@ -6,8 +6,8 @@
 
 mod annotate;
 mod build;
-mod framing;
 pub mod font;
+mod framing;
 mod inset;
 mod layout;
 mod marks;
@@ -22,7 +22,7 @@ pub mod share;
 pub mod slice;
 mod svg;
 
-pub use layout::percent;
+pub use layout::{label_box, percent};
 pub use model::{Diagram, Label, LabelRole, RayEnd, RaySegment};
 pub use paint::{Style, Theme, display_list};
 pub use plane::{PlaneFrame, PlaneSpec};

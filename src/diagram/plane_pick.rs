@@ -18,11 +18,7 @@ const SWITCH: f64 = 0.05;
 pub fn through_ray(scene: &Scene, tree: &RayTree, id: NodeId) -> (PlaneFrame, String) {
     let n = tree.node(id);
     let Some(pid) = n.parent else {
-        let sample = tree
-            .samples
-            .iter()
-            .position(|s| s.root == id)
-            .unwrap_or(0);
+        let sample = tree.samples.iter().position(|s| s.root == id).unwrap_or(0);
         let (f, text) = choose(PlaneSpec::Incidence, scene, tree, sample);
         return (f, format!("{text} (through camera ray #{})", id.0));
     };
@@ -97,7 +93,9 @@ pub fn auto(
     for c in &tree.node(root).children {
         let n = tree.node(*c);
         let useful = n.kind != RayKind::Shadow || n.shadow.is_some();
-        if !ids.contains(c) || !useful || n.direction.cross(tree.node(root).direction).length() < 1e-6
+        if !ids.contains(c)
+            || !useful
+            || n.direction.cross(tree.node(root).direction).length() < 1e-6
         {
             continue;
         }
@@ -112,7 +110,9 @@ pub fn auto(
             let (f, text) = through_ray(scene, tree, id);
             (
                 f,
-                format!("{text}, chosen over the plane of incidence: more of the pixel's light lies in it"),
+                format!(
+                    "{text}, chosen over the plane of incidence: more of the pixel's light lies in it"
+                ),
             )
         }
         None => (f0, text0),
