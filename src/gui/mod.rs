@@ -9,6 +9,7 @@
 
 mod app;
 pub mod breakdown;
+mod diagram_controls;
 pub mod diagram_ui;
 pub mod document;
 pub mod export;
