@@ -36,7 +36,7 @@ impl Box2 {
         }
     }
     fn is_empty(&self) -> bool {
-        !(self.lo.x <= self.hi.x)
+        self.lo.x.partial_cmp(&self.hi.x).is_none_or(|o| o.is_gt())
     }
     fn size(&self) -> f64 {
         if self.is_empty() {
@@ -188,11 +188,12 @@ pub(super) fn choose(
     // Measured from the first hit and its object's slice, not from the growing region: a
     // chain of bounces must not walk the frame out to the far floor.
     let mut seed = core;
-    if let Some(b) = first_object.map(|o| slice_box(scene, frame, o)) {
-        if !b.is_empty() && b.size() <= 3.0 * seed_size {
-            seed.add(b.lo);
-            seed.add(b.hi);
-        }
+    if let Some(b) = first_object.map(|o| slice_box(scene, frame, o))
+        && !b.is_empty()
+        && b.size() <= 3.0 * seed_size
+    {
+        seed.add(b.lo);
+        seed.add(b.hi);
     }
     let mut touched: Vec<usize> = first_object.into_iter().collect();
     for (_, p, o, id) in &pts {
