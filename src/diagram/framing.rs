@@ -268,7 +268,12 @@ pub(super) fn centre(f: &Fit, win: DVec2, pad: DVec2) -> DVec2 {
         let want = (f.reach.lo[i].max(f.fit.lo[i] - win[i])
             + f.reach.hi[i].min(f.fit.hi[i] + win[i]))
             * 0.5;
-        c[i] = want.clamp(lo, hi);
+        // max/min, not clamp: no panic on a non-finite bound (the figure degrades, never
+        // aborts).
+        c[i] = want.max(lo).min(hi);
+        if !c[i].is_finite() {
+            c[i] = if mid.is_finite() { mid } else { 0.0 };
+        }
     }
     c
 }

@@ -167,6 +167,8 @@ pub(super) fn controls_ui(ui: &mut egui::Ui, doc: &Document, v: &mut DiagramView
         ui.checkbox(&mut v.zoom_offsets, "zoom on spawn points");
     });
     ui.horizontal_wrapped(|ui| {
+        // Short sliders: the panel shares its width with the tree.
+        ui.spacing_mut().slider_width = 56.0;
         let mut limited = v.draw_depth.is_some();
         ui.checkbox(&mut limited, "limit depth");
         let mut depth = v.draw_depth.unwrap_or(doc.scene.settings.max_depth);
