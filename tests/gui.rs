@@ -148,7 +148,7 @@ fn the_diagram_panel_keeps_its_height_before_a_pixel_is_picked() {
     // first click it used to stay one line tall, hiding every diagram after it.
     let files = MemFiles::default();
     let mut h = harness(&files);
-    // (Measured at the panel's header: its controls take two rows above the message.)
+    // (Measured at the panel's header: its controls take three rows above the message.)
     assert!(has(&h, "Select a pixel to see its diagram."));
     let top = |h: &Harness<'static, InspectorApp>| h.get_by_label("Diagram").rect().top();
     let before = top(&h);

@@ -128,7 +128,7 @@ impl DiagramView {
     }
 }
 
-/// The controls above the figure (two rows).
+/// The controls above the figure (three rows).
 pub(super) fn controls_ui(ui: &mut egui::Ui, doc: &Document, v: &mut DiagramView) {
     ui.horizontal_wrapped(|ui| {
         ui.strong("Diagram");
@@ -184,7 +184,10 @@ pub(super) fn controls_ui(ui: &mut egui::Ui, doc: &Document, v: &mut DiagramView
         for (on, kind) in v.kinds.iter_mut().zip(RayKind::ALL) {
             ui.checkbox(on, kind.name());
         }
-        ui.separator();
+    });
+    // A row of its own: a slider with its text does not wrap.
+    ui.horizontal_wrapped(|ui| {
+        ui.spacing_mut().slider_width = 56.0;
         ui.add(egui::Slider::new(&mut v.label_depth, 0..=16).text("label depth"))
             .on_hover_text("angles, n, R/T and Beer labels on depths up to this one");
         ui.separator();
