@@ -148,18 +148,16 @@ fn the_diagram_panel_keeps_its_height_before_a_pixel_is_picked() {
     // first click it used to stay one line tall, hiding every diagram after it.
     let files = MemFiles::default();
     let mut h = harness(&files);
-    let top = |h: &Harness<'static, InspectorApp>| {
-        h.get_by_label("Select a pixel to see its diagram.")
-            .rect()
-            .top()
-    };
+    // (Measured at the panel's header: its controls take three rows above the message.)
+    assert!(has(&h, "Select a pixel to see its diagram."));
+    let top = |h: &Harness<'static, InspectorApp>| h.get_by_label("Diagram").rect().top();
     let before = top(&h);
     assert!(before < 950.0 - 300.0, "diagram panel starts at {before}");
     // Still that tall a few frames on, and the diagram, once there, fills it.
     h.run();
     assert_eq!(top(&h), before);
     click_pixel(&mut h, 150, 100);
-    let header = h.get_by_label("Diagram").rect().bottom();
+    let header = top(&h);
     assert!(header <= before + 1.0, "{header} vs {before}");
 }
 

@@ -267,9 +267,18 @@ pub struct DiagramArgs {
     /// Output figure: .svg or .png.
     #[arg(short, long, default_value = "diagram.svg")]
     pub output: PathBuf,
-    /// Slicing plane: incidence (default), camera, x=V, y=V, z=V or PX,PY,PZ,NX,NY,NZ.
-    #[arg(long, default_value = "incidence", allow_hyphen_values = true)]
+    /// Slicing plane: auto (default: the plane of incidence, or the plane of a first-bounce ray
+    /// holding more of the pixel), incidence, camera, ray=N, x=V, y=V, z=V or PX,PY,PZ,NX,NY,NZ.
+    #[arg(long, default_value = "auto", allow_hyphen_values = true)]
     pub plane: String,
+    /// The plane through ray N (a node id of `raytree trace`) and its parent ray; same as
+    /// --plane ray=N.
+    #[arg(long, value_name = "N", conflicts_with = "plane")]
+    pub plane_ray: Option<u32>,
+    /// Leave out rays carrying less than this share of the pixel (0.01 = 1 %; 0 draws every
+    /// ray). The legend says how many were left out and how much of the pixel they carry.
+    #[arg(long, value_name = "F", default_value_t = raytree::diagram::MIN_SHARE, allow_hyphen_values = true)]
+    pub min_share: f64,
     /// Colour theme.
     #[arg(long, value_name = "light|dark", default_value = "light")]
     pub theme: String,

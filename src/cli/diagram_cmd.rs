@@ -50,7 +50,16 @@ pub fn run(a: &DiagramArgs) -> Result<()> {
         ),
     };
     let (x, y) = pair("pixel", &a.pixel, ',')?;
-    let plane = PlaneSpec::parse(&a.plane).map_err(|e| anyhow!("--plane: {e}"))?;
+    let plane = match a.plane_ray {
+        Some(id) => PlaneSpec::Ray(raytree::NodeId(id)),
+        None => PlaneSpec::parse(&a.plane).map_err(|e| anyhow!("--plane: {e}"))?,
+    };
+    if !(0.0..=1.0).contains(&a.min_share) {
+        bail!(
+            "--min-share: must be a share of the pixel in 0..=1 (0 draws every ray), got {}",
+            a.min_share
+        );
+    }
     let (width, height) = match &a.overrides.size {
         Some(s) => pair("size", s, 'x')?,
         None => (1280, 720),
@@ -79,6 +88,16 @@ pub fn run(a: &DiagramArgs) -> Result<()> {
             cam.height
         );
     };
+    if let PlaneSpec::Ray(id) = plane
+        && id.index() >= tree.nodes.len()
+    {
+        bail!(
+            "--plane-ray {}: the pixel's tree has {} rays (#0 to #{})",
+            id.0,
+            tree.nodes.len(),
+            tree.nodes.len() - 1
+        );
+    }
     if a.sample >= tree.samples.len() {
         bail!(
             "--sample {}: the pixel has {} sample(s) (spp {})",
@@ -113,10 +132,12 @@ pub fn run(a: &DiagramArgs) -> Result<()> {
         zoom_offsets: a.zoom_offsets,
         highlight: None,
         label_depth: a.label_depth,
+        min_share: a.min_share,
         title: format!(
             "{name}: pixel ({x}, {y}){sample}, {} rays",
             tree.nodes.len()
         ),
+        ..DiagramOptions::default()
     };
     let diagram = Diagram::build(scene, &tree, &opts)?;
     let style = Style::new(theme);
@@ -135,9 +156,11 @@ pub fn run(a: &DiagramArgs) -> Result<()> {
     };
     pending.commit(&bytes)?;
     sayln!(
-        "wrote {} ({width}x{height}, {} rays drawn, {} off the plane; {})",
+        "wrote {} ({width}x{height}, {} rays drawn, {} left out under {} of the pixel, {} off the plane; {})",
         a.output.display(),
         diagram.rays.len(),
+        diagram.dropped_rays,
+        raytree::diagram::percent(a.min_share),
         diagram.off_plane_rays,
         diagram.plane_text
     )?;

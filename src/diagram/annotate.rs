@@ -74,6 +74,12 @@ pub(super) fn hits(
         if n.kind == RayKind::Shadow {
             continue;
         }
+        // A hit outside the view (its ray leaves through the frame) gets no mark.
+        if s.end
+            .is_none_or(|e| (frame.to_canvas(e) - r.to).length() > 0.5)
+        {
+            continue;
+        }
         let h = r.to;
         let ni = if hit.entering {
             hit.normal

@@ -4,9 +4,12 @@ use super::layout::{self, Pending};
 use super::marks::{camera_mark, light_marks};
 use super::model::{Anchor, Diagram, LabelRole, RayEnd, Rect};
 use super::segments::{Seg3, clip_to, project, seg3};
-use super::{DiagramError, DiagramOptions, annotate, inset, objects, plane};
+use super::{
+    DiagramError, DiagramOptions, PlaneSpec, annotate, framing, inset, objects, plane, plane_pick,
+    share,
+};
 use crate::scene::Scene;
-use crate::tree::{RayKind, RayTree};
+use crate::tree::{NodeId, RayKind, RayTree};
 use glam::{DVec2, DVec3};
 
 /// Font size for `width x height`: 17 px at 1280x720, never below 11.
@@ -34,10 +37,22 @@ impl Diagram {
             })?;
         let (w, h) = (f64::from(wi), f64::from(hi));
         let fs = font_size(w, h);
-        let (mut frame, plane_text) = plane::choose(opts.plane, scene, tree, opts.sample);
+        let plane_ray = match opts.plane {
+            PlaneSpec::Ray(id) if id.index() >= tree.nodes.len() => {
+                return Err(DiagramError::NoSuchNode {
+                    node: id.0,
+                    count: tree.nodes.len(),
+                });
+            }
+            PlaneSpec::Ray(id) => Some(id),
+            _ => None,
+        };
+        let always: Vec<NodeId> = opts.highlight.into_iter().chain(plane_ray).collect();
+        let kept = share::keep(tree, opts.sample, opts.min_share, &always);
         let segs: Vec<Seg3> = tree
             .depth_first(sample.root)
             .into_iter()
+            .filter(|id| kept.kept[id.index()])
             .map(|id| tree.node(id))
             .filter(|n| opts.kinds.contains(&n.kind))
             .filter(|n| opts.max_depth.is_none_or(|d| n.depth <= d))
@@ -65,57 +80,49 @@ impl Diagram {
                 (lo.min(*p), hi.max(*p))
             });
         let extent3 = (extent3.1 - extent3.0).max_element().max(1e-9);
+        let shares = share::shares(tree);
+        let (mut frame, plane_text) = match opts.plane {
+            PlaneSpec::Auto => {
+                let ids: Vec<NodeId> = segs.iter().map(|s| s.node.id).collect();
+                plane_pick::auto(scene, tree, opts.sample, &ids, &shares, extent3)
+            }
+            spec => plane::choose(spec, scene, tree, opts.sample),
+        };
         let (legend_pending, legend_entries, legend_rect) =
-            layout::legend(&segs, &frame, extent3, &plane_text, opts, w, h, fs);
+            layout::legend(&segs, &frame, extent3, &plane_text, &kept, opts, w, h, fs);
         let top = if opts.title.is_empty() { fs } else { fs * 2.4 };
         let view = Rect::new(
             DVec2::new(fs, top),
             DVec2::new(w - fs, legend_rect.min.y - fs * 0.5),
         );
-        let bounds = |pts: &mut dyn Iterator<Item = DVec3>| {
-            pts.fold((DVec2::INFINITY, DVec2::NEG_INFINITY), |(lo, hi), p| {
-                let q = frame.plane_coords(p);
-                (lo.min(q), hi.max(q))
-            })
-        };
-        let (lo, hi) = bounds(&mut pts.iter().copied());
-        // Where the rays interact (hits, blockers, spawn points). When the eye or a light is
-        // far away, frame on this part and let those rays enter or leave through the frame.
-        // Interactions far from those of the labelled depths (a deep bounce's hit a hundred
-        // units away) leave through the frame too: the figure is about the first bounces.
-        let interactions = || {
-            segs.iter().flat_map(|s| {
-                let start = (s.node.kind != RayKind::Camera).then_some(s.start);
-                let end = s
-                    .end
-                    .filter(|_| matches!(s.end_kind, RayEnd::Hit | RayEnd::Blocked));
-                start.into_iter().chain(end).map(|p| (s.node.depth, p))
-            })
-        };
-        let (nlo, nhi) = bounds(
-            &mut interactions()
-                .filter(|&(depth, _)| depth <= opts.label_depth)
-                .map(|(_, p)| p),
-        );
-        let margin = 3.0 * (nhi - nlo).max_element().max(extent3 * 0.02);
-        let near = |p: DVec3| {
-            let q = frame.plane_coords(p);
-            !nlo.x.is_finite() || (q.cmpge(nlo - margin).all() && q.cmple(nhi + margin).all())
-        };
-        let (clo, chi) = bounds(&mut interactions().map(|(_, p)| p).filter(|&p| near(p)));
-        let zoomed = clo.x.is_finite()
-            && (hi - lo).max_element() > 3.0 * (chi - clo).max_element().max(extent3 * 0.02);
-        let (lo, hi) = if zoomed { (clo, chi) } else { (lo, hi) };
-        let (lo, hi) = if lo.x.is_finite() {
-            (lo, hi)
-        } else {
-            (DVec2::splat(-1.0), DVec2::ONE)
-        };
+        let mut extras: Vec<(DVec3, f64)> = Vec::new();
+        if camera_drawn {
+            // The pixel lies between the eye and the first hit: framed with the eye.
+            extras.push((cam.position, framing::EYE_NEAR));
+        }
+        for s in &segs {
+            if s.end_kind == RayEnd::Light {
+                extras.extend(s.end.map(|p| (p, framing::LIGHT_NEAR)));
+            }
+        }
+        let fit = framing::choose(scene, &segs, &frame, &extras, &shares, extent3);
         let pad = 3.0 * fs;
-        let size = (hi - lo).max(DVec2::splat(extent3 * 0.05));
+        let size = (fit.fit.hi - fit.fit.lo).max(DVec2::splat(extent3 * 0.05));
         let avail = (view.size() - DVec2::splat(2.0 * pad)).max(DVec2::splat(10.0));
+        let zoom = if opts.zoom.is_finite() && opts.zoom > 0.0 {
+            opts.zoom
+        } else {
+            1.0
+        };
         frame.scale = (avail.x / size.x).min(avail.y / size.y);
-        frame.plane_center = (lo + hi) * 0.5;
+        let centre = framing::centre(
+            &fit,
+            view.size() / frame.scale,
+            DVec2::splat(pad / frame.scale),
+        );
+        frame.scale *= zoom;
+        let pan = DVec2::from(opts.pan);
+        frame.plane_center = centre + if pan.is_finite() { pan } else { DVec2::ZERO };
         frame.canvas_center = (view.min + view.max) * 0.5;
 
         let mut rays = Vec::with_capacity(segs.len());
@@ -125,9 +132,7 @@ impl Diagram {
                 && s.node
                     .parent
                     .is_some_and(|p| tree.node(p).interface.as_ref().is_some_and(|i| i.tir));
-            if zoomed {
-                clip_to(&mut r, &view);
-            }
+            clip_to(&mut r, &view);
             rays.push(r);
         }
         let mut pending: Vec<Pending> = legend_pending;
@@ -164,10 +169,16 @@ impl Diagram {
         };
         let mut placed_boxes: Vec<Rect> = insets.iter().map(|i| i.rect).collect();
         placed_boxes.push(legend_rect);
+        let lines: Vec<(DVec2, DVec2)> = rays
+            .iter()
+            .filter(|r| r.to != r.from)
+            .map(|r| (r.from, r.to))
+            .collect();
         let labels = layout::place(
             pending,
             Rect::new(DVec2::ZERO, DVec2::new(w, h)),
             placed_boxes,
+            &lines,
         );
         let off_plane_rays = rays.iter().filter(|r| r.off_plane).count();
         Ok(Diagram {
@@ -186,6 +197,8 @@ impl Diagram {
             legend: legend_entries,
             labels,
             off_plane_rays,
+            dropped_rays: kept.dropped,
+            dropped_share: kept.dropped_share,
         })
     }
 }

@@ -9,6 +9,7 @@ use super::font::text_width;
 use super::model::{Anchor, Label, LabelRole, LegendEntry, LegendKey, Point, Rect};
 use super::plane::PlaneFrame;
 use super::segments::{Seg3, is_off};
+use super::share::Kept;
 use crate::tree::{NodeId, RayKind};
 use glam::DVec2;
 
@@ -78,30 +79,101 @@ pub fn label_box(pos: Point, anchor: Anchor, text: &str, size: f64) -> Rect {
     )
 }
 
-/// Place labels in priority order, avoiding each other and `obstacles`, inside `canvas`.
-pub(super) fn place(mut pending: Vec<Pending>, canvas: Rect, obstacles: Vec<Rect>) -> Vec<Label> {
+/// Whether segment `a`-`b` crosses rectangle `r` (Liang-Barsky).
+fn crosses(r: &Rect, a: Point, b: Point) -> bool {
+    let d = b - a;
+    let (mut t0, mut t1) = (0.0f64, 1.0f64);
+    for (p, q) in [
+        (-d.x, a.x - r.min.x),
+        (d.x, r.max.x - a.x),
+        (-d.y, a.y - r.min.y),
+        (d.y, r.max.y - a.y),
+    ] {
+        if p == 0.0 {
+            if q < 0.0 {
+                return false;
+            }
+        } else if p < 0.0 {
+            t0 = t0.max(q / p);
+        } else {
+            t1 = t1.min(q / p);
+        }
+    }
+    t0 <= t1
+}
+
+/// More spots around a label's first one, nearest first: used when the given spots are taken
+/// or lie on rays.
+fn ring(pos: Point, size: f64) -> Vec<Point> {
+    let mut out = Vec::new();
+    for step in [1.0, 2.0] {
+        for (dx, dy) in [
+            (0.0, -1.1),
+            (0.0, 1.1),
+            (1.0, 0.0),
+            (-1.0, 0.0),
+            (1.0, -1.1),
+            (-1.0, -1.1),
+            (1.0, 1.1),
+            (-1.0, 1.1),
+        ] {
+            out.push(pos + DVec2::new(dx * 1.5, dy) * size * step);
+        }
+    }
+    out
+}
+
+/// Place labels in priority order, avoiding each other and `obstacles`, inside `canvas`, and
+/// preferring spots that cross none of `lines` (the rays). Each label tries its own spots
+/// first, then a ring of spots around the first one; a label with no free spot is dropped,
+/// except must-show ones (priority 0), which take their first spot.
+pub(super) fn place(
+    mut pending: Vec<Pending>,
+    canvas: Rect,
+    obstacles: Vec<Rect>,
+    lines: &[(Point, Point)],
+) -> Vec<Label> {
     pending.sort_by_key(|p| (!p.fixed, p.priority));
     let mut taken: Vec<Rect> = Vec::new();
     let mut out = Vec::new();
     for p in pending {
-        let boxes: Vec<Rect> = p
-            .cands
+        let mut cands = p.cands.clone();
+        let own = cands.len();
+        if !p.fixed
+            && let Some(&(pos, anchor)) = p.cands.first()
+        {
+            cands.extend(ring(pos, p.size).into_iter().map(|q| (q, anchor)));
+        }
+        let boxes: Vec<Rect> = cands
             .iter()
             .map(|(pos, a)| label_box(*pos, *a, &p.text, p.size))
             .collect();
         let free = |b: &Rect| {
             canvas.contains_rect(b) && !taken.iter().chain(&obstacles).any(|t| t.overlaps(b))
         };
+        let cost = |i: usize, b: &Rect| {
+            let hits = lines.iter().filter(|(a, c)| crosses(b, *a, *c)).count();
+            let far = if i < own {
+                0.0
+            } else {
+                1.0 + ((i - own) / 8) as f64
+            };
+            hits as f64 * 2.5 + far + i as f64 * 1e-3
+        };
         let chosen = if p.fixed {
             Some(0)
         } else {
             boxes
                 .iter()
-                .position(free)
+                .enumerate()
+                .filter(|(_, b)| free(b))
+                .map(|(i, b)| (cost(i, b), i))
+                .min_by(|a, b| a.0.total_cmp(&b.0))
+                .map(|(_, i)| i)
                 .or((p.priority == 0).then_some(0))
         };
         let Some(i) = chosen else { continue };
-        let (mut pos, anchor) = p.cands[i];
+        let (mut pos, anchor) = cands[i];
         let mut b = boxes[i];
         if !p.fixed {
             // Keep must-show labels inside the canvas.
@@ -133,6 +205,7 @@ pub(super) fn legend(
     frame: &PlaneFrame,
     extent3: f64,
     plane_text: &str,
+    kept: &Kept,
     opts: &DiagramOptions,
     w: f64,
     h: f64,
@@ -171,6 +244,17 @@ pub(super) fn legend(
         items.push((
             LegendKey::OffPlane,
             format!("{off} rays leave the plane: projected, dotted, fainter with distance (up to {max_d:.2})"),
+        ));
+    }
+    if kept.dropped > 0 {
+        items.push((
+            LegendKey::Note,
+            format!(
+                "{} rays under {} of the pixel each left out ({} of it in all).",
+                kept.dropped,
+                percent(kept.min_share),
+                percent(kept.dropped_share)
+            ),
         ));
     }
     items.push((LegendKey::Note, format!("Plane: {plane_text}.")));
@@ -234,4 +318,18 @@ pub(super) fn legend(
         }
     }
     (pending, entries, rect)
+}
+
+/// A fraction as a percentage with as many decimals as it needs (at least two significant
+/// digits below 1 %).
+#[must_use]
+pub fn percent(f: f64) -> String {
+    let p = 100.0 * f;
+    if p == 0.0 || !p.is_finite() || p >= 10.0 {
+        return format!("{p:.0}%");
+    }
+    let digits = (1.0 - p.log10().floor()).clamp(1.0, 6.0) as usize;
+    let s = format!("{p:.digits$}");
+    let s = s.trim_end_matches('0').trim_end_matches('.');
+    format!("{s}%")
 }

@@ -19,6 +19,10 @@ pub(super) fn light_marks(
     let mut out: Vec<LightMark> = Vec::new();
     for (s, r) in segs.iter().zip(rays) {
         let Some(info) = &s.node.shadow else { continue };
+        // A shadow ray entirely outside the view marks nothing.
+        if (r.to - r.from).length() < 0.5 {
+            continue;
+        }
         if out.iter().any(|m| m.light == info.light) {
             continue;
         }

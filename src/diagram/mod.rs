@@ -7,6 +7,7 @@
 mod annotate;
 mod build;
 pub mod font;
+mod framing;
 mod inset;
 mod layout;
 mod marks;
@@ -14,11 +15,14 @@ pub mod model;
 mod objects;
 pub mod paint;
 pub mod plane;
+pub mod plane_pick;
 mod raster;
 mod segments;
+pub mod share;
 pub mod slice;
 mod svg;
 
+pub use layout::{label_box, percent};
 pub use model::{Diagram, Label, LabelRole, RayEnd, RaySegment};
 pub use paint::{Style, Theme, display_list};
 pub use plane::{PlaneFrame, PlaneSpec};
@@ -51,12 +55,22 @@ pub struct DiagramOptions {
     pub label_depth: u32,
     /// Title line (e.g. the scene and pixel); empty for none.
     pub title: String,
+    /// Leave out rays carrying less than this share of the sample's value
+    /// ([`share::keep`]; 0 keeps every ray). The legend says how many and how much.
+    pub min_share: f64,
+    /// Magnification on the automatic framing (1 = as framed).
+    pub zoom: f64,
+    /// Shift of the view's centre from the automatic framing, in plane units (right, up).
+    pub pan: [f64; 2],
 }
+
+/// The default contribution threshold: 1 % of the sample's value.
+pub const MIN_SHARE: f64 = 0.01;
 
 impl Default for DiagramOptions {
     fn default() -> Self {
         Self {
-            plane: PlaneSpec::Incidence,
+            plane: PlaneSpec::Auto,
             width: 1280,
             height: 720,
             max_depth: None,
@@ -66,6 +80,9 @@ impl Default for DiagramOptions {
             highlight: None,
             label_depth: 2,
             title: String::new(),
+            min_share: MIN_SHARE,
+            zoom: 1.0,
+            pan: [0.0, 0.0],
         }
     }
 }
@@ -79,6 +96,14 @@ pub enum DiagramError {
         /// Requested.
         sample: usize,
         /// Available.
+        count: usize,
+    },
+    /// The plane follows a ray the tree does not have.
+    #[error("ray #{node} does not exist: the tree has {count} rays (#0 to #{last})", last = count.saturating_sub(1))]
+    NoSuchNode {
+        /// Requested node id.
+        node: u32,
+        /// Nodes in the tree.
         count: usize,
     },
     /// The canvas is too small or too large.

@@ -354,4 +354,8 @@ pub struct Diagram {
     pub labels: Vec<Label>,
     /// Number of segments that leave the plane.
     pub off_plane_rays: usize,
+    /// Rays of the sample left out by the contribution threshold.
+    pub dropped_rays: usize,
+    /// The part of the sample's value those rays carry (a fraction, luminance).
+    pub dropped_share: f64,
 }

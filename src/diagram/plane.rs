@@ -1,14 +1,22 @@
 //! The diagram plane: how it is chosen, its 2D frame, and the world-to-canvas mapping.
 
 use crate::scene::Scene;
-use crate::tree::{RayKind, RayTree};
+use crate::tree::{NodeId, RayKind, RayTree};
 use glam::{DVec2, DVec3};
 
 /// Which plane to slice the scene with.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub enum PlaneSpec {
+    /// The plane of incidence at the camera ray's first hit, or the plane through a ray of the
+    /// first bounce and the camera ray when that plane holds clearly more of the pixel's light
+    /// (a shadow ray through a translucent ball): see `plane_pick`.
+    Auto,
     /// The plane of incidence at the camera ray's first hit (camera ray and surface normal).
     Incidence,
+    /// The plane through a ray and its parent ray (for a reflected or refracted ray this is the
+    /// plane of incidence at the parent's hit; for a camera ray, the plane of incidence at its
+    /// hit).
+    Ray(NodeId),
     /// The plane through the camera ray and the camera's up vector.
     Camera,
     /// `x = value` (axis 0), `y = value` (1) or `z = value` (2).
@@ -28,15 +36,24 @@ pub enum PlaneSpec {
 }
 
 impl PlaneSpec {
-    /// Parse `incidence`, `camera`, `x=V`, `y=V`, `z=V` or `PX,PY,PZ,NX,NY,NZ`.
+    /// Parse `auto`, `incidence`, `camera`, `ray=N`, `x=V`, `y=V`, `z=V` or
+    /// `PX,PY,PZ,NX,NY,NZ`.
     pub fn parse(s: &str) -> Result<Self, String> {
         let s = s.trim();
         match s {
+            "auto" => return Ok(Self::Auto),
             "incidence" => return Ok(Self::Incidence),
             "camera" => return Ok(Self::Camera),
             _ => {}
         }
         if let Some((axis, value)) = s.split_once('=') {
+            if axis.trim() == "ray" {
+                let id: u32 = value
+                    .trim()
+                    .parse()
+                    .map_err(|_| format!("ray={value}: expected a node id (a whole number)"))?;
+                return Ok(Self::Ray(NodeId(id)));
+            }
             let axis = match axis.trim() {
                 "x" | "X" => 0,
                 "y" | "Y" => 1,
@@ -57,7 +74,9 @@ impl PlaneSpec {
             .map(|p| p.trim().parse::<f64>())
             .collect::<Result<_, _>>()
             .map_err(|_| {
-                format!("expected incidence, camera, x=V, y=V, z=V or PX,PY,PZ,NX,NY,NZ; got {s:?}")
+                format!(
+                    "expected auto, incidence, camera, ray=N, x=V, y=V, z=V or PX,PY,PZ,NX,NY,NZ; got {s:?}"
+                )
             })?;
         if nums.len() != 6 || nums.iter().any(|v| !v.is_finite()) {
             return Err(format!(
@@ -186,7 +205,10 @@ pub fn choose(
         )
     };
     match spec {
-        PlaneSpec::Incidence => {
+        PlaneSpec::Ray(id) if id.index() < tree.nodes.len() => {
+            super::plane_pick::through_ray(scene, tree, id)
+        }
+        PlaneSpec::Incidence | PlaneSpec::Auto | PlaneSpec::Ray(_) => {
             let Some(hit) = root.and_then(|r| r.hit.as_ref()) else {
                 let (f, text) = camera_plane();
                 return (

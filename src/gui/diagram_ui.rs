@@ -1,13 +1,16 @@
 //! The diagram panel: the selected pixel's cross-section (from [`crate::diagram`]), the
-//! selected node highlighted, with a plane choice and spawn-point insets. The figure is drawn by
+//! selected node highlighted, with its controls (`diagram_controls`: plane, depth, kinds,
+//! labels, threshold, sample, insets, export highlight), zoom and pan. The figure is drawn by
 //! the PNG export's rasteriser (dark theme) into a texture, on a thread of its own, once per
 //! change: a frame paints one image instead of tessellating hundreds of rays and labels, and a
 //! click does not wait for the rasteriser (the previous figure stays, marked, until it is done).
 
+use super::diagram_controls as controls;
+pub use super::diagram_controls::DiagramView;
 use super::document::{Command, Document};
 use crate::diagram::model::Anchor;
 use crate::diagram::paint::{Prim, Rgba};
-use crate::diagram::{Diagram, DiagramOptions, PlaneSpec, Style, Theme, display_list, to_pixmap};
+use crate::diagram::{Diagram, DiagramOptions, Style, Theme, display_list, to_pixmap};
 use crate::tree::NodeId;
 use egui::{
     Align2, Color32, ColorImage, FontId, Pos2, Shape, Stroke, TextureHandle, TextureOptions, pos2,
@@ -19,8 +22,7 @@ use std::sync::mpsc::{Receiver, Sender, channel};
 struct Key {
     tree_version: u64,
     node: Option<NodeId>,
-    plane: PlaneSpec,
-    zoom_offsets: bool,
+    view: DiagramView,
     size: [u32; 2],
     /// Deepest depth drawn (step along a ray).
     depth: Option<u32>,
@@ -73,9 +75,12 @@ pub struct DiagramCache {
     texture: Option<(TextureHandle, Key)>,
     /// Whether the figure for `key` is still being drawn.
     pending: bool,
-    /// The world-to-canvas mapping of the figure for `key` (for the step point).
+    /// The world-to-canvas mapping of the figure for `key` (the step point; zoom about the
+    /// cursor, pan by dragging).
     frame: Option<crate::diagram::PlaneFrame>,
     rasteriser: Option<Rasteriser>,
+    /// Rays drawn and left out in the figure for `key` (for tests and the status line).
+    counts: (usize, usize),
 }
 
 impl Default for DiagramCache {
@@ -87,6 +92,7 @@ impl Default for DiagramCache {
             pending: false,
             frame: None,
             rasteriser: None,
+            counts: (0, 0),
         }
     }
 }
@@ -97,6 +103,12 @@ impl DiagramCache {
     #[must_use]
     pub fn display_list(&self) -> Option<([u32; 2], &[Prim])> {
         Some((self.key?.size, self.prims.as_deref().ok()?))
+    }
+
+    /// Rays drawn and rays left out by the threshold in the figure shown.
+    #[must_use]
+    pub fn ray_counts(&self) -> (usize, usize) {
+        self.counts
     }
 
     /// Build the figure for `key`: the display list now, the pixels on the rasteriser's thread.
@@ -121,6 +133,7 @@ impl DiagramCache {
         };
         self.prims = Ok(display_list(&d, &Style::new(Theme::Dark)));
         self.frame = Some(d.frame);
+        self.counts = (d.rays.len(), d.dropped_rays);
         if self.rasteriser.is_none() {
             self.rasteriser = Rasteriser::start();
         }
@@ -151,18 +164,19 @@ impl DiagramCache {
     }
 }
 
-/// Diagram options for the document's selection at `size` pixels.
+/// Diagram options for the document's selection at `size` pixels, as the panel draws them
+/// (the selection highlighted).
 #[must_use]
 pub fn diagram_options(doc: &Document, size: [u32; 2]) -> DiagramOptions {
-    DiagramOptions {
-        plane: doc.view.plane,
-        width: size[0],
-        height: size[1],
-        zoom_offsets: doc.view.zoom_offsets,
-        highlight: doc.node,
-        max_depth: doc.step.depth,
-        ..DiagramOptions::default()
-    }
+    doc.view.diagram.options(doc, size, true)
+}
+
+/// Diagram options for the export (1280x720): the panel's, the selection highlighted only when
+/// "highlight the selection in exports" is on.
+#[must_use]
+pub fn export_options(doc: &Document) -> DiagramOptions {
+    let v = doc.view.diagram;
+    v.options(doc, [1280, 720], v.export_highlight)
 }
 
 /// Build the display list of the selected pixel's diagram (what the panel paints).
@@ -173,7 +187,8 @@ pub fn build_display_list(doc: &Document, size: [u32; 2]) -> Result<Vec<Prim>, S
     Ok(display_list(&d, &Style::new(Theme::Dark)))
 }
 
-/// Plane choice, insets toggle and the painted diagram.
+/// The panel: controls, then the figure (scroll zooms about the cursor, drag pans,
+/// double-click goes back to the automatic framing).
 pub fn diagram_ui(
     ui: &mut egui::Ui,
     doc: &Document,
@@ -181,37 +196,7 @@ pub fn diagram_ui(
     cmds: &mut Vec<Command>,
 ) {
     let mut v = doc.view;
-    ui.horizontal(|ui| {
-        ui.strong("Diagram");
-        ui.separator();
-        ui.label("plane");
-        ui.radio_value(&mut v.plane, PlaneSpec::Incidence, "incidence");
-        ui.radio_value(&mut v.plane, PlaneSpec::Camera, "camera");
-        for (axis, name) in [(0, "x"), (1, "y"), (2, "z")] {
-            let value = doc.node.and_then(|id| {
-                doc.tree
-                    .as_ref()?
-                    .node(id)
-                    .hit
-                    .as_ref()
-                    .map(|h| h.point[axis])
-            });
-            let spec = PlaneSpec::Axis {
-                axis,
-                value: value.unwrap_or(0.0),
-            };
-            let on = matches!(v.plane, PlaneSpec::Axis { axis: a, .. } if a == axis);
-            if ui
-                .radio(on, format!("{name} = const"))
-                .on_hover_text("through the selected node's hit point")
-                .clicked()
-            {
-                v.plane = spec;
-            }
-        }
-        ui.separator();
-        ui.checkbox(&mut v.zoom_offsets, "zoom on spawn points");
-    });
+    controls::controls_ui(ui, doc, &mut v.diagram);
     if v != doc.view {
         cmds.push(Command::SetView(v));
     }
@@ -230,8 +215,7 @@ pub fn diagram_ui(
     let key = Key {
         tree_version: doc.tree_version,
         node: doc.node,
-        plane: doc.view.plane,
-        zoom_offsets: doc.view.zoom_offsets,
+        view: doc.view.diagram,
         size,
         depth: doc.step.depth,
     };
@@ -239,7 +223,14 @@ pub fn diagram_ui(
         cache.rebuild(ui.ctx(), doc, key);
     }
     cache.receive(ui.ctx());
-    ui.allocate_rect(area, egui::Sense::hover());
+    let response = ui.allocate_rect(area, egui::Sense::click_and_drag());
+    if let Some(frame) = cache.frame
+        && let Some(d) = controls::navigate(ui, &response, area, &frame, doc.view.diagram)
+    {
+        let mut v = doc.view;
+        v.diagram = d;
+        cmds.push(Command::SetView(v));
+    }
     let painter = ui.painter_at(area);
     if let Err(e) = &cache.prims {
         painter.text(

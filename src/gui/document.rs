@@ -40,10 +40,8 @@ pub struct ViewOptions {
     pub debug: DebugView,
     /// Draw the selected pixel's ray path on the image.
     pub overlay: bool,
-    /// The diagram's slicing plane.
-    pub plane: crate::diagram::PlaneSpec,
-    /// Diagram insets magnifying the spawn points (offset epsilon).
-    pub zoom_offsets: bool,
+    /// The diagram panel's options (plane, filters, zoom and pan, export highlight).
+    pub diagram: super::diagram_ui::DiagramView,
 }
 
 impl Default for ViewOptions {
@@ -53,8 +51,7 @@ impl Default for ViewOptions {
             pan: [0.0, 0.0],
             debug: DebugView::Off,
             overlay: true,
-            plane: crate::diagram::PlaneSpec::Incidence,
-            zoom_offsets: false,
+            diagram: super::diagram_ui::DiagramView::default(),
         }
     }
 }

@@ -13,6 +13,7 @@ mod app;
 pub mod breakdown;
 pub mod compare_ui;
 mod details_ui;
+mod diagram_controls;
 pub mod diagram_ui;
 pub mod document;
 pub mod explain_ui;

@@ -367,12 +367,13 @@ impl Session {
     }
 }
 
-/// The selected pixel's diagram at 1280x720 as SVG or PNG, with the panel's plane and selection.
+/// The selected pixel's diagram at 1280x720 as SVG or PNG, with the panel's options (the
+/// selection highlighted only when the panel asks for it).
 /// The diagram's bytes, and the warning for shapes left out of an SVG.
 fn diagram_bytes(doc: &Document, kind: ExportKind) -> Result<(Vec<u8>, Option<String>), String> {
     use crate::diagram::{Diagram, Style, Theme, to_png, to_svg_counting};
     let tree = doc.tree.as_ref().ok_or("select a pixel first")?;
-    let opts = super::diagram_ui::diagram_options(doc, [1280, 720]);
+    let opts = super::diagram_ui::export_options(doc);
     let d = Diagram::build(&doc.scene, tree, &opts).map_err(|e| e.to_string())?;
     let style = Style::new(Theme::Light);
     Ok(match kind {
