@@ -280,3 +280,47 @@ fn the_export_highlight_checkbox_sets_it() {
     h.run();
     assert!(h.state().session.doc.view.diagram.export_highlight);
 }
+
+/// The settings panel switches to the path tracer; its sampled diffuse bounces (the fifth ray
+/// kind) are drawn in the diagram and have their own kind checkbox (the panel once kept four
+/// kinds and dropped them).
+#[test]
+fn the_path_integrator_is_chosen_in_the_panel_and_its_diffuse_rays_drawn() {
+    let files = MemFiles::default();
+    let mut h = harness(&files, 1);
+    h.get_by_label("integrator").click();
+    h.run();
+    h.get_by_label("path").click();
+    settle(&mut h);
+    assert_eq!(
+        h.state().session.doc.scene.settings.integrator,
+        raytree::scene::IntegratorKind::Path
+    );
+    let _ = h.get_by_role_and_label(Role::Slider, "roulette from bounce");
+    let pos = h.state().screen_of_pixel(200, 100).expect("image drawn");
+    h.hover_at(pos);
+    for pressed in [true, false] {
+        h.event(egui::Event::PointerButton {
+            pos,
+            button: egui::PointerButton::Primary,
+            pressed,
+            modifiers: egui::Modifiers::NONE,
+        });
+    }
+    h.run();
+    let tree = h.state().session.doc.tree.clone().expect("a tree");
+    assert!(tree.nodes.iter().any(|n| n.path.is_some()));
+    let diffuse = tree.count_by_kind()[RayKind::Diffuse as usize];
+    assert!(diffuse > 0, "the glass pixel's path bounces off the floor");
+    h.get_by_role_and_label(Role::Slider, "min share %")
+        .set_value_accesskit(0.0);
+    h.run();
+    let d = shown(&h);
+    assert_eq!(
+        d.rays.iter().filter(|r| r.kind == RayKind::Diffuse).count(),
+        diffuse
+    );
+    h.get_by_role_and_label(Role::CheckBox, "diffuse").click();
+    h.run();
+    assert!(!shown(&h).rays.iter().any(|r| r.kind == RayKind::Diffuse));
+}

@@ -38,7 +38,7 @@ pub struct DiagramView {
     /// Draw rays up to this depth only (`None`: all).
     pub draw_depth: Option<u32>,
     /// Kinds drawn, in [`RayKind::ALL`] order.
-    pub kinds: [bool; 4],
+    pub kinds: [bool; RayKind::COUNT],
     /// Labels on depths up to this one.
     pub label_depth: u32,
     /// The contribution threshold (a share of the pixel, 0 = every ray).
@@ -60,7 +60,7 @@ impl Default for DiagramView {
             plane: PlaneChoice::Auto,
             zoom_offsets: false,
             draw_depth: None,
-            kinds: [true; 4],
+            kinds: [true; RayKind::COUNT],
             label_depth: d.label_depth,
             min_share: MIN_SHARE,
             sample: None,

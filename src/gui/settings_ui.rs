@@ -6,7 +6,7 @@ use super::export::ExportKind;
 use super::stats::DebugView;
 use super::style::{SELECTED, dot, kind_colour};
 use crate::math::FresnelModel;
-use crate::scene::{OffsetStrategy, ShadowMode};
+use crate::scene::{IntegratorKind, OffsetStrategy, ShadowMode};
 use crate::tree::RayKind;
 use egui::{RichText, Slider};
 
@@ -50,6 +50,16 @@ fn offset_label(o: OffsetStrategy) -> &'static str {
 pub fn settings_ui(ui: &mut egui::Ui, doc: &Document, cmds: &mut Vec<Command>) {
     let old = doc.scene.settings;
     let mut s = old;
+    egui::ComboBox::from_label("integrator")
+        .selected_text(s.integrator.name())
+        .show_ui(ui, |ui| {
+            for k in IntegratorKind::ALL {
+                ui.selectable_value(&mut s.integrator, k, k.name());
+            }
+        });
+    if s.integrator == IntegratorKind::Path {
+        ui.add(Slider::new(&mut s.rr_depth, 0..=64).text("roulette from bounce"));
+    }
     ui.add(Slider::new(&mut s.max_depth, 0..=32).text("max depth"));
     ui.add(
         Slider::new(&mut s.spp, 1..=64)
@@ -94,9 +104,38 @@ pub fn settings_ui(ui: &mut egui::Ui, doc: &Document, cmds: &mut Vec<Command>) {
         ui.radio_value(&mut s.shadows, ShadowMode::Opaque, "opaque");
         ui.radio_value(&mut s.shadows, ShadowMode::Translucent, "translucent");
     });
+    stochastic_ui(ui, doc, &mut s);
     min_weight_ui(ui, doc, &mut s);
     if s != old {
         cmds.push(Command::SetSettings(s));
+    }
+}
+
+/// Area-light and glossy sampling (Whitted), shown only for scenes that have an emitter to
+/// sample or a rough material.
+fn stochastic_ui(ui: &mut egui::Ui, doc: &Document, s: &mut crate::scene::Settings) {
+    let scene = &doc.scene;
+    if (0..scene.objects.len()).any(|i| scene.area_light(i).is_some()) {
+        let mut on = s.light_samples.is_some();
+        let mut n = s.light_samples.unwrap_or(1);
+        ui.horizontal(|ui| {
+            ui.checkbox(&mut on, "area lights")
+                .on_hover_text("sample emissive objects with shadow rays (soft shadows)");
+            ui.add_enabled(
+                on,
+                Slider::new(&mut n, 1..=64)
+                    .logarithmic(true)
+                    .text("light samples"),
+            );
+        });
+        s.light_samples = on.then_some(n);
+    }
+    if scene.used_materials().any(|m| m.roughness > 0.0) {
+        ui.add(
+            Slider::new(&mut s.glossy_samples, 1..=64)
+                .logarithmic(true)
+                .text("glossy samples"),
+        );
     }
 }
 
