@@ -111,10 +111,14 @@ pub fn settings_ui(ui: &mut egui::Ui, doc: &Document, cmds: &mut Vec<Command>) {
     }
 }
 
-/// Area-light and glossy sampling (Whitted), shown only for scenes that have an emitter to
-/// sample or a rough material.
+/// Area-light and glossy sampling of the Whitted integrator, shown only for scenes that have an
+/// emitter to sample or a rough material.
 fn stochastic_ui(ui: &mut egui::Ui, doc: &Document, s: &mut crate::scene::Settings) {
     let scene = &doc.scene;
+    if s.integrator == IntegratorKind::Path {
+        // The path tracer samples lights and lobes itself, one of each per hit.
+        return;
+    }
     if (0..scene.objects.len()).any(|i| scene.area_light(i).is_some()) {
         let mut on = s.light_samples.is_some();
         let mut n = s.light_samples.unwrap_or(1);
