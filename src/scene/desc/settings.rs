@@ -1,0 +1,297 @@
+//! The `settings` block and its parts (offsets, shadows, integrator, pixel filter) of the scene
+//! JSON: the serde mirror, documented in `docs/scene-format.md`.
+
+use crate::math::FresnelModel;
+use serde::{Deserialize, Serialize};
+
+/// Where secondary rays start: the lecture's normal offset or a `t_min` along the ray.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "lowercase")]
+pub enum OffsetStrategy {
+    /// `P +/- eps N` (lecture slides "Reflected Rays", "Transmitted Ray").
+    #[default]
+    Normal,
+    /// Start at `P` and accept hits only beyond `t = eps`.
+    Ray,
+    /// `P +/- eps' N` with `eps' = eps * max(1, max_i |P_i|)`: relative to the magnitude of the
+    /// hit point's coordinates, whose rounding error grows with them.
+    Scaled,
+    /// No tuning constant: pbrt-v4's conservative error bounds (`OffsetRayOrigin`, Pharr, Jakob,
+    /// Humphreys, *Physically Based Rendering*, 4th ed., section 6.8.6); `epsilon` is ignored.
+    Robust,
+}
+
+impl OffsetStrategy {
+    /// Every strategy, in documentation order.
+    pub const ALL: [OffsetStrategy; 4] = [
+        OffsetStrategy::Normal,
+        OffsetStrategy::Ray,
+        OffsetStrategy::Scaled,
+        OffsetStrategy::Robust,
+    ];
+
+    /// The name used in JSON and on the command line.
+    #[must_use]
+    pub fn name(self) -> &'static str {
+        match self {
+            OffsetStrategy::Normal => "normal",
+            OffsetStrategy::Ray => "ray",
+            OffsetStrategy::Scaled => "scaled",
+            OffsetStrategy::Robust => "robust",
+        }
+    }
+
+    /// Whether the strategy uses `epsilon` at all.
+    #[must_use]
+    pub fn uses_epsilon(self) -> bool {
+        self != OffsetStrategy::Robust
+    }
+}
+
+/// Offset strategy and its epsilon.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct OffsetDesc {
+    /// Strategy.
+    pub strategy: OffsetStrategy,
+    /// Epsilon in world units (>= 0).
+    pub epsilon: f64,
+}
+
+impl Default for OffsetDesc {
+    fn default() -> Self {
+        Self {
+            strategy: OffsetStrategy::Normal,
+            epsilon: 1e-4,
+        }
+    }
+}
+
+/// How shadow rays treat transmissive blockers.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "lowercase")]
+pub enum ShadowMode {
+    /// Any blocker stops the shadow ray.
+    #[default]
+    Opaque,
+    /// Each blocker passes transmissivity x Beer's attenuation over its chord (no caustics).
+    Translucent,
+}
+
+/// Which integrator computes a camera ray's radiance (`settings.integrator`).
+///
+/// `"whitted"` is the lecture's recursion, `"path"` the Monte Carlo path tracer
+/// ([`crate::trace::PathTracer`], `docs/path-tracing.md`).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "lowercase", try_from = "String")]
+pub enum IntegratorKind {
+    /// The lecture's recursion ([`crate::trace::Whitted`]).
+    #[default]
+    Whitted,
+    /// Unidirectional path tracing with next-event estimation, MIS and Russian roulette
+    /// ([`crate::trace::PathTracer`]).
+    Path,
+}
+
+impl IntegratorKind {
+    /// Every integrator, in documentation order.
+    pub const ALL: [IntegratorKind; 2] = [IntegratorKind::Whitted, IntegratorKind::Path];
+
+    /// The name used in JSON and on the command line.
+    #[must_use]
+    pub fn name(self) -> &'static str {
+        match self {
+            IntegratorKind::Whitted => "whitted",
+            IntegratorKind::Path => "path",
+        }
+    }
+
+    /// The integrator named `name`, or why there is none.
+    ///
+    /// # Errors
+    /// A message for unknown names.
+    pub fn from_name(name: &str) -> Result<Self, String> {
+        match name {
+            "whitted" => Ok(IntegratorKind::Whitted),
+            "path" => Ok(IntegratorKind::Path),
+            _ => Err(format!(
+                "unknown integrator {name:?}, expected \"whitted\" or \"path\""
+            )),
+        }
+    }
+}
+
+impl TryFrom<String> for IntegratorKind {
+    type Error = String;
+
+    fn try_from(name: String) -> Result<Self, String> {
+        Self::from_name(&name)
+    }
+}
+
+/// The pixel filter (`settings.filter`), importance-sampled: the camera ray's offset from the
+/// pixel centre is drawn from it ([`crate::sampling::PixelFilter`]).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Serialize, Deserialize)]
+#[serde(tag = "type", rename_all = "lowercase", deny_unknown_fields)]
+pub enum FilterDesc {
+    /// Uniform over the pixel (today's positions, bit for bit).
+    #[default]
+    Box,
+    /// Separable tent of `radius` pixels.
+    Tent {
+        /// Half-width in pixels (> 0).
+        radius: f64,
+    },
+    /// Separable Gaussian of standard deviation `sigma` pixels, truncated at `radius` pixels.
+    Gaussian {
+        /// Standard deviation in pixels (> 0).
+        sigma: f64,
+        /// Truncation radius in pixels (> 0); default [`GAUSSIAN_RADIUS_SIGMAS`] `sigma`.
+        #[serde(default, skip_serializing_if = "Option::is_none")]
+        radius: Option<f64>,
+    },
+}
+
+/// A Gaussian filter without a `radius` is truncated at this many `sigma`.
+pub const GAUSSIAN_RADIUS_SIGMAS: f64 = 3.0;
+
+impl FilterDesc {
+    /// The sampling filter.
+    #[must_use]
+    pub fn filter(&self) -> crate::sampling::PixelFilter {
+        use crate::sampling::PixelFilter;
+        match *self {
+            FilterDesc::Box => PixelFilter::Box,
+            FilterDesc::Tent { radius } => PixelFilter::Tent { radius },
+            FilterDesc::Gaussian { sigma, radius } => PixelFilter::Gaussian {
+                sigma,
+                radius: radius.unwrap_or(GAUSSIAN_RADIUS_SIGMAS * sigma),
+            },
+        }
+    }
+
+    /// Whether this is the default box.
+    #[must_use]
+    pub fn is_box(&self) -> bool {
+        *self == FilterDesc::Box
+    }
+
+    /// The filter written `box`, `tent:R` or `gaussian:SIGMA` (the `--filter` flag), or why
+    /// not. Values are checked by [`crate::scene::check_settings`].
+    ///
+    /// # Errors
+    /// An unknown type, a missing or extra parameter, or a parameter that is not a number.
+    pub fn parse(v: &str) -> Result<Self, String> {
+        let (kind, arg) = match v.split_once(':') {
+            Some((k, a)) => (k, Some(a)),
+            None => (v, None),
+        };
+        let number = |a: Option<&str>, what: &str| -> Result<f64, String> {
+            let a = a.ok_or_else(|| {
+                format!("{kind} needs its {what}: {kind}:{}", what.to_uppercase())
+            })?;
+            a.trim()
+                .parse::<f64>()
+                .map_err(|_| format!("{what} {a:?} is not a number"))
+        };
+        match kind {
+            "box" if arg.is_none() => Ok(FilterDesc::Box),
+            "box" => Err("box takes no parameter".into()),
+            "tent" => Ok(FilterDesc::Tent {
+                radius: number(arg, "radius")?,
+            }),
+            "gaussian" => Ok(FilterDesc::Gaussian {
+                sigma: number(arg, "sigma")?,
+                radius: None,
+            }),
+            _ => Err(format!(
+                "unknown filter {kind:?}, expected box, tent:RADIUS or gaussian:SIGMA"
+            )),
+        }
+    }
+}
+
+/// Tracer settings.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct Settings {
+    /// The integrator (`"whitted"` or `"path"`).
+    pub integrator: IntegratorKind,
+    /// Seed of the per-pixel sample positions and random numbers (0 = the historical positions).
+    pub seed: u64,
+    /// Deepest recursion; 0 = camera rays and shadow rays only.
+    pub max_depth: u32,
+    /// Samples per pixel (stratified; positions drawn from `filter`).
+    pub spp: u32,
+    /// The pixel filter (default box).
+    #[serde(skip_serializing_if = "FilterDesc::is_box")]
+    pub filter: FilterDesc,
+    /// Secondary-ray offset.
+    pub offset: OffsetDesc,
+    /// Fresnel model.
+    pub fresnel: FresnelModel,
+    /// Shadow-ray mode.
+    pub shadows: ShadowMode,
+    /// Throughput below which recursion stops (`0` = the exhaustive tree); absent (`None`):
+    /// chosen from `tolerance` and the scene ([`crate::trace::bound`]).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub min_weight: Option<f64>,
+    /// What one cut branch may still add to a pixel, in display units (sRGB-encoded, 0..1);
+    /// decides the automatic `min_weight`. Default half an 8-bit step, 1/510.
+    pub tolerance: f64,
+    /// Per-sample ray budget (camera, secondary and shadow rays): a sample that reaches it
+    /// spawns no more secondary rays (the safety net of the exhaustive tree).
+    pub max_rays: u64,
+    /// Shadow rays per area light (emissive sphere, quad or triangle) per diffuse hit in the
+    /// Whitted integrator (soft shadows). Absent: emissive objects are only seen (by camera,
+    /// mirror and refracted rays), not sampled as lights, as before area lights existed.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub light_samples: Option<u32>,
+    /// Path integrator: Russian roulette from this bounce on (the first bounce is 1; 0 plays
+    /// from the first bounce too), survival probability min(1, max component of the
+    /// throughput). Ignored by the Whitted integrator.
+    #[serde(skip_serializing_if = "is_default_rr_depth")]
+    pub rr_depth: u32,
+    /// Rays sampled per rough (`roughness > 0`) reflection or refraction lobe in the Whitted
+    /// integrator, at the first rough hit of a path (below a sampled ray, one per lobe).
+    #[serde(skip_serializing_if = "is_one")]
+    pub glossy_samples: u32,
+}
+
+/// Default [`Settings::rr_depth`].
+pub const DEFAULT_RR_DEPTH: u32 = 5;
+
+#[allow(clippy::trivially_copy_pass_by_ref)] // serde's skip_serializing_if passes a reference
+fn is_default_rr_depth(v: &u32) -> bool {
+    *v == DEFAULT_RR_DEPTH
+}
+
+fn is_one(v: &u32) -> bool {
+    *v == 1
+}
+
+/// Default [`Settings::tolerance`]: half an 8-bit display step.
+pub const DEFAULT_TOLERANCE: f64 = 1.0 / 510.0;
+/// Default [`Settings::max_rays`] per sample: 2^20.
+pub const DEFAULT_MAX_RAYS: u64 = 1 << 20;
+
+impl Default for Settings {
+    fn default() -> Self {
+        Self {
+            integrator: IntegratorKind::Whitted,
+            seed: 0,
+            max_depth: 16,
+            spp: 1,
+            filter: FilterDesc::Box,
+            offset: OffsetDesc::default(),
+            fresnel: FresnelModel::Exact,
+            shadows: ShadowMode::Opaque,
+            min_weight: None,
+            tolerance: DEFAULT_TOLERANCE,
+            max_rays: DEFAULT_MAX_RAYS,
+            light_samples: None,
+            rr_depth: DEFAULT_RR_DEPTH,
+            glossy_samples: 1,
+        }
+    }
+}
