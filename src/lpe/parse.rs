@@ -268,7 +268,10 @@ impl Parser {
         match self.bump() {
             Some('>') => Ok(bits),
             None => Err(self.err_at(open, "'<' is never closed")),
-            Some(c) => Err(self.err_at(self.pos.saturating_sub(1), &format!("expected '>', not '{c}'"))),
+            Some(c) => Err(self.err_at(
+                self.pos.saturating_sub(1),
+                &format!("expected '>', not '{c}'"),
+            )),
         }
     }
 }
