@@ -110,7 +110,12 @@ impl Lpe {
         ast.write_regex(&mut pattern);
         pattern.push_str(r")\z");
         let regex = Regex::builder()
-            .syntax(syntax::Config::new().unicode(false).utf8(false))
+            .syntax(
+                syntax::Config::new()
+                    .unicode(false)
+                    .utf8(false)
+                    .nest_limit(1000),
+            )
             .build(&pattern)
             .map_err(|e| LpeError {
                 column: 1,

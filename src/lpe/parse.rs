@@ -4,12 +4,15 @@ use super::{ALL, Ast, LpeError, SCATTERS, TYPES};
 
 /// Largest repetition bound accepted in `{n,m}`.
 const MAX_REPEAT: u32 = 1000;
+/// Deepest nesting of `(` accepted (the parser recurses on groups).
+const MAX_NEST: usize = 64;
 
 /// Parse a whole expression.
 pub(super) fn parse(expr: &str) -> Result<Ast, LpeError> {
     let mut p = Parser {
         chars: expr.chars().collect(),
         pos: 0,
+        depth: 0,
     };
     p.skip_space();
     if p.peek().is_none() {
@@ -35,6 +38,8 @@ fn letter_set(c: char) -> Option<u32> {
 struct Parser {
     chars: Vec<char>,
     pos: usize,
+    /// Open groups around the current position.
+    depth: usize,
 }
 
 impl Parser {
@@ -172,7 +177,12 @@ impl Parser {
                 if self.peek() == Some(')') {
                     return Err(self.err("empty group '()'"));
                 }
+                if self.depth >= MAX_NEST {
+                    return Err(self.err_at(at, &format!("groups nest deeper than {MAX_NEST}")));
+                }
+                self.depth += 1;
                 let inner = self.alternation()?;
+                self.depth -= 1;
                 if self.bump() != Some(')') {
                     return Err(self.err_at(at, "'(' is never closed"));
                 }

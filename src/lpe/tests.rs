@@ -100,6 +100,11 @@ fn errors_name_the_column() {
     assert_eq!(col("C{2000}"), 3);
     assert_eq!(col("C[]"), 3);
     assert_eq!(col("C()"), 3);
+    // deep nesting and huge repetitions are errors, not a stack overflow or a panic
+    assert_eq!(col(&"(".repeat(100_000)), 65);
+    let nested = format!("{}C{}", "(".repeat(64), ")".repeat(64));
+    assert!(m(&nested, "C"));
+    assert_eq!(col("((.{1000}){1000}){1000}"), 1);
     let e = Lpe::parse("C{2,1}").unwrap_err();
     assert_eq!(
         e.to_string(),
