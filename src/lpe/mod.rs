@@ -5,7 +5,7 @@
 //! `V` volume, `L` light, `O` object emission, `B` background; scattering `D` diffuse, `G`
 //! glossy, `S` singular, or none (camera, lights, background). Each of the 28 pairs is one byte,
 //! and an expression is compiled once to an anchored byte regex (`regex-automata`'s meta
-//! regex, a lazy DFA) over those bytes. See `docs/path-tracing.md` for the grammar.
+//! regex) over those bytes. See `docs/path-tracing.md` for the grammar.
 
 mod filter;
 mod parse;
