@@ -19,6 +19,7 @@ pub mod gui;
 pub mod input;
 pub mod interaction;
 pub mod lights;
+pub mod lpe;
 pub mod math;
 pub mod media;
 pub mod mesh;

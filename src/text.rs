@@ -41,7 +41,9 @@ fn not_finite(v: f64) -> String {
     format!("{NOT_FINITE} {what}>")
 }
 
-fn rgb(c: Rgb) -> String {
+/// A colour as `[r, g, b]` with 4 significant digits.
+#[must_use]
+pub fn rgb(c: Rgb) -> String {
     format!("[{}, {}, {}]", num(c.x, 4), num(c.y, 4), num(c.z, 4))
 }
 

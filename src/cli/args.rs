@@ -137,6 +137,10 @@ pub struct TraceArgs {
     /// Print JSON (schema raytree.tree/2) instead of text.
     #[arg(long)]
     pub json: bool,
+    /// Keep only the paths whose light path expression (OSL grammar, e.g. `C<RD>S+L`) matches;
+    /// repeat for any of several. Needs the path integrator.
+    #[arg(long, value_name = "EXPR")]
+    pub lpe: Vec<String>,
     /// Settings overrides.
     #[command(flatten)]
     pub overrides: Overrides,

@@ -8,6 +8,11 @@ use anyhow::{Result, bail};
 /// Print the ray tree of one pixel as text or JSON.
 pub fn run(a: &TraceArgs) -> Result<()> {
     let (x, y) = pair("pixel", &a.pixel, ',')?;
+    let lpes = a
+        .lpe
+        .iter()
+        .map(|e| parse_lpe(e))
+        .collect::<Result<Vec<_>>>()?;
     let mut loaded = load(a.scene.as_deref(), &a.overrides)?;
     let lowered = super::budget::fit_tree(
         &mut loaded.scene,
@@ -20,6 +25,25 @@ pub fn run(a: &TraceArgs) -> Result<()> {
             cam.width,
             cam.height
         );
+    };
+    let (tree, header) = if lpes.is_empty() {
+        (tree, String::new())
+    } else {
+        let Some(f) = raytree::lpe::filter_tree(&tree, &lpes) else {
+            bail!(
+                "--lpe needs the path integrator's records (each node's light path), and this pixel was traced by Whitted: add --integrator path"
+            );
+        };
+        let header = format!(
+            "lpe {}: {} of {} paths match, {} of the pixel (radiance {})\n",
+            a.lpe.join(" | "),
+            f.matched,
+            f.paths,
+            f.share
+                .map_or_else(|| "none".to_owned(), |s| format!("{:.1}%", 100.0 * s)),
+            raytree::text::rgb(f.radiance)
+        );
+        (f.tree, header)
     };
     let cut = super::budget::cut_samples(&tree);
     if cut > 0 {
@@ -42,7 +66,17 @@ pub fn run(a: &TraceArgs) -> Result<()> {
         }
         sayln!("{}", serde_json::to_string_pretty(&tree)?)?;
     } else {
-        out(&raytree::text::tree_text(&tree))?;
+        out(&format!("{header}{}", raytree::text::tree_text(&tree)))?;
     }
     Ok(())
+}
+
+/// Parse one `--lpe` expression; an error shows the expression with a caret under the column.
+fn parse_lpe(expr: &str) -> Result<raytree::lpe::Lpe> {
+    raytree::lpe::Lpe::parse(expr).map_err(|e| {
+        anyhow::anyhow!(
+            "--lpe: {e}\n  {expr}\n  {}^",
+            " ".repeat(e.column.saturating_sub(1))
+        )
+    })
 }
