@@ -128,3 +128,75 @@ fn trace_lpe_on_the_command_line() {
     assert!(err.contains("path integrator"), "{err}");
     assert!(o.stdout.is_empty());
 }
+
+/// `raytree diagram --lpe` draws only the matching paths: the caustic's chain (camera, the
+/// diffuse bounce off the floor, two refractions through the ball), and a pixel with no match
+/// is an error with no file written.
+#[test]
+fn diagram_lpe_draws_only_the_matching_paths() {
+    let dir = tempfile::tempdir().unwrap();
+    let d = dir.path();
+    let scene = caustic();
+    let scene = scene.to_str().unwrap();
+    let pixel = format!("{},{}", PIXEL.0, PIXEL.1);
+    let svg = d.join("c.svg");
+    let args = [
+        "diagram",
+        scene,
+        "--integrator",
+        "path",
+        "--pixel",
+        &pixel,
+        "--lpe",
+        "C<RD><TS><TS>L",
+        "--min-share",
+        "0",
+        "-o",
+        svg.to_str().unwrap(),
+    ];
+    let o = raytree(&args, d);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let text = std::fs::read_to_string(&svg).unwrap();
+    assert!(text.contains("paths match"), "the title says what was kept");
+    // Unfiltered, the same figure draws more rays ("wrote ... (1280x720, N rays drawn, ...").
+    let drawn = |o: &std::process::Output| -> usize {
+        let s = String::from_utf8_lossy(&o.stdout).into_owned();
+        let at = s.find(" rays drawn").expect("the wrote line counts rays");
+        s[..at].rsplit(' ').next().unwrap().parse().unwrap()
+    };
+    let kept = drawn(&o);
+    let all = d.join("all.svg");
+    let mut a2: Vec<&str> = args[..6].to_vec();
+    a2.extend(["--min-share", "0", "-o", all.to_str().unwrap()]);
+    let o2 = raytree(&a2, d);
+    assert!(o2.status.success());
+    // The caustic's chain is four rays (camera, diffuse, two refractions; the last meets the
+    // lamp), and no shadow ray; unfiltered, the pixel's first sample has shadow rays (NEE).
+    assert_eq!(kept, 4);
+    assert!(!text.contains("shadow (to light)"));
+    assert!(
+        std::fs::read_to_string(&all)
+            .unwrap()
+            .contains("shadow (to light)")
+    );
+    assert!(drawn(&o2) > 0);
+    let none = d.join("none.svg");
+    let o = raytree(
+        &[
+            "diagram",
+            scene,
+            "--integrator",
+            "path",
+            "--pixel",
+            &pixel,
+            "--lpe",
+            "CV+L",
+            "-o",
+            none.to_str().unwrap(),
+        ],
+        d,
+    );
+    assert_eq!(o.status.code(), Some(2));
+    assert!(String::from_utf8_lossy(&o.stderr).contains("no path"));
+    assert!(!none.exists());
+}

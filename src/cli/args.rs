@@ -268,6 +268,10 @@ pub struct DiagramArgs {
     /// Pixel X,Y (0,0 is top-left).
     #[arg(long, value_name = "X,Y")]
     pub pixel: String,
+    /// Draw only the paths whose light path expression matches (as `trace --lpe`; repeat for
+    /// any of several). Needs the path integrator.
+    #[arg(long, value_name = "EXPR")]
+    pub lpe: Vec<String>,
     /// Output figure: .svg or .png.
     #[arg(short, long, default_value = "diagram.svg")]
     pub output: PathBuf,

@@ -76,6 +76,7 @@ pub fn run(a: &DiagramArgs) -> Result<()> {
         .kinds
         .as_deref()
         .map_or_else(|| Ok(RayKind::ALL.to_vec()), parse_kinds)?;
+    let lpes = super::trace_cmd::parse_lpes(&a.lpe)?;
     let mut overrides = a.overrides.clone();
     overrides.size = None; // the figure's size, not the image's
     let loaded = load(a.scene.as_deref(), &overrides)?;
@@ -88,6 +89,14 @@ pub fn run(a: &DiagramArgs) -> Result<()> {
             cam.height
         );
     };
+    // Only the paths matching --lpe (their ids renumbered, as `trace --lpe` prints them).
+    let (tree, matched) = super::trace_cmd::filter_lpe(tree, &a.lpe, &lpes)?;
+    if !lpes.is_empty() && tree.samples.is_empty() {
+        bail!(
+            "--lpe {}: no path of pixel {x},{y} matches, so there is nothing to draw",
+            a.lpe.join(" | ")
+        );
+    }
     if let PlaneSpec::Ray(id) = plane
         && id.index() >= tree.nodes.len()
     {
@@ -134,8 +143,13 @@ pub fn run(a: &DiagramArgs) -> Result<()> {
         label_depth: a.label_depth,
         min_share: a.min_share,
         title: format!(
-            "{name}: pixel ({x}, {y}){sample}, {} rays",
-            tree.nodes.len()
+            "{name}: pixel ({x}, {y}){sample}, {} rays{}",
+            tree.nodes.len(),
+            if matched.is_empty() {
+                String::new()
+            } else {
+                format!(", {}", matched.trim_end())
+            }
         ),
         ..DiagramOptions::default()
     };

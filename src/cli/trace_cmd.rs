@@ -8,11 +8,7 @@ use anyhow::{Result, bail};
 /// Print the ray tree of one pixel as text or JSON.
 pub fn run(a: &TraceArgs) -> Result<()> {
     let (x, y) = pair("pixel", &a.pixel, ',')?;
-    let lpes = a
-        .lpe
-        .iter()
-        .map(|e| parse_lpe(e))
-        .collect::<Result<Vec<_>>>()?;
+    let lpes = parse_lpes(&a.lpe)?;
     let mut loaded = load(a.scene.as_deref(), &a.overrides)?;
     let lowered = super::budget::fit_tree(
         &mut loaded.scene,
@@ -26,25 +22,7 @@ pub fn run(a: &TraceArgs) -> Result<()> {
             cam.height
         );
     };
-    let (tree, header) = if lpes.is_empty() {
-        (tree, String::new())
-    } else {
-        let Some(f) = raytree::lpe::filter_tree(&tree, &lpes) else {
-            bail!(
-                "--lpe needs the path integrator's records (each node's light path), and this pixel was traced by Whitted: add --integrator path"
-            );
-        };
-        let header = format!(
-            "lpe {}: {} of {} paths match, {} of the pixel (radiance {})\n",
-            a.lpe.join(" | "),
-            f.matched,
-            f.paths,
-            f.share
-                .map_or_else(|| "none".to_owned(), |s| format!("{:.1}%", 100.0 * s)),
-            raytree::text::rgb(f.radiance)
-        );
-        (f.tree, header)
-    };
+    let (tree, header) = filter_lpe(tree, &a.lpe, &lpes)?;
     let cut = super::budget::cut_samples(&tree);
     if cut > 0 {
         let why = match lowered {
@@ -69,6 +47,39 @@ pub fn run(a: &TraceArgs) -> Result<()> {
         out(&format!("{header}{}", raytree::text::tree_text(&tree)))?;
     }
     Ok(())
+}
+
+/// Parse the `--lpe` expressions (before anything is traced or written).
+pub(super) fn parse_lpes(exprs: &[String]) -> Result<Vec<raytree::lpe::Lpe>> {
+    exprs.iter().map(|e| parse_lpe(e)).collect()
+}
+
+/// Keep the paths of `tree` that match any of `lpes` (written as `exprs`), with a one-line
+/// header saying how many matched and their share of the pixel; `tree` itself and no header
+/// without expressions.
+pub(super) fn filter_lpe(
+    tree: raytree::RayTree,
+    exprs: &[String],
+    lpes: &[raytree::lpe::Lpe],
+) -> Result<(raytree::RayTree, String)> {
+    if lpes.is_empty() {
+        return Ok((tree, String::new()));
+    }
+    let Some(f) = raytree::lpe::filter_tree(&tree, lpes) else {
+        bail!(
+            "--lpe needs the path integrator's records (each node's light path), and this pixel was traced by Whitted: add --integrator path"
+        );
+    };
+    let header = format!(
+        "lpe {}: {} of {} paths match, {} of the pixel (radiance {})\n",
+        exprs.join(" | "),
+        f.matched,
+        f.paths,
+        f.share
+            .map_or_else(|| "none".to_owned(), |s| format!("{:.1}%", 100.0 * s)),
+        raytree::text::rgb(f.radiance)
+    );
+    Ok((f.tree, header))
 }
 
 /// Parse one `--lpe` expression; an error shows the expression with a caret under the column.
