@@ -3,6 +3,7 @@
 //! penumbra, tree == pixel bit for bit, and rejected `quad` / `light_samples` values.
 
 use glam::DVec3;
+use raytree::lights::polygon_irradiance;
 use raytree::{Scene, render, trace_pixel};
 use std::f64::consts::PI;
 
@@ -63,18 +64,6 @@ fn sphere_light_gives_pi_l_sin2() {
     }
 }
 
-/// Lambert's polygon formula: E = L/2 sum_i theta_i n . (v_i x v_{i+1}) / |v_i x v_{i+1}|.
-fn lambert_polygon(p: DVec3, n: DVec3, verts: &[DVec3], l: f64) -> f64 {
-    let v: Vec<DVec3> = verts.iter().map(|&q| (q - p).normalize()).collect();
-    let mut sum = 0.0;
-    for i in 0..v.len() {
-        let (a, b) = (v[i], v[(i + 1) % v.len()]);
-        let theta = a.dot(b).clamp(-1.0, 1.0).acos();
-        sum += theta * n.dot(a.cross(b).normalize());
-    }
-    0.5 * l * sum.abs()
-}
-
 #[test]
 fn quad_and_triangle_lights_follow_lamberts_formula() {
     let (c, u, v) = (
@@ -86,7 +75,7 @@ fn quad_and_triangle_lights_follow_lamberts_formula() {
         r#"{{"type": "quad", "corner": [{}, {}, {}], "edge_u": [{}, {}, {}], "edge_v": [{}, {}, {}], "material": "lamp"}}"#,
         c.x, c.y, c.z, u.x, u.y, u.z, v.x, v.y, v.z
     );
-    let e = lambert_polygon(DVec3::ZERO, DVec3::Y, &[c, c + u, c + u + v, c + v], 2.0);
+    let e = polygon_irradiance(DVec3::ZERO, DVec3::Y, &[c, c + u, c + u + v, c + v], 2.0);
     check(&quad, ALBEDO / PI * e);
     // Facing down: the triangle (c, c + u, c + v) has normal u x v (downwards).
     let tri = format!(
@@ -101,7 +90,7 @@ fn quad_and_triangle_lights_follow_lamberts_formula() {
         c.y + v.y,
         c.z + v.z
     );
-    let e = lambert_polygon(DVec3::ZERO, DVec3::Y, &[c, c + u, c + v], 2.0);
+    let e = polygon_irradiance(DVec3::ZERO, DVec3::Y, &[c, c + u, c + v], 2.0);
     check(&tri, ALBEDO / PI * e);
 }
 
@@ -142,8 +131,8 @@ fn an_emissive_mesh_lights_like_its_visible_triangles() {
         DVec3::new(-1.0, 2.0, 1.0),
     ];
     let small = big.map(|p| DVec3::new(0.3 * p.x, 1.5, 0.3 * p.z));
-    let exact = ALBEDO / PI * lambert_polygon(DVec3::ZERO, DVec3::Y, &big, 2.0);
-    let both = exact + ALBEDO / PI * lambert_polygon(DVec3::ZERO, DVec3::Y, &small, 2.0);
+    let exact = ALBEDO / PI * polygon_irradiance(DVec3::ZERO, DVec3::Y, &big, 2.0);
+    let both = exact + ALBEDO / PI * polygon_irradiance(DVec3::ZERO, DVec3::Y, &small, 2.0);
     assert!(se > 0.0 && se < 0.01 * exact, "s.e. {se} vs {exact}");
     assert!(
         (mean - exact).abs() < 4.0 * se && (mean - both).abs() > 8.0 * se,

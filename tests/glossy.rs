@@ -201,18 +201,10 @@ fn refracted_samples_enter_and_leave_the_medium() {
     assert!(inside > 50 && internal > 0, "{inside} {internal}");
 }
 
+/// Write the glossy scene as `s.json`, then [`common::fails_with`].
 fn fails_with(dir: &Path, args: &[&str], text: &str) {
     std::fs::write(dir.join("s.json"), GLOSSY).unwrap();
-    let o = raytree(args, dir);
-    assert_eq!(o.status.code(), Some(2), "{args:?}");
-    let err = String::from_utf8_lossy(&o.stderr);
-    assert!(err.contains(text), "{args:?}: {err}");
-    let written: Vec<_> = std::fs::read_dir(dir)
-        .unwrap()
-        .filter_map(|e| e.ok())
-        .filter(|e| e.file_name() != "s.json")
-        .collect();
-    assert!(written.is_empty(), "{args:?} wrote {written:?}");
+    common::fails_with(dir, args, text);
 }
 
 /// Bad roughness and glossy_samples are refused with their JSON path and line:column, and

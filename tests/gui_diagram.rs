@@ -69,7 +69,13 @@ fn harness(files: &MemFiles, spp: u32) -> Harness<'static, InspectorApp> {
             InspectorApp::new(session),
         );
     settle(&mut h);
-    let pos = h.state().screen_of_pixel(200, 100).expect("image drawn");
+    click_pixel(&mut h, 200, 100);
+    h
+}
+
+/// Click image pixel (x, y) and let the UI take it.
+fn click_pixel(h: &mut Harness<'static, InspectorApp>, x: u32, y: u32) {
+    let pos = h.state().screen_of_pixel(x, y).expect("image drawn");
     h.hover_at(pos);
     for pressed in [true, false] {
         h.event(egui::Event::PointerButton {
@@ -80,7 +86,6 @@ fn harness(files: &MemFiles, spp: u32) -> Harness<'static, InspectorApp> {
         });
     }
     h.run();
-    h
 }
 
 fn settle(h: &mut Harness<'static, InspectorApp>) {
@@ -297,17 +302,7 @@ fn the_path_integrator_is_chosen_in_the_panel_and_its_diffuse_rays_drawn() {
         raytree::scene::IntegratorKind::Path
     );
     let _ = h.get_by_role_and_label(Role::Slider, "roulette from bounce");
-    let pos = h.state().screen_of_pixel(200, 100).expect("image drawn");
-    h.hover_at(pos);
-    for pressed in [true, false] {
-        h.event(egui::Event::PointerButton {
-            pos,
-            button: egui::PointerButton::Primary,
-            pressed,
-            modifiers: egui::Modifiers::NONE,
-        });
-    }
-    h.run();
+    click_pixel(&mut h, 200, 100);
     let tree = h.state().session.doc.tree.clone().expect("a tree");
     assert!(tree.nodes.iter().any(|n| n.path.is_some()));
     let diffuse = tree.count_by_kind()[RayKind::Diffuse as usize];

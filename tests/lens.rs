@@ -3,12 +3,11 @@
 //! trees equal rendered pixels, and bad values are refused with exit 2.
 
 mod common;
-use common::raytree;
+use common::{fails_with, raytree};
 
 use raytree::render::render_pixel;
 use raytree::scene::{FilterDesc, icosphere_scene};
 use raytree::{RayCounts, Scene, TreeRecorder, render, trace_pixel};
-use std::path::Path;
 
 const DOF: &str = include_str!("../fixtures/depth-of-field.json");
 
@@ -121,19 +120,6 @@ fn an_aperture_blurs_and_camera_rays_leave_from_the_lens() {
         let o = tree.nodes[sample.root.0 as usize].origin;
         assert!(o != p && (o - p).length() <= 0.15 * (1.0 + 1e-12), "{o}");
     }
-}
-
-fn fails_with(dir: &Path, args: &[&str], text: &str) {
-    let o = raytree(args, dir);
-    let err = String::from_utf8_lossy(&o.stderr);
-    assert_eq!(o.status.code(), Some(2), "{args:?}: {err}");
-    assert!(err.contains(text), "{args:?}: {err}");
-    let written: Vec<_> = std::fs::read_dir(dir)
-        .unwrap()
-        .filter_map(|e| e.ok())
-        .filter(|e| e.file_name() != "s.json")
-        .collect();
-    assert!(written.is_empty(), "{args:?} wrote {written:?}");
 }
 
 /// Bad apertures, focus distances and filters are refused with the flag or JSON path (and

@@ -260,3 +260,20 @@ pub fn sample_directional_light(direction: DVec3, irradiance: Rgb) -> LightSampl
         delta: true,
     }
 }
+
+/// Lambert's closed form for the irradiance at `p` (unit normal `n`) from a uniform polygon of
+/// radiance `l` wholly above the horizon of `(p, n)`:
+/// `E = l/2 |sum_i theta_i (n . unit(v_i x v_i+1))|` (Lambert 1760; Arvo 1994, "The Irradiance
+/// Jacobian for Partially Occluded Polyhedral Sources", eq. 1). The reference the area-light
+/// samplers are tested against.
+#[must_use]
+pub fn polygon_irradiance(p: DVec3, n: DVec3, verts: &[DVec3], l: f64) -> f64 {
+    let v: Vec<DVec3> = verts.iter().map(|&q| (q - p).normalize()).collect();
+    let mut sum = 0.0;
+    for i in 0..v.len() {
+        let (a, b) = (v[i], v[(i + 1) % v.len()]);
+        let theta = a.dot(b).clamp(-1.0, 1.0).acos();
+        sum += theta * n.dot(a.cross(b).normalize());
+    }
+    0.5 * l * sum.abs()
+}

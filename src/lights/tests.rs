@@ -27,20 +27,6 @@ fn irradiance(
     )
 }
 
-/// Lambert's formula for the irradiance from a uniform polygon of radiance `l` wholly above the
-/// horizon of `(p, n)`: `E = l/2 sum_i theta_i (n . unit(v_i x v_i+1))` (Lambert 1760; Arvo 1994,
-/// "The Irradiance Jacobian for Partially Occluded Polyhedral Sources", eq. 1).
-fn lambert_polygon(p: DVec3, n: DVec3, verts: &[DVec3], l: f64) -> f64 {
-    let v: Vec<DVec3> = verts.iter().map(|&q| (q - p).normalize()).collect();
-    let mut sum = 0.0;
-    for i in 0..v.len() {
-        let (a, b) = (v[i], v[(i + 1) % v.len()]);
-        let theta = a.dot(b).clamp(-1.0, 1.0).acos();
-        sum += theta * n.dot(a.cross(b).normalize());
-    }
-    0.5 * l * sum.abs()
-}
-
 #[test]
 fn sphere_irradiance_is_pi_l_sin2() {
     let l = 3.0;
@@ -94,7 +80,7 @@ fn quad_and_triangle_irradiance_match_lamberts_formula() {
             q.corner + q.edge_u + q.edge_v,
             q.corner + q.edge_v,
         ];
-        let exact = lambert_polygon(p, n, &verts, l);
+        let exact = polygon_irradiance(p, n, &verts, l);
         let (m, se) = irradiance(200_000, 1100 + i as u64, n, |u| {
             q.sample(p, Rgb::splat(l), u)
         });
@@ -104,7 +90,7 @@ fn quad_and_triangle_irradiance_match_lamberts_formula() {
         );
         assert!(se < 0.01 * exact);
         let t = PlanarEmitter::triangle(verts[0], verts[1], verts[2]);
-        let exact = lambert_polygon(p, n, &verts[..3], l);
+        let exact = polygon_irradiance(p, n, &verts[..3], l);
         let (m, se) = irradiance(200_000, 1200 + i as u64, n, |u| {
             t.sample(p, Rgb::splat(l), u)
         });

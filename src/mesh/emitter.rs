@@ -97,20 +97,13 @@ mod tests {
         Mesh::new(&data, &DAffine3::IDENTITY, MeshNormals::Flat).unwrap()
     }
 
-    /// Lambert's formula for the irradiance at `(p, n)` from a uniform triangle of radiance
-    /// `l` above the horizon, facing `p` (Arvo 1994, eq. 1); 0 when it faces away.
+    /// The irradiance at `(p, n)` from a uniform triangle of radiance `l` (Lambert's formula,
+    /// [`crate::lights::polygon_irradiance`]); 0 when it turns its back on `p`.
     fn lambert_triangle(p: DVec3, n: DVec3, [a, b, c]: [DVec3; 3], l: f64) -> f64 {
         if (p - a).dot((b - a).cross(c - a)) <= 0.0 {
             return 0.0;
         }
-        let v = [a, b, c].map(|q| (q - p).normalize());
-        let sum: f64 = (0..3)
-            .map(|i| {
-                let (x, y) = (v[i], v[(i + 1) % 3]);
-                x.dot(y).clamp(-1.0, 1.0).acos() * n.dot(x.cross(y).normalize())
-            })
-            .sum();
-        0.5 * l * sum.abs()
+        crate::lights::polygon_irradiance(p, n, &[a, b, c], l)
     }
 
     #[test]

@@ -14,6 +14,21 @@ pub fn raytree(args: &[&str], dir: &Path) -> Output {
         .expect("the raytree binary runs")
 }
 
+/// `raytree args` in `dir` exits 2 with `text` in its error and leaves no file in `dir` besides
+/// the scene `s.json`.
+pub fn fails_with(dir: &Path, args: &[&str], text: &str) {
+    let o = raytree(args, dir);
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert_eq!(o.status.code(), Some(2), "{args:?}: {err}");
+    assert!(err.contains(text), "{args:?}: {err}");
+    let written: Vec<_> = std::fs::read_dir(dir)
+        .unwrap()
+        .filter_map(|e| e.ok())
+        .filter(|e| e.file_name() != "s.json")
+        .collect();
+    assert!(written.is_empty(), "{args:?} wrote {written:?}");
+}
+
 /// SplitMix64: deterministic numbers for the seeded test loops.
 pub struct Rng(pub u64);
 
