@@ -14,11 +14,12 @@
 
 use super::local::{Cast, cos_to_light, shadow_end};
 use super::{RayCounts, Recorder, Tracer};
+use crate::geometry::Shape;
 use crate::interaction::SurfaceInteraction;
 use crate::math::Ray;
 use crate::math::Rgb;
 use crate::sampling::PixelSampler;
-use crate::scene::{AreaEmitter, Scene};
+use crate::scene::Scene;
 use crate::tree::{AreaSample, EndReason, NodeId, RayKind, RayNode, ShadowInfo};
 
 /// The shadow ray to a sampled point on an emitter (or to where it meets the emitter first)
@@ -148,8 +149,7 @@ pub(crate) fn emitter_shadow_length(
 ) -> f64 {
     let shape = &scene.objects[object].shape;
     let own = shape.intersect(ray, seg);
-    let mesh = matches!(scene.area_light(object), Some((AreaEmitter::Mesh(_), _)));
-    let hidden = mesh
+    let hidden = matches!(shape, Shape::Mesh(_))
         && own.is_some_and(|h| h.t < seg * (1.0 - HIDDEN_BY_ITSELF) - 2.0 * ray.origin.distance(p));
     if hidden {
         return seg;
