@@ -204,6 +204,9 @@ fn ids(nodes: &[NodeId]) -> Vec<NodeId> {
 /// Explain the pixel whose tree is `tree`, traced in `scene`.
 #[must_use]
 pub fn explain(tree: &RayTree, scene: &Scene) -> Explanation {
+    if tree.nodes.iter().any(|n| n.path.is_some()) {
+        return path::explain_path(tree, scene);
+    }
     let spp = tree.samples.len().max(1) as f64;
     let pixel_lum = luminance(tree.radiance);
     let mut sentences = Vec::new();
@@ -599,5 +602,6 @@ pub fn node_list(nodes: &[NodeId]) -> String {
     s.join(", ")
 }
 
+mod path;
 #[cfg(test)]
 mod tests;

@@ -42,6 +42,20 @@ pub enum LobeKind {
     GlossyTransmission,
 }
 
+impl LobeKind {
+    /// The lobe in words ("specular transmission").
+    #[must_use]
+    pub fn name(self) -> &'static str {
+        match self {
+            LobeKind::Diffuse => "diffuse",
+            LobeKind::SpecularReflection => "specular reflection",
+            LobeKind::SpecularTransmission => "specular transmission",
+            LobeKind::GlossyReflection => "glossy reflection",
+            LobeKind::GlossyTransmission => "glossy transmission",
+        }
+    }
+}
+
 /// A sampled direction.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct BsdfSample {

@@ -253,3 +253,54 @@ fn text_lists_node_ids() {
     let many: Vec<NodeId> = (0..15).map(NodeId).collect();
     assert!(node_list(&many).ends_with("#11, and 3 more"));
 }
+
+#[test]
+fn a_path_traced_pixel_is_explained_by_light_path_classes_that_add_up() {
+    let mut scene = fixture("cornell-box.json");
+    scene.settings.spp = 16;
+    let tree = trace_pixel(&scene, 128, 200).unwrap();
+    let e = explain(&tree, &scene);
+    // Classes from the light path expressions, not Whitted's "reflected in the wall" words.
+    assert!(
+        e.shares
+            .iter()
+            .any(|s| s.path.starts_with("direct light on the ")),
+        "{e:#?}"
+    );
+    assert!(
+        e.shares
+            .iter()
+            .any(|s| s.path.starts_with("indirect light on the ")),
+        "{e:#?}"
+    );
+    assert!(e.shares.iter().all(|s| !s.path.contains("reflected in")));
+    let sum = e.shares.iter().fold(Rgb::ZERO, |a, s| a + s.value);
+    assert!(close(sum, tree.radiance), "{sum:?} vs {:?}", tree.radiance);
+    let events = texts(&e, SentenceKind::Event).join("\n");
+    assert!(events.contains("by light sampling"), "{events}");
+    assert!(events.contains("diffuse"), "{events}");
+    let energy = texts(&e, SentenceKind::Energy).join("\n");
+    assert!(energy.contains("relative standard error"), "{energy}");
+}
+
+#[test]
+fn light_samples_blocked_by_glass_point_to_caustic_paths() {
+    let mut scene = fixture("caustic.json");
+    scene.settings.spp = 16;
+    let tree = trace_pixel(&scene, 110, 125).unwrap();
+    let e = explain(&tree, &scene);
+    let energy = texts(&e, SentenceKind::Energy).join("\n");
+    assert!(
+        energy.contains("blocked by the glass ball: shadow rays stop at glass"),
+        "{energy}"
+    );
+    // The same pixel under Whitted keeps Whitted's words.
+    scene.settings.integrator = crate::scene::IntegratorKind::Whitted;
+    let whitted = explain(&trace_pixel(&scene, 110, 125).unwrap(), &scene);
+    assert!(
+        texts(&whitted, SentenceKind::Energy)
+            .iter()
+            .all(|t| !t.contains("shadow rays stop at glass")),
+        "{whitted:#?}"
+    );
+}
