@@ -93,6 +93,16 @@ fn trace_lpe_on_the_command_line() {
         .map(|n| n["path"]["lpe"].as_str().unwrap())
         .collect();
     assert!(lpes.contains(&"C<RD><TS><TS>L"), "{lpes:?}");
+    // The match count and share travel with the JSON, as the text header says them.
+    let f = &v["lpe_filter"];
+    assert_eq!(f["expressions"][0], "C<RD>S+L", "{f}");
+    let (matched, paths) = (f["matched"].as_u64().unwrap(), f["paths"].as_u64().unwrap());
+    assert!(matched >= 1 && matched < paths, "{f}");
+    assert!(
+        head.contains(&format!("{matched} of {paths} paths match")),
+        "{head}"
+    );
+    assert!(f["share"].as_f64().unwrap() > 0.0, "{f}");
     assert!(
         lpes.iter().all(|l| "C<RD><TS><TS>L".starts_with(l)),
         "{lpes:?}"

@@ -90,7 +90,7 @@ pub fn run(a: &DiagramArgs) -> Result<()> {
         );
     };
     // Only the paths matching --lpe (their ids renumbered, as `trace --lpe` prints them).
-    let (tree, matched) = super::trace_cmd::filter_lpe(tree, &a.lpe, &lpes)?;
+    let (tree, matched, _) = super::trace_cmd::filter_lpe(tree, &a.lpe, &lpes)?;
     if !lpes.is_empty() && tree.samples.is_empty() {
         bail!(
             "--lpe {}: no path of pixel {x},{y} matches, so there is nothing to draw",

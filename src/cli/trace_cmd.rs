@@ -22,7 +22,7 @@ pub fn run(a: &TraceArgs) -> Result<()> {
             cam.height
         );
     };
-    let (tree, header) = filter_lpe(tree, &a.lpe, &lpes)?;
+    let (tree, header, summary) = filter_lpe(tree, &a.lpe, &lpes)?;
     let cut = super::budget::cut_samples(&tree);
     if cut > 0 {
         let why = match lowered {
@@ -42,7 +42,12 @@ pub fn run(a: &TraceArgs) -> Result<()> {
                 "pixel {x},{y}: the tree holds a non-finite number at {at}; JSON cannot carry it, so none was written (the text form shows it: drop --json)"
             );
         }
-        sayln!("{}", serde_json::to_string_pretty(&tree)?)?;
+        let mut v = serde_json::to_value(&tree)?;
+        if let (Some(s), Some(o)) = (summary, v.as_object_mut()) {
+            // Beside the tree's own fields (readers of the schema ignore it): what matched.
+            o.insert("lpe_filter".to_owned(), s);
+        }
+        sayln!("{}", serde_json::to_string_pretty(&v)?)?;
     } else {
         out(&format!("{header}{}", raytree::text::tree_text(&tree)))?;
     }
@@ -55,15 +60,16 @@ pub(super) fn parse_lpes(exprs: &[String]) -> Result<Vec<raytree::lpe::Lpe>> {
 }
 
 /// Keep the paths of `tree` that match any of `lpes` (written as `exprs`), with a one-line
-/// header saying how many matched and their share of the pixel; `tree` itself and no header
-/// without expressions.
+/// header saying how many matched and their share of the pixel, and the same as a JSON object
+/// (`expressions`, `matched`, `paths`, `share`, `radiance`); `tree` itself, no header and no
+/// object without expressions.
 pub(super) fn filter_lpe(
     tree: raytree::RayTree,
     exprs: &[String],
     lpes: &[raytree::lpe::Lpe],
-) -> Result<(raytree::RayTree, String)> {
+) -> Result<(raytree::RayTree, String, Option<serde_json::Value>)> {
     if lpes.is_empty() {
-        return Ok((tree, String::new()));
+        return Ok((tree, String::new(), None));
     }
     let Some(f) = raytree::lpe::filter_tree(&tree, lpes) else {
         bail!(
@@ -79,7 +85,14 @@ pub(super) fn filter_lpe(
             .map_or_else(|| "none".to_owned(), |s| format!("{:.1}%", 100.0 * s)),
         raytree::text::rgb(f.radiance)
     );
-    Ok((f.tree, header))
+    let summary = serde_json::json!({
+        "expressions": exprs,
+        "matched": f.matched,
+        "paths": f.paths,
+        "share": f.share,
+        "radiance": f.radiance,
+    });
+    Ok((f.tree, header, Some(summary)))
 }
 
 /// Parse one `--lpe` expression; an error shows the expression with a caret under the column.
