@@ -13,7 +13,6 @@ use crate::math::Rgb;
 use crate::scene::Scene;
 use crate::tree::{EndReason, NodeId, RayKind, RayNode, RayTree};
 use serde::Serialize;
-use std::fmt::Write;
 
 /// Shares below this fraction of the pixel are gathered into one "other paths" sentence.
 const SMALL_SHARE: f64 = 0.005;
@@ -105,93 +104,6 @@ pub fn node_term(tree: &RayTree, n: &RayNode) -> Rgb {
         None => n.radiance,
     };
     n.throughput * source / spp
-}
-
-/// The chain of nodes from the sample's camera ray down to `id`.
-fn chain(tree: &RayTree, id: NodeId) -> Vec<&RayNode> {
-    let mut out = vec![tree.node(id)];
-    while let Some(p) = out.last().and_then(|n| n.parent) {
-        out.push(tree.node(p));
-    }
-    out.reverse();
-    out
-}
-
-/// One interaction on the way from the eye: the surface `object` the next ray left.
-struct Step<'a> {
-    object: &'a str,
-    refracted: bool,
-    inside_reflections: usize,
-    tir: usize,
-    /// Reflections off the outside in a row (more than one only through self-hits).
-    outside_reflections: usize,
-}
-
-/// The path of node `id` in words, eye outward collapsed per object: "floor seen through the
-/// glass ball", "background reflected in the mirror ball".
-fn path_words(tree: &RayTree, id: NodeId) -> String {
-    let nodes = chain(tree, id);
-    let mut steps: Vec<Step> = Vec::new();
-    for w in nodes.windows(2) {
-        let (p, c) = (w[0], w[1]);
-        let Some(h) = &p.hit else { continue };
-        let tir = p.interface.as_ref().is_some_and(|i| i.tir);
-        let refracted = c.kind == RayKind::Refracted;
-        let inside = c.kind == RayKind::Reflected && !h.entering;
-        match steps.last_mut() {
-            Some(s) if s.object == h.object_name && (refracted || inside || s.refracted) => {
-                s.refracted |= refracted;
-                s.inside_reflections += usize::from(inside);
-                s.tir += usize::from(inside && tir);
-            }
-            Some(s) if s.object == h.object_name && !s.refracted => s.outside_reflections += 1,
-            _ => steps.push(Step {
-                object: &h.object_name,
-                refracted: refracted || inside,
-                inside_reflections: usize::from(inside),
-                tir: usize::from(inside && tir),
-                outside_reflections: usize::from(!(refracted || inside)),
-            }),
-        }
-    }
-    let last = nodes[nodes.len() - 1];
-    let what = last
-        .hit
-        .as_ref()
-        .map_or("background", |h| h.object_name.as_str());
-    let mut s = what.to_string();
-    if steps.is_empty() {
-        s.push_str(" seen directly");
-        return s;
-    }
-    for (i, st) in steps.iter().rev().enumerate() {
-        if i > 0 {
-            s.push(',');
-        }
-        if st.refracted {
-            let _ = write!(
-                s,
-                "{} through the {}",
-                if i == 0 { " seen" } else { "" },
-                st.object
-            );
-            if st.inside_reflections > 0 {
-                let k = st.inside_reflections;
-                let _ = write!(
-                    s,
-                    " ({k} {}internal reflection{})",
-                    if st.tir == k { "total " } else { "" },
-                    if k == 1 { "" } else { "s" }
-                );
-            }
-        } else {
-            let _ = write!(s, " reflected in the {}", st.object);
-            if st.outside_reflections > 1 {
-                let _ = write!(s, " ({} times)", st.outside_reflections);
-            }
-        }
-    }
-    s
 }
 
 fn ids(nodes: &[NodeId]) -> Vec<NodeId> {
@@ -438,170 +350,13 @@ pub fn explain(tree: &RayTree, scene: &Scene) -> Explanation {
     }
 }
 
-fn suspicious(tree: &RayTree, sentences: &mut Vec<Sentence>) {
-    let st = &tree.settings;
-    let offset = format!(
-        "offset {} {:e}",
-        serde_json::to_string(&st.offset.strategy)
-            .unwrap_or_default()
-            .trim_matches('"'),
-        st.offset.epsilon
-    );
-    let self_hits: Vec<NodeId> = tree
-        .nodes
-        .iter()
-        .filter(|n| n.self_hit)
-        .map(|n| n.id)
-        .collect();
-    if !self_hits.is_empty() {
-        sentences.push(Sentence {
-            kind: SentenceKind::Suspicious,
-            text: format!(
-                "{} ray{} re-hit the surface {} left (self-intersection: acne) with {offset}",
-                self_hits.len(),
-                if self_hits.len() == 1 { "" } else { "s" },
-                if self_hits.len() == 1 { "it" } else { "they" }
-            ),
-            nodes: self_hits,
-        });
-    }
-    let leaks: Vec<&RayNode> = tree.nodes.iter().filter(|n| n.leak.is_some()).collect();
-    if let Some(l) = leaks.first().and_then(|n| n.leak.as_ref()) {
-        sentences.push(Sentence {
-            kind: SentenceKind::Suspicious,
-            text: format!(
-                "{} ray{} leaked: the spawn offset skipped a surface a zero offset would meet (first: the {} at {:.3e}) with {offset}",
-                leaks.len(),
-                if leaks.len() == 1 { "" } else { "s" },
-                l.object_name,
-                l.distance
-            ),
-            nodes: leaks.iter().map(|n| n.id).collect(),
-        });
-    }
-    // TIR chains whose last total reflection was cut by max depth: trapped light lost.
-    for n in tree
-        .nodes
-        .iter()
-        .filter(|n| n.end == EndReason::MaxDepth && n.interface.as_ref().is_some_and(|i| i.tir))
-    {
-        let mut chain = vec![n.id];
-        let mut at = n;
-        while let Some(p) = at.parent.map(|p| tree.node(p)) {
-            if at.kind != RayKind::Reflected || !p.interface.as_ref().is_some_and(|i| i.tir) {
-                break;
-            }
-            chain.push(p.id);
-            at = p;
-        }
-        chain.reverse();
-        let spp = tree.samples.len().max(1) as f64;
-        sentences.push(Sentence {
-            kind: SentenceKind::Suspicious,
-            text: format!(
-                "a chain of {} total internal reflection{} ends at max depth {} at #{}: path weight {} trapped and never traced",
-                chain.len(),
-                if chain.len() == 1 { "" } else { "s" },
-                st.max_depth,
-                n.id.0,
-                num(luminance(n.throughput * atten(n) * n.truncated / spp))
-            ),
-            nodes: chain,
-        });
-    }
-    let roots: Vec<NodeId> = tree.samples.iter().map(|s| s.root).collect();
-    if tree.radiance.is_finite() && tree.radiance.max_element() > 1.0 {
-        let ch: Vec<&str> = [
-            ("R", tree.radiance.x),
-            ("G", tree.radiance.y),
-            ("B", tree.radiance.z),
-        ]
-        .iter()
-        .filter(|(_, v)| *v > 1.0)
-        .map(|(c, _)| *c)
-        .collect();
-        sentences.push(Sentence {
-            kind: SentenceKind::Suspicious,
-            text: format!(
-                "the pixel value {} is above 1 in {}: the display clips it (8-bit 255), the EXR keeps it",
-                rgb(tree.radiance),
-                ch.join(", ")
-            ),
-            nodes: roots.clone(),
-        });
-    }
-    let bad: Vec<NodeId> = tree
-        .nodes
-        .iter()
-        .filter(|n| {
-            ![n.radiance, n.weight, n.throughput, n.local]
-                .iter()
-                .all(|c| c.is_finite())
-        })
-        .map(|n| n.id)
-        .collect();
-    if !bad.is_empty() || !tree.radiance.is_finite() {
-        sentences.push(Sentence {
-            kind: SentenceKind::Suspicious,
-            text: format!(
-                "non-finite value: the pixel is {} and {} ray{} carry NaN or infinity",
-                rgb(tree.radiance),
-                bad.len(),
-                if bad.len() == 1 { "" } else { "s" }
-            ),
-            nodes: if bad.is_empty() { roots } else { bad },
-        });
-    }
-}
-
-/// The explanation as text: one sentence a line, `- ` then the text and the node ids.
-#[must_use]
-pub fn explanation_text(e: &Explanation) -> String {
-    let mut out = format!(
-        "pixel ({}, {})  value {}\n",
-        e.pixel[0],
-        e.pixel[1],
-        rgb(e.radiance)
-    );
-    let mut last = None;
-    for s in &e.sentences {
-        if last != Some(s.kind) {
-            let head = match s.kind {
-                SentenceKind::Sees => "what it sees",
-                SentenceKind::Event => "events",
-                SentenceKind::Energy => "where energy went",
-                SentenceKind::Suspicious => "suspicious",
-            };
-            let _ = writeln!(out, "{head}:");
-            last = Some(s.kind);
-        }
-        let _ = writeln!(out, "- {}  ({})", s.text, node_list(&s.nodes));
-    }
-    if !e
-        .sentences
-        .iter()
-        .any(|s| s.kind == SentenceKind::Suspicious)
-    {
-        out.push_str("suspicious: nothing (no self-hit, leak, trapped TIR chain, clipped or non-finite value)\n");
-    }
-    out
-}
-
-/// `#12, #14`, at most 12 ids and then how many more.
-#[must_use]
-pub fn node_list(nodes: &[NodeId]) -> String {
-    const MAX: usize = 12;
-    let mut s: Vec<String> = nodes
-        .iter()
-        .take(MAX)
-        .map(|n| format!("#{}", n.0))
-        .collect();
-    if nodes.len() > MAX {
-        s.push(format!("and {} more", nodes.len() - MAX));
-    }
-    s.join(", ")
-}
-
 mod path;
+mod suspicious;
+mod text;
+mod words;
+
+use suspicious::suspicious;
+pub use text::{explanation_text, node_list};
+use words::path_words;
 #[cfg(test)]
 mod tests;

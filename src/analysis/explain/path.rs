@@ -8,6 +8,7 @@
 //! (a sample's radiance is their sum), so `contribution / spp` summed over the tree is the pixel
 //! value of the finite samples.
 
+use super::words::chain;
 use super::{Explanation, Sentence, SentenceKind, Share, ids, luminance, num, rgb};
 use crate::math::Rgb;
 use crate::scene::Scene;
@@ -15,7 +16,7 @@ use crate::tree::{EndReason, NodeId, RayKind, RayNode, RayTree};
 
 /// One event of a light path expression: `C`, `L`, `B` or `<RD>`-style (type, scatter).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
-enum Event {
+pub(super) enum Event {
     Camera,
     Light,
     Background,
@@ -29,7 +30,7 @@ impl Event {
 }
 
 /// The events of `lpe` (the alphabet the path integrator records; anything else is skipped).
-fn events(lpe: &str) -> Vec<Event> {
+pub(super) fn events(lpe: &str) -> Vec<Event> {
     let b = lpe.as_bytes();
     let mut out = Vec::new();
     let mut i = 0;
@@ -56,7 +57,7 @@ fn events(lpe: &str) -> Vec<Event> {
 
 /// The class of a light-carrying path in words, from its events, and the index of the vertex
 /// (into the scatter events) that names its surface.
-fn class(ev: &[Event]) -> (&'static str, Option<usize>) {
+pub(super) fn class(ev: &[Event]) -> (&'static str, Option<usize>) {
     let scatters: Vec<Event> = ev
         .iter()
         .copied()
@@ -79,16 +80,6 @@ fn class(ev: &[Event]) -> (&'static str, Option<usize>) {
         }
         (r, false) => ("indirect light", r.first().copied()),
     }
-}
-
-/// The chain of nodes from the sample's camera ray down to `id`.
-fn chain(tree: &RayTree, id: NodeId) -> Vec<&RayNode> {
-    let mut out = vec![tree.node(id)];
-    while let Some(p) = out.last().and_then(|n| n.parent) {
-        out.push(tree.node(p));
-    }
-    out.reverse();
-    out
 }
 
 /// Where scatter event `k` happened: the hit of the `k`-th ray of the chain.
@@ -411,32 +402,5 @@ fn noise(tree: &RayTree, sentences: &mut Vec<Sentence>) {
             ),
             nodes: vec![root],
         });
-    }
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    fn class_of(lpe: &str) -> &'static str {
-        class(&events(lpe)).0
-    }
-
-    #[test]
-    fn classes_read_from_the_light_path_expression() {
-        assert_eq!(class_of("CL"), "an emitter seen directly");
-        assert_eq!(class_of("CB"), "background seen directly");
-        assert_eq!(class_of("C<RS>B"), "background seen in mirrors and glass");
-        assert_eq!(class_of("C<RD>L"), "direct light");
-        assert_eq!(class_of("C<TS><TS><RD>L"), "direct light");
-        assert_eq!(
-            class_of("C<RD><TS><TS>L"),
-            "caustic: light through or off specular surfaces"
-        );
-        assert_eq!(class_of("C<RD><RD>L"), "indirect light");
-        assert_eq!(class_of("C<RD><RG><TS>L"), "indirect light with a caustic");
-        assert_eq!(class_of("C<RD>B"), "light from the background");
-        // The surface named is the first rough vertex.
-        assert_eq!(class(&events("C<RS><RD>L")).1, Some(1));
     }
 }

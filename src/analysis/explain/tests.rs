@@ -304,3 +304,25 @@ fn light_samples_blocked_by_glass_point_to_caustic_paths() {
         "{whitted:#?}"
     );
 }
+
+fn class_of(lpe: &str) -> &'static str {
+    path::class(&path::events(lpe)).0
+}
+
+#[test]
+fn classes_read_from_the_light_path_expression() {
+    assert_eq!(class_of("CL"), "an emitter seen directly");
+    assert_eq!(class_of("CB"), "background seen directly");
+    assert_eq!(class_of("C<RS>B"), "background seen in mirrors and glass");
+    assert_eq!(class_of("C<RD>L"), "direct light");
+    assert_eq!(class_of("C<TS><TS><RD>L"), "direct light");
+    assert_eq!(
+        class_of("C<RD><TS><TS>L"),
+        "caustic: light through or off specular surfaces"
+    );
+    assert_eq!(class_of("C<RD><RD>L"), "indirect light");
+    assert_eq!(class_of("C<RD><RG><TS>L"), "indirect light with a caustic");
+    assert_eq!(class_of("C<RD>B"), "light from the background");
+    // The surface named is the first rough vertex.
+    assert_eq!(path::class(&path::events("C<RS><RD>L")).1, Some(1));
+}
