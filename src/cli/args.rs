@@ -27,6 +27,9 @@ pub enum Command {
     Cost(CostArgs),
     /// Compare two images (PNG or EXR): error metrics and a false-colour error map.
     Compare(CompareArgs),
+    /// Convergence: rel-RMSE against a reference versus spp and seconds, per series (log-log
+    /// plot, CSV, fitted slopes).
+    Converge(super::converge_cmd::ConvergeArgs),
 
     /// Open the inspector window: click a pixel, see its ray tree.
     View(ViewArgs),
