@@ -12,6 +12,7 @@ mod compare_cmd;
 mod converge_cmd;
 mod converge_plot;
 mod cost_cmd;
+mod denoise_out;
 mod diagram_cmd;
 mod diff_cmd;
 mod effects_cmd;

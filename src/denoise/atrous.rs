@@ -6,13 +6,18 @@
 //! on the illumination (colour divided by albedo, multiplied back at the end), the luminance
 //! weight is `exp(-|l_p - l_q| / (sigma_l sqrt(g(var_p)) + eps))` with `g` a 3x3 Gaussian of
 //! the variance, and each pass also filters the variance (weights squared) so the next, wider
-//! pass trusts the smoothed signal more.
+//! pass trusts the smoothed signal more. Where the albedo is itself noisy (a lens blurs a
+//! texture) its edge stop widens by the albedos' variance and the albedo is filtered with the
+//! same weights; elsewhere the weights leave it as it is. With one sample per pixel the
+//! variance is estimated over the 5x5 neighbours of similar features, leaving out the brightest
+//! (so a firefly is not spread into its dark neighbours).
 
 use super::Features;
 use crate::bsdf::luminance;
 use crate::math::Rgb;
 use crate::render::Image;
 use glam::DVec3;
+use rayon::prelude::*;
 
 /// The filter's parameters.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -71,7 +76,7 @@ pub fn denoise(image: &Image, features: &Features, p: &DenoiseParams) -> Image {
         (w, h, w * h),
         "features of another image"
     );
-    let albedo: Vec<Rgb> = features.albedo.iter().map(|&a| demod(a)).collect();
+    let mut albedo: Vec<Rgb> = features.albedo.iter().map(|&a| demod(a)).collect();
     let mut illum: Vec<Rgb> = image
         .pixels
         .iter()
@@ -82,44 +87,53 @@ pub fn denoise(image: &Image, features: &Features, p: &DenoiseParams) -> Image {
     for i in 0..p.iterations {
         let step = 1usize << i;
         let g = gaussian3(&var, w, h);
-        let mut next_illum = illum.clone();
-        let mut next_var = var.clone();
-        for y in 0..h {
-            for x in 0..w {
-                let c = y * w + x;
-                let lp = luminance(illum[c]);
-                let sigma = p.sigma_luminance * g[c].max(0.0).sqrt() + EPS_LUMINANCE;
-                let (np, ap) = (features.normal[c], features.albedo[c]);
-                let (mut sum, mut wsum, mut vsum) = (Rgb::ZERO, 0.0, 0.0);
-                for dy in -2i64..=2 {
-                    let yq = y as i64 + dy * step as i64;
-                    if yq < 0 || yq >= h as i64 {
+        // One pass: each pixel's (illumination, variance, albedo) from the previous pass,
+        // rows in parallel.
+        let pass = |c: usize| -> (Rgb, f64, Rgb) {
+            let (x, y) = (c % w, c / w);
+            let lp = luminance(illum[c]);
+            let sigma = p.sigma_luminance * g[c].max(0.0).sqrt() + EPS_LUMINANCE;
+            let (np, ap) = (features.normal[c], features.albedo[c]);
+            let vap = features.albedo_variance[c];
+            let (mut sum, mut wsum, mut vsum, mut asum) = (Rgb::ZERO, 0.0, 0.0, Rgb::ZERO);
+            for dy in -2i64..=2 {
+                let yq = y as i64 + dy * step as i64;
+                if yq < 0 || yq >= h as i64 {
+                    continue;
+                }
+                for dx in -2i64..=2 {
+                    let xq = x as i64 + dx * step as i64;
+                    if xq < 0 || xq >= w as i64 {
                         continue;
                     }
-                    for dx in -2i64..=2 {
-                        let xq = x as i64 + dx * step as i64;
-                        if xq < 0 || xq >= w as i64 {
-                            continue;
-                        }
-                        let q = yq as usize * w + xq as usize;
-                        let kernel = H[dx.unsigned_abs() as usize] * H[dy.unsigned_abs() as usize];
-                        let wl = (-(lp - luminance(illum[q])).abs() / sigma).exp();
-                        let wn = edge(np, features.normal[q], p.sigma_normal);
-                        let wa = edge(ap, features.albedo[q], p.sigma_albedo);
-                        let wt = kernel * wl * wn * wa;
-                        sum += illum[q] * wt;
-                        wsum += wt;
-                        vsum += wt * wt * var[q];
-                    }
-                }
-                if wsum > 0.0 && wsum.is_finite() && sum.is_finite() {
-                    next_illum[c] = sum / wsum;
-                    next_var[c] = vsum / (wsum * wsum);
+                    let q = yq as usize * w + xq as usize;
+                    let kernel = H[dx.unsigned_abs() as usize] * H[dy.unsigned_abs() as usize];
+                    let wl = (-(lp - luminance(illum[q])).abs() / sigma).exp();
+                    let wn = edge(np, features.normal[q], p.sigma_normal);
+                    // An albedo that is itself noisy (a lens, the pixel footprint) widens its
+                    // edge stop by the variance of the difference of the two means.
+                    let s2 = p.sigma_albedo * p.sigma_albedo + (vap + features.albedo_variance[q]);
+                    let wa = (-(ap - features.albedo[q]).length_squared() / s2).exp();
+                    let wt = kernel * wl * wn * wa;
+                    sum += illum[q] * wt;
+                    wsum += wt;
+                    vsum += wt * wt * var[q];
+                    asum += albedo[q] * wt;
                 }
             }
-        }
+            if wsum > 0.0 && wsum.is_finite() && sum.is_finite() {
+                (sum / wsum, vsum / (wsum * wsum), asum / wsum)
+            } else {
+                (illum[c], var[c], albedo[c])
+            }
+        };
+        let out: Vec<(Rgb, f64, Rgb)> = (0..w * h).into_par_iter().map(pass).collect();
+        let next_illum = out.iter().map(|o| o.0).collect();
+        let next_var = out.iter().map(|o| o.1).collect();
+        let next_albedo = out.iter().map(|o| o.2).collect();
         illum = next_illum;
         var = next_var;
+        albedo = next_albedo;
     }
     let pixels = illum
         .iter()
@@ -162,6 +176,10 @@ fn variance(illum: &[Rgb], albedo: &[Rgb], f: &Features) -> Vec<f64> {
         for x in 0..w {
             let c = y * w + x;
             let (mut s0, mut s1, mut s2) = (0.0, 0.0, 0.0);
+            // The brightest neighbour (not the pixel itself) is left out: one rare bright
+            // sample (a caustic firefly) would otherwise make its dark neighbours accept it
+            // and spread it.
+            let mut brightest = (0.0, 0.0, f64::NEG_INFINITY);
             for yq in y.saturating_sub(2)..(y + 3).min(h) {
                 for xq in x.saturating_sub(2)..(x + 3).min(w) {
                     let q = yq * w + xq;
@@ -171,7 +189,16 @@ fn variance(illum: &[Rgb], albedo: &[Rgb], f: &Features) -> Vec<f64> {
                     s0 += wt;
                     s1 += wt * l;
                     s2 += wt * l * l;
+                    if q != c && l > brightest.2 {
+                        brightest = (wt, wt * l, l);
+                    }
                 }
+            }
+            if brightest.2.is_finite() && s0 - brightest.0 > 0.0 {
+                let (bw, bl, l) = brightest;
+                s0 -= bw;
+                s1 -= bl;
+                s2 -= bl * l;
             }
             let m = s1 / s0;
             out[c] = (s2 / s0 - m * m).max(0.0);

@@ -20,6 +20,7 @@ struct Px {
     albedo: Rgb,
     normal: DVec3,
     variance: f64,
+    albedo_variance: f64,
 }
 
 /// [`gather_sampled`] with the scene's default sampler, as [`crate::render::render_with`].
@@ -55,6 +56,7 @@ pub fn gather_sampled<I: Integrator, S: PixelSampler>(
                 .map(|x| {
                     let (mut sum, mut albedo, mut normal) = (Rgb::ZERO, Rgb::ZERO, DVec3::ZERO);
                     let (mut m1, mut m2, mut n) = (0.0, 0.0, 0u32);
+                    let (mut a1, mut a2) = (0.0, 0.0);
                     for s in 0..spp {
                         let (_, ray) = camera_sample(film, filter, &mut sampler, x, y, s);
                         let f = first_non_delta(&tracer, ray);
@@ -77,22 +79,21 @@ pub fn gather_sampled<I: Integrator, S: PixelSampler>(
                             n += 1;
                         }
                         albedo += f.albedo;
+                        let ya = luminance(f.albedo);
+                        a1 += ya;
+                        a2 += ya * ya;
                         normal += f.normal;
                     }
                     let k = f64::from(spp);
                     // Variance of the mean: the unbiased sample variance over n.
-                    let variance = if n > 1 {
-                        let nf = f64::from(n);
-                        let mean = m1 / nf;
-                        ((m2 / nf - mean * mean).max(0.0) * nf / (nf - 1.0)) / nf
-                    } else {
-                        0.0
-                    };
+                    let variance = variance_of_mean(m1, m2, n);
+                    let albedo_variance = variance_of_mean(a1, a2, spp);
                     Px {
                         color: sum / k,
                         albedo: albedo / k,
                         normal: normal / k,
                         variance,
+                        albedo_variance,
                     }
                 })
                 .collect();
@@ -109,6 +110,7 @@ pub fn gather_sampled<I: Integrator, S: PixelSampler>(
         albedo: Vec::with_capacity(n),
         normal: Vec::with_capacity(n),
         variance: Vec::with_capacity(n),
+        albedo_variance: Vec::with_capacity(n),
         spp,
         stochastic: !integrator.traces_packets() || film.has_lens(),
     };
@@ -125,11 +127,9 @@ pub fn gather_sampled<I: Integrator, S: PixelSampler>(
             let finite = |v: Rgb| if v.is_finite() { v } else { Rgb::ZERO };
             features.albedo.push(finite(p.albedo));
             features.normal.push(finite(p.normal));
-            features.variance.push(if p.variance.is_finite() {
-                p.variance
-            } else {
-                0.0
-            });
+            let finite_f = |v: f64| if v.is_finite() { v } else { 0.0 };
+            features.variance.push(finite_f(p.variance));
+            features.albedo_variance.push(finite_f(p.albedo_variance));
         }
     }
     let image = Image {
@@ -138,4 +138,15 @@ pub fn gather_sampled<I: Integrator, S: PixelSampler>(
         pixels,
     };
     (image, stats, features)
+}
+
+/// The variance of the mean of `n` values from their sum `s1` and sum of squares `s2` (the
+/// unbiased sample variance over `n`); 0 for fewer than two values.
+fn variance_of_mean(s1: f64, s2: f64, n: u32) -> f64 {
+    if n < 2 {
+        return 0.0;
+    }
+    let nf = f64::from(n);
+    let mean = s1 / nf;
+    (s2 / nf - mean * mean).max(0.0) / (nf - 1.0)
 }

@@ -34,6 +34,9 @@ pub struct Features {
     pub normal: Vec<DVec3>,
     /// Variance of the pixel mean's luminance, from its samples (0 with one sample).
     pub variance: Vec<f64>,
+    /// Variance of the mean albedo's luminance (the albedo is an estimate too: a lens or the
+    /// pixel footprint averages several surfaces), from the samples (0 with one sample).
+    pub albedo_variance: Vec<f64>,
     /// Samples per pixel.
     pub spp: u32,
     /// Whether the samples are random (path tracing, area lights, glossy lobes, a lens): a

@@ -9,6 +9,7 @@ fn features(w: u32, h: u32, albedo: impl Fn(u32, u32) -> Rgb, spp: u32, var: f64
         albedo: (0..n as u32).map(|i| albedo(i % w, i / w)).collect(),
         normal: vec![DVec3::Z; n],
         variance: vec![var; n],
+        albedo_variance: vec![0.0; n],
         spp,
         stochastic: true,
     }
