@@ -11,6 +11,11 @@ use std::cell::RefCell;
 use std::path::Path;
 use std::time::Instant;
 
+/// Bytes a pixel may need at once with the features and the filter: the rows' per-pixel
+/// results (88), the features (64), the image (24), the demodulated albedo and illumination and
+/// their next pass (96), the variance and its blur (32), a pass's output (56), the encoders (24).
+pub const PIXEL_BYTES: u64 = 384;
+
 /// The reserved guide outputs (when `--features`) and what the render leaves for them.
 pub struct Guides {
     denoise: bool,

@@ -13,7 +13,11 @@ pub fn run(a: &RenderArgs) -> Result<()> {
     let format = image_format(&a.output)?;
     let loaded = load(a.scene.as_deref(), &a.overrides)?;
     let scene = &loaded.scene;
-    super::budget::check_image(scene, super::budget::mib(a.overrides.max_memory))?;
+    let mib = super::budget::mib(a.overrides.max_memory);
+    super::budget::check_image(scene, mib)?;
+    if a.denoise || a.features {
+        super::budget::check_image_with(scene, mib, super::denoise_out::PIXEL_BYTES)?;
+    }
     let inputs = Inputs::new(loaded.inputs.iter().map(|p| p.as_path()));
     let pending = Pending::create(&a.output, &inputs)?;
     let guides = super::denoise_out::Guides::create(a, &inputs)?;
