@@ -10,6 +10,7 @@ pub mod analysis;
 pub mod bsdf;
 pub mod bvh;
 pub mod codec;
+pub mod denoise;
 pub mod diagram;
 pub mod effects;
 pub mod finite;

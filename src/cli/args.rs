@@ -27,6 +27,9 @@ pub enum Command {
     Cost(CostArgs),
     /// Compare two images (PNG or EXR): error metrics and a false-colour error map.
     Compare(CompareArgs),
+    /// Convergence: rel-RMSE against a reference versus spp and seconds, per series (log-log
+    /// plot, CSV, fitted slopes).
+    Converge(super::converge_cmd::ConvergeArgs),
 
     /// Open the inspector window: click a pixel, see its ray tree.
     View(ViewArgs),
@@ -119,8 +122,16 @@ pub struct RenderArgs {
     #[arg(short, long, default_value = "render.png")]
     pub output: PathBuf,
     /// Also count self-hit and leaking rays (extra intersections per ray).
-    #[arg(long)]
+    #[arg(long, conflicts_with_all = ["denoise", "features"])]
     pub diagnose: bool,
+    /// Write the image denoised (edge-avoiding a-trous filter guided by albedo, normal and
+    /// per-pixel variance; docs/denoise.md). Traced trees stay the raw samples.
+    #[arg(long)]
+    pub denoise: bool,
+    /// Also write the denoiser's guide buffers beside the image: OUT.albedo.EXT and
+    /// OUT.normal.EXT (the normal mapped from [-1, 1] to [0, 1]).
+    #[arg(long)]
+    pub features: bool,
     /// Settings overrides.
     #[command(flatten)]
     pub overrides: Overrides,

@@ -54,11 +54,16 @@ fn gib(bytes: u64) -> String {
 
 /// Refuse an image that cannot fit the budget.
 pub fn check_image(scene: &Scene, mib: u64) -> Result<()> {
+    check_image_with(scene, mib, PIXEL_BYTES)
+}
+
+/// Refuse an image that cannot fit the budget at `per_pixel` bytes a pixel.
+pub fn check_image_with(scene: &Scene, mib: u64, per_pixel: u64) -> Result<()> {
     let (w, h) = (scene.camera.width, scene.camera.height);
-    let need = u64::from(w) * u64::from(h) * PIXEL_BYTES;
+    let need = u64::from(w) * u64::from(h) * per_pixel;
     if need > budget_bytes(mib) {
         bail!(
-            "a {w}x{h} image needs about {} ({PIXEL_BYTES} bytes per pixel), more than the memory budget of {mib} MiB; use a smaller --size or raise --max-memory",
+            "a {w}x{h} image needs about {} ({per_pixel} bytes per pixel), more than the memory budget of {mib} MiB; use a smaller --size or raise --max-memory",
             gib(need)
         );
     }

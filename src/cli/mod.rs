@@ -9,7 +9,10 @@ mod budget;
 mod canvas;
 mod cleanup;
 mod compare_cmd;
+mod converge_cmd;
+mod converge_plot;
 mod cost_cmd;
+mod denoise_out;
 mod diagram_cmd;
 mod diff_cmd;
 mod effects_cmd;
@@ -44,6 +47,7 @@ pub fn run() -> ExitCode {
         Command::Effects(a) => effects_cmd::run(&a),
         Command::Cost(a) => cost_cmd::run(&a),
         Command::Compare(a) => compare_cmd::run(&a),
+        Command::Converge(a) => converge_cmd::run(&a),
         #[cfg(feature = "gui")]
         Command::View(a) => view_cmd::run(&a),
         #[cfg(not(feature = "gui"))]

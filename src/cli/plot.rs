@@ -7,7 +7,7 @@ use raytree::analysis::cost::CostReport;
 use std::sync::Once;
 
 /// Register egui's embedded Ubuntu Light as "sans-serif", so no system fonts are needed.
-fn register_font() {
+pub(super) fn register_font() {
     static ONCE: Once = Once::new();
     ONCE.call_once(|| {
         let _ = plotters::style::register_font(

@@ -13,11 +13,14 @@ pub fn run(a: &RenderArgs) -> Result<()> {
     let format = image_format(&a.output)?;
     let loaded = load(a.scene.as_deref(), &a.overrides)?;
     let scene = &loaded.scene;
-    super::budget::check_image(scene, super::budget::mib(a.overrides.max_memory))?;
-    let pending = Pending::create(
-        &a.output,
-        &Inputs::new(loaded.inputs.iter().map(|p| p.as_path())),
-    )?;
+    let mib = super::budget::mib(a.overrides.max_memory);
+    super::budget::check_image(scene, mib)?;
+    if a.denoise || a.features {
+        super::budget::check_image_with(scene, mib, super::denoise_out::PIXEL_BYTES)?;
+    }
+    let inputs = Inputs::new(loaded.inputs.iter().map(|p| p.as_path()));
+    let pending = Pending::create(&a.output, &inputs)?;
+    let guides = super::denoise_out::Guides::create(a, &inputs)?;
     let (w, h) = (scene.camera.width, scene.camera.height);
     let bar = ProgressBar::new(u64::from(h)).with_style(
         ProgressStyle::with_template("{msg} [{bar:40}] {pos}/{len} rows {elapsed_precise}")
@@ -27,7 +30,9 @@ pub fn run(a: &RenderArgs) -> Result<()> {
     bar.set_message(format!("rendering {} {w}x{h}", loaded.label));
     let start = Instant::now();
     let progress = |rows| bar.set_position(u64::from(rows));
-    let (image, stats) = if a.diagnose {
+    let (image, stats) = if let Some(g) = &guides {
+        g.render(scene, &progress)
+    } else if a.diagnose {
         let (image, stats, _) = raytree::render_diagnosed(scene, &progress);
         (image, stats)
     } else {
@@ -37,6 +42,9 @@ pub fn run(a: &RenderArgs) -> Result<()> {
     bar.finish_and_clear();
     let (bytes, clamped) = encode_counting(&image, format)?;
     pending.commit(&bytes)?;
+    if let Some(g) = guides {
+        g.commit(format)?;
+    }
     if clamped > 0 && format == ImageFormat::Exr {
         warnln!(
             "warning: {clamped} pixels had a channel beyond the 32-bit float range (3.4e38) and were clamped to it in {}",

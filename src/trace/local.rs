@@ -28,7 +28,7 @@ pub(super) struct Local {
 impl Tracer<'_> {
     /// The surface interaction of `hit` for `ray` arriving through `media`.
     #[inline(always)]
-    pub(super) fn surface<'s>(
+    pub(crate) fn surface<'s>(
         &'s self,
         ray: &Ray,
         hit: &Hit,

@@ -297,7 +297,7 @@ impl<'a> Tracer<'a> {
     /// Offset a spawn point on `object` (for meshes: on stored `triangle`) by the configured
     /// strategy ([`offset::spawn`]).
     #[inline]
-    fn spawn_ray(
+    pub(crate) fn spawn_ray(
         &self,
         (object, triangle): (usize, Option<u32>),
         point: DVec3,

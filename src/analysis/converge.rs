@@ -1,0 +1,293 @@
+//! Convergence of stochastic renders (issue 16): relative RMSE against a reference versus
+//! samples per pixel and versus seconds, per series (an estimator, sampler or setting), with the
+//! least-squares slope of each curve on log-log axes (a plain Monte Carlo estimator has slope
+//! -1/2 against samples). Pure apart from reading the clock.
+
+use crate::denoise::{DenoiseParams, denoise, gather_sampled};
+use crate::math::Rgb;
+use crate::render::{Image, render_sampled};
+use crate::sampling::{PixelSampler, SobolSampler, StratifiedJitter};
+use crate::scene::{IntegratorKind, Scene};
+use crate::trace::{Integrator, PathStrategy, PathTracer, SceneIntegrator};
+use serde::Serialize;
+use std::time::Instant;
+
+/// The relative error's offset: `(img - ref) / (ref + REL_OFFSET)`, as `benches/vs_mitsuba.py`.
+pub const REL_OFFSET: f64 = 0.01;
+
+/// Relative RMSE of `img` against `reference`: the root mean square over pixels and channels of
+/// `(img - ref) / (ref + 0.01)`; `None` if the sizes differ or the image is empty.
+#[must_use]
+pub fn rel_rmse(img: &Image, reference: &Image) -> Option<f64> {
+    if (img.width, img.height) != (reference.width, reference.height) || img.pixels.is_empty() {
+        return None;
+    }
+    let sq: f64 = img
+        .pixels
+        .iter()
+        .zip(&reference.pixels)
+        .map(|(a, r)| ((*a - *r) / (*r + Rgb::splat(REL_OFFSET))).length_squared())
+        .sum();
+    Some((sq / (3.0 * img.pixels.len() as f64)).sqrt())
+}
+
+/// The least-squares slope of `ln y` against `ln x` over the points with both positive and
+/// finite; `None` with fewer than two distinct `x`.
+#[must_use]
+pub fn loglog_slope(points: &[(f64, f64)]) -> Option<f64> {
+    let pts: Vec<(f64, f64)> = points
+        .iter()
+        .filter(|(x, y)| x.is_finite() && y.is_finite() && *x > 0.0 && *y > 0.0)
+        .map(|(x, y)| (x.ln(), y.ln()))
+        .collect();
+    let n = pts.len() as f64;
+    let mx = pts.iter().map(|p| p.0).sum::<f64>() / n;
+    let my = pts.iter().map(|p| p.1).sum::<f64>() / n;
+    let sxx: f64 = pts.iter().map(|p| (p.0 - mx).powi(2)).sum();
+    let sxy: f64 = pts.iter().map(|p| (p.0 - mx) * (p.1 - my)).sum();
+    (pts.len() >= 2 && sxx > 1e-12).then(|| sxy / sxx)
+}
+
+/// What one curve renders.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
+pub enum Series {
+    /// The scene's integrator as set (path: MIS), stratified jitter.
+    Default,
+    /// Path tracing with light sampling only.
+    LightOnly,
+    /// Path tracing with BSDF sampling only.
+    BsdfOnly,
+    /// The scene's integrator with the Owen-scrambled Sobol sampler.
+    Sobol,
+    /// The scene's integrator with Russian roulette from this bounce on.
+    RrDepth(u32),
+    /// [`Series::Default`] denoised ([`crate::denoise`]); its time includes the feature rays
+    /// and the filter.
+    Denoised,
+}
+
+impl Series {
+    /// Parse a `--series` name: `default`, `light-only`, `bsdf-only`, `sobol`, `rr:N`,
+    /// `denoise`.
+    ///
+    /// # Errors
+    /// An unknown name, with the accepted ones.
+    pub fn parse(s: &str) -> Result<Self, String> {
+        Ok(match s {
+            "default" => Self::Default,
+            "light-only" => Self::LightOnly,
+            "bsdf-only" => Self::BsdfOnly,
+            "sobol" => Self::Sobol,
+            "denoise" => Self::Denoised,
+            _ => match s.strip_prefix("rr:").map(str::parse::<u32>) {
+                Some(Ok(n)) => Self::RrDepth(n),
+                _ => {
+                    return Err(format!(
+                        "unknown series {s:?}: expected default, light-only, bsdf-only, sobol, rr:N or denoise"
+                    ));
+                }
+            },
+        })
+    }
+
+    /// The name in reports.
+    #[must_use]
+    pub fn name(&self) -> String {
+        match self {
+            Self::Default => "default".into(),
+            Self::LightOnly => "light-only".into(),
+            Self::BsdfOnly => "bsdf-only".into(),
+            Self::Sobol => "sobol".into(),
+            Self::RrDepth(n) => format!("rr:{n}"),
+            Self::Denoised => "denoise".into(),
+        }
+    }
+
+    /// Whether the series needs the path integrator.
+    #[must_use]
+    pub fn needs_path(&self) -> bool {
+        matches!(self, Self::LightOnly | Self::BsdfOnly | Self::RrDepth(_))
+    }
+
+    /// The default series for `scene`: for the path integrator the MIS estimator against light
+    /// and BSDF sampling alone, the Sobol sampler and the denoised default; otherwise the
+    /// default, Sobol and denoised.
+    #[must_use]
+    pub fn defaults(scene: &Scene) -> Vec<Self> {
+        if scene.settings.integrator == IntegratorKind::Path {
+            vec![
+                Self::Default,
+                Self::LightOnly,
+                Self::BsdfOnly,
+                Self::Sobol,
+                Self::Denoised,
+            ]
+        } else {
+            vec![Self::Default, Self::Sobol, Self::Denoised]
+        }
+    }
+}
+
+/// One point of a curve.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize)]
+pub struct Point {
+    /// Samples per pixel.
+    pub spp: u32,
+    /// Wall-clock seconds of the render (and filter).
+    pub seconds: f64,
+    /// Relative RMSE against the reference ([`rel_rmse`]).
+    pub rel_rmse: f64,
+}
+
+/// One curve and its fitted slopes.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct Curve {
+    /// The series.
+    pub series: Series,
+    /// Its name.
+    pub name: String,
+    /// One point per spp.
+    pub points: Vec<Point>,
+    /// Slope of log rel-RMSE against log spp.
+    pub slope_spp: Option<f64>,
+    /// Slope of log rel-RMSE against log seconds.
+    pub slope_seconds: Option<f64>,
+}
+
+/// Render `scene` at its settings' spp as `series` draws it; the image and the seconds taken.
+#[must_use]
+pub fn render_series(scene: &Scene, series: Series) -> (Image, f64) {
+    let mut s = scene.clone();
+    if let Series::RrDepth(n) = series {
+        s.settings.rr_depth = n;
+    }
+    let strat = StratifiedJitter::for_settings(&s.settings);
+    let start = Instant::now();
+    let image = match series {
+        Series::LightOnly => run(
+            &PathTracer::with_strategy(&s, PathStrategy::LightOnly),
+            &strat,
+        ),
+        Series::BsdfOnly => run(
+            &PathTracer::with_strategy(&s, PathStrategy::BsdfOnly),
+            &strat,
+        ),
+        Series::Sobol => {
+            let sobol = SobolSampler::new(s.settings.seed, (0, 0), 0);
+            run(&SceneIntegrator::new(&s), &sobol)
+        }
+        Series::Denoised => {
+            let (image, _, features) = gather_sampled(&SceneIntegrator::new(&s), &strat, &|_| {});
+            denoise(&image, &features, &DenoiseParams::default())
+        }
+        Series::Default | Series::RrDepth(_) => run(&SceneIntegrator::new(&s), &strat),
+    };
+    (image, start.elapsed().as_secs_f64())
+}
+
+fn run<I: Integrator, S: PixelSampler>(integrator: &I, sampler: &S) -> Image {
+    render_sampled(integrator, sampler, &|_| {}).0
+}
+
+/// The reference: the scene's integrator at `spp` samples per pixel.
+#[must_use]
+pub fn reference(scene: &Scene, spp: u32) -> Image {
+    let mut s = scene.clone();
+    s.settings.spp = spp.max(1);
+    render_series(&s, Series::Default).0
+}
+
+/// Every series at every spp of `spps` against `reference` (of the scene's size); `progress`
+/// is called with (renders done, renders in all).
+#[must_use]
+pub fn converge(
+    scene: &Scene,
+    reference: &Image,
+    series: &[Series],
+    spps: &[u32],
+    progress: &dyn Fn(usize, usize),
+) -> Vec<Curve> {
+    let total = series.len() * spps.len();
+    let mut done = 0;
+    let mut s = scene.clone();
+    series
+        .iter()
+        .map(|&se| {
+            let points: Vec<Point> = spps
+                .iter()
+                .map(|&spp| {
+                    s.settings.spp = spp.max(1);
+                    let (img, seconds) = render_series(&s, se);
+                    done += 1;
+                    progress(done, total);
+                    Point {
+                        spp: s.settings.spp,
+                        seconds,
+                        rel_rmse: rel_rmse(&img, reference).unwrap_or(f64::NAN),
+                    }
+                })
+                .collect();
+            let xy = |f: fn(&Point) -> f64| -> Vec<(f64, f64)> {
+                points.iter().map(|p| (f(p), p.rel_rmse)).collect()
+            };
+            Curve {
+                series: se,
+                name: se.name(),
+                slope_spp: loglog_slope(&xy(|p| f64::from(p.spp))),
+                slope_seconds: loglog_slope(&xy(|p| p.seconds)),
+                points,
+            }
+        })
+        .collect()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn slope_of_a_power_law_is_its_exponent() {
+        let pts: Vec<_> = [1.0, 2.0, 4.0, 8.0]
+            .iter()
+            .map(|&x: &f64| (x, 3.0 * x.powf(-0.5)))
+            .collect();
+        assert!((loglog_slope(&pts).unwrap() + 0.5).abs() < 1e-12);
+        assert_eq!(loglog_slope(&pts[..1]), None);
+        assert_eq!(loglog_slope(&[(1.0, 1.0), (1.0, 2.0)]), None);
+    }
+
+    #[test]
+    fn rel_rmse_is_relative_to_the_reference_plus_an_offset() {
+        let img = |v: f64| Image {
+            width: 2,
+            height: 1,
+            pixels: vec![Rgb::splat(v); 2],
+        };
+        assert_eq!(rel_rmse(&img(1.0), &img(1.0)), Some(0.0));
+        let e = rel_rmse(&img(1.5), &img(0.99)).unwrap();
+        assert!((e - 0.51).abs() < 1e-12, "{e}");
+        let small = Image {
+            width: 1,
+            height: 1,
+            pixels: vec![Rgb::ZERO],
+        };
+        assert_eq!(rel_rmse(&small, &img(1.0)), None);
+    }
+
+    #[test]
+    fn series_names_round_trip_and_bad_names_are_refused() {
+        for s in [
+            Series::Default,
+            Series::LightOnly,
+            Series::BsdfOnly,
+            Series::Sobol,
+            Series::RrDepth(3),
+            Series::Denoised,
+        ] {
+            assert_eq!(Series::parse(&s.name()), Ok(s));
+        }
+        let e = Series::parse("mis-off").unwrap_err();
+        assert!(e.contains("mis-off") && e.contains("rr:N"), "{e}");
+        assert!(Series::parse("rr:x").is_err());
+    }
+}

@@ -1,0 +1,81 @@
+//! `raytree render --denoise / --features`: the render with its guide buffers, the denoised
+//! image, and the albedo and normal images beside the output (`raytree::denoise`).
+
+use super::args::RenderArgs;
+use super::output::{ImageFormat, Inputs, Pending, encode_counting};
+use super::say::sayln;
+use anyhow::Result;
+use raytree::denoise::{DenoiseParams, Features, denoise, gather};
+use raytree::{Image, RenderStats, Scene, SceneIntegrator};
+use std::cell::RefCell;
+use std::path::Path;
+use std::time::Instant;
+
+/// Bytes a pixel may need at once with the features and the filter: the rows' per-pixel
+/// results (88), the features (64), the image (24), the demodulated albedo and illumination and
+/// their next pass (96), the variance and its blur (32), a pass's output (56), the encoders (24).
+pub const PIXEL_BYTES: u64 = 384;
+
+/// The reserved guide outputs (when `--features`) and what the render leaves for them.
+pub struct Guides {
+    denoise: bool,
+    files: Option<(Pending, Pending)>,
+    features: RefCell<Option<Features>>,
+}
+
+/// `out.png` -> `out.NAME.png`.
+fn beside(output: &Path, name: &str) -> std::path::PathBuf {
+    let ext = output.extension().and_then(|e| e.to_str()).unwrap_or("png");
+    output.with_extension(format!("{name}.{ext}"))
+}
+
+impl Guides {
+    /// `None` unless `--denoise` or `--features`; reserves the feature files.
+    pub fn create(a: &RenderArgs, inputs: &Inputs) -> Result<Option<Self>> {
+        if !a.denoise && !a.features {
+            return Ok(None);
+        }
+        let files = if a.features {
+            Some((
+                Pending::create(&beside(&a.output, "albedo"), inputs)?,
+                Pending::create(&beside(&a.output, "normal"), inputs)?,
+            ))
+        } else {
+            None
+        };
+        Ok(Some(Self {
+            denoise: a.denoise,
+            files,
+            features: RefCell::new(None),
+        }))
+    }
+
+    /// Render with the features (the same image as the plain render) and, with `--denoise`,
+    /// return the denoised image; prints the filter's time.
+    pub fn render(&self, scene: &Scene, progress: &(dyn Fn(u32) + Sync)) -> (Image, RenderStats) {
+        let (image, stats, features) = gather(&SceneIntegrator::new(scene), progress);
+        let image = if self.denoise {
+            let t = Instant::now();
+            let out = denoise(&image, &features, &DenoiseParams::default());
+            let _ = sayln!(
+                "denoised in {:.3} s (a-trous, {} passes; the traced trees are of the raw samples)",
+                t.elapsed().as_secs_f64(),
+                DenoiseParams::default().iterations
+            );
+            out
+        } else {
+            image
+        };
+        *self.features.borrow_mut() = Some(features);
+        (image, stats)
+    }
+
+    /// Write the albedo and normal images (with `--features`).
+    pub fn commit(self, format: ImageFormat) -> Result<()> {
+        if let (Some((albedo, normal)), Some(f)) = (self.files, self.features.into_inner()) {
+            albedo.commit(&encode_counting(&f.albedo_image(), format)?.0)?;
+            normal.commit(&encode_counting(&f.normal_image(), format)?.0)?;
+        }
+        Ok(())
+    }
+}

@@ -1,0 +1,228 @@
+//! The edge-avoiding a-trous wavelet filter (Dammertz, Sewtz, Hanika, Lensch 2010, "Edge-Avoiding
+//! A-Trous Wavelet Transform for fast Global Illumination Filtering", HPG): `iterations` passes
+//! of the 5x5 B3-spline kernel `h = [1/16, 1/4, 3/8, 1/4, 1/16]` with holes (step `2^i`), each
+//! tap weighted by edge-stopping functions of the guide features. As in SVGF (Schied et al.
+//! 2017, "Spatiotemporal Variance-Guided Filtering", HPG; here for one frame) the filter runs
+//! on the illumination (colour divided by albedo, multiplied back at the end), the luminance
+//! weight is `exp(-|l_p - l_q| / (sigma_l sqrt(g(var_p)) + eps))` with `g` a 3x3 Gaussian of
+//! the variance, and each pass also filters the variance (weights squared) so the next, wider
+//! pass trusts the smoothed signal more. Where the albedo is itself noisy (a lens blurs a
+//! texture) its edge stop widens by the albedos' variance and the albedo is filtered with the
+//! same weights; elsewhere the weights leave it as it is. With one sample per pixel the
+//! variance is estimated over the 5x5 neighbours of similar features, leaving out the brightest
+//! (so a firefly is not spread into its dark neighbours).
+
+use super::Features;
+use crate::bsdf::luminance;
+use crate::math::Rgb;
+use crate::render::Image;
+use glam::DVec3;
+use rayon::prelude::*;
+
+/// The filter's parameters.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct DenoiseParams {
+    /// A-trous passes (the footprint is `4 * 2^iterations - 3` pixels wide).
+    pub iterations: u32,
+    /// Luminance edge stopping, in standard deviations of the mean (SVGF: 4).
+    pub sigma_luminance: f64,
+    /// Normal edge stopping: weight `exp(-|n_p - n_q|^2 / sigma^2)` (Dammertz et al.).
+    pub sigma_normal: f64,
+    /// Albedo edge stopping: weight `exp(-|a_p - a_q|^2 / sigma^2)`.
+    pub sigma_albedo: f64,
+}
+
+impl Default for DenoiseParams {
+    fn default() -> Self {
+        Self {
+            iterations: 5,
+            sigma_luminance: 4.0,
+            sigma_normal: 0.3,
+            sigma_albedo: 0.1,
+        }
+    }
+}
+
+/// Below this an albedo channel is treated as 1 (no demodulation: emitters, black surfaces).
+const MIN_ALBEDO: f64 = 0.01;
+/// Keeps the luminance weight finite where the variance is 0.
+const EPS_LUMINANCE: f64 = 1e-10;
+/// Renders with fewer samples per pixel estimate the variance spatially (SVGF does so for the
+/// first frames of a pixel's history).
+const MIN_SPP_FOR_SAMPLE_VARIANCE: u32 = 4;
+
+/// B3 spline taps for offsets 0, 1, 2.
+const H: [f64; 3] = [3.0 / 8.0, 1.0 / 4.0, 1.0 / 16.0];
+
+/// The albedo used to demodulate: channels below [`MIN_ALBEDO`] become 1.
+fn demod(a: Rgb) -> Rgb {
+    Rgb::from_array(a.to_array().map(|c| if c >= MIN_ALBEDO { c } else { 1.0 }))
+}
+
+/// Denoise `image` with its `features` (same size). A pixel whose weights all vanish keeps its
+/// value; the output is finite wherever the input is.
+///
+/// # Panics
+/// If the features are not of the image's size (a programming error).
+#[must_use]
+pub fn denoise(image: &Image, features: &Features, p: &DenoiseParams) -> Image {
+    let (w, h) = (image.width as usize, image.height as usize);
+    assert_eq!(
+        (
+            features.width as usize,
+            features.height as usize,
+            features.albedo.len()
+        ),
+        (w, h, w * h),
+        "features of another image"
+    );
+    let mut albedo: Vec<Rgb> = features.albedo.iter().map(|&a| demod(a)).collect();
+    let mut illum: Vec<Rgb> = image
+        .pixels
+        .iter()
+        .zip(&albedo)
+        .map(|(c, a)| *c / *a)
+        .collect();
+    let mut var = variance(&illum, &albedo, features);
+    for i in 0..p.iterations {
+        let step = 1usize << i;
+        let g = gaussian3(&var, w, h);
+        // One pass: each pixel's (illumination, variance, albedo) from the previous pass,
+        // rows in parallel.
+        let pass = |c: usize| -> (Rgb, f64, Rgb) {
+            let (x, y) = (c % w, c / w);
+            let lp = luminance(illum[c]);
+            let sigma = p.sigma_luminance * g[c].max(0.0).sqrt() + EPS_LUMINANCE;
+            let (np, ap) = (features.normal[c], features.albedo[c]);
+            let vap = features.albedo_variance[c];
+            let (mut sum, mut wsum, mut vsum, mut asum) = (Rgb::ZERO, 0.0, 0.0, Rgb::ZERO);
+            for dy in -2i64..=2 {
+                let yq = y as i64 + dy * step as i64;
+                if yq < 0 || yq >= h as i64 {
+                    continue;
+                }
+                for dx in -2i64..=2 {
+                    let xq = x as i64 + dx * step as i64;
+                    if xq < 0 || xq >= w as i64 {
+                        continue;
+                    }
+                    let q = yq as usize * w + xq as usize;
+                    let kernel = H[dx.unsigned_abs() as usize] * H[dy.unsigned_abs() as usize];
+                    let wl = (-(lp - luminance(illum[q])).abs() / sigma).exp();
+                    let wn = edge(np, features.normal[q], p.sigma_normal);
+                    // An albedo that is itself noisy (a lens, the pixel footprint) widens its
+                    // edge stop by the variance of the difference of the two means.
+                    let s2 = p.sigma_albedo * p.sigma_albedo + (vap + features.albedo_variance[q]);
+                    let wa = (-(ap - features.albedo[q]).length_squared() / s2).exp();
+                    let wt = kernel * wl * wn * wa;
+                    sum += illum[q] * wt;
+                    wsum += wt;
+                    vsum += wt * wt * var[q];
+                    asum += albedo[q] * wt;
+                }
+            }
+            if wsum > 0.0 && wsum.is_finite() && sum.is_finite() {
+                (sum / wsum, vsum / (wsum * wsum), asum / wsum)
+            } else {
+                (illum[c], var[c], albedo[c])
+            }
+        };
+        let out: Vec<(Rgb, f64, Rgb)> = (0..w * h).into_par_iter().map(pass).collect();
+        let next_illum = out.iter().map(|o| o.0).collect();
+        let next_var = out.iter().map(|o| o.1).collect();
+        let next_albedo = out.iter().map(|o| o.2).collect();
+        illum = next_illum;
+        var = next_var;
+        albedo = next_albedo;
+    }
+    let pixels = illum
+        .iter()
+        .zip(&albedo)
+        .zip(&image.pixels)
+        .map(|((l, a), orig)| {
+            let v = *l * *a;
+            if v.is_finite() { v } else { *orig }
+        })
+        .collect();
+    Image {
+        width: image.width,
+        height: image.height,
+        pixels,
+    }
+}
+
+/// `exp(-|a - b|^2 / sigma^2)`.
+fn edge(a: DVec3, b: DVec3, sigma: f64) -> f64 {
+    (-(a - b).length_squared() / (sigma * sigma)).exp()
+}
+
+/// The variance of each pixel's illumination luminance: from its samples when there are
+/// enough (the colour's variance over the albedo's luminance squared), else the spread of the
+/// illumination over the 5x5 neighbours of similar features (the neighbours stand in for the
+/// missing samples), or 0 for a deterministic render of one sample.
+fn variance(illum: &[Rgb], albedo: &[Rgb], f: &Features) -> Vec<f64> {
+    let (w, h) = (f.width as usize, f.height as usize);
+    if f.spp >= MIN_SPP_FOR_SAMPLE_VARIANCE || !f.stochastic {
+        return f
+            .variance
+            .iter()
+            .zip(albedo)
+            .map(|(v, a)| v / luminance(*a).max(MIN_ALBEDO).powi(2))
+            .collect();
+    }
+    let d = DenoiseParams::default();
+    let mut out = vec![0.0; w * h];
+    for y in 0..h {
+        for x in 0..w {
+            let c = y * w + x;
+            let (mut s0, mut s1, mut s2) = (0.0, 0.0, 0.0);
+            // The brightest neighbour (not the pixel itself) is left out: one rare bright
+            // sample (a caustic firefly) would otherwise make its dark neighbours accept it
+            // and spread it.
+            let mut brightest = (0.0, 0.0, f64::NEG_INFINITY);
+            for yq in y.saturating_sub(2)..(y + 3).min(h) {
+                for xq in x.saturating_sub(2)..(x + 3).min(w) {
+                    let q = yq * w + xq;
+                    let wt = edge(f.normal[c], f.normal[q], d.sigma_normal)
+                        * edge(f.albedo[c], f.albedo[q], d.sigma_albedo);
+                    let l = luminance(illum[q]);
+                    s0 += wt;
+                    s1 += wt * l;
+                    s2 += wt * l * l;
+                    if q != c && l > brightest.2 {
+                        brightest = (wt, wt * l, l);
+                    }
+                }
+            }
+            if brightest.2.is_finite() && s0 - brightest.0 > 0.0 {
+                let (bw, bl, l) = brightest;
+                s0 -= bw;
+                s1 -= bl;
+                s2 -= bl * l;
+            }
+            let m = s1 / s0;
+            out[c] = (s2 / s0 - m * m).max(0.0);
+        }
+    }
+    out
+}
+
+/// The variance blurred by the 3x3 Gaussian `[1/4, 1/2, 1/4]^2` (renormalised at the border).
+fn gaussian3(v: &[f64], w: usize, h: usize) -> Vec<f64> {
+    const K: [f64; 2] = [0.5, 0.25];
+    let mut out = vec![0.0; v.len()];
+    for y in 0..h {
+        for x in 0..w {
+            let (mut s, mut ws) = (0.0, 0.0);
+            for yq in y.saturating_sub(1)..(y + 2).min(h) {
+                for xq in x.saturating_sub(1)..(x + 2).min(w) {
+                    let k = K[yq.abs_diff(y)] * K[xq.abs_diff(x)];
+                    s += k * v[yq * w + xq];
+                    ws += k;
+                }
+            }
+            out[y * w + x] = s / ws;
+        }
+    }
+    out
+}
