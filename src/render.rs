@@ -104,7 +104,7 @@ fn film_position<S: PixelSampler>(sampler: &mut S, x: u32, y: u32, s: u32) -> (f
 ///
 /// [`Film::lens_ray`]: crate::scene::Film::lens_ray
 #[inline(always)]
-fn camera_sample<S: PixelSampler>(
+pub(crate) fn camera_sample<S: PixelSampler>(
     film: &Film<'_>,
     filter: PixelFilter,
     sampler: &mut S,

@@ -153,9 +153,10 @@ impl<'a> PathTracer<'a> {
         let mut lpe = String::new();
         let mut chain: Vec<Link> = Vec::new();
         let mut depth = 0u32;
+        let mut ended = EndReason::Miss;
         loop {
             counts.add_kind(kind);
-            if R::RECORDS {
+            if R::PATHS {
                 lpe.push_str(match sampled.0 {
                     None => "C",
                     Some(k) => event(k),
@@ -218,6 +219,10 @@ impl<'a> PathTracer<'a> {
                 // An escaping ray sees the background (not sampled by light sampling: weight 1).
                 let c = beta * scene.background;
                 l += c;
+                ended = EndReason::Miss;
+                if R::PATHS {
+                    rec.contribution(&lpe, "", 'B', c);
+                }
                 link.local = scene.background;
                 rec.update(id, |n| {
                     n.end = EndReason::Miss;
@@ -255,6 +260,9 @@ impl<'a> PathTracer<'a> {
                 let emitted = m.emission * w;
                 let c = beta * emitted;
                 l += c;
+                if R::PATHS {
+                    rec.contribution(&lpe, "", 'L', c);
+                }
                 link.local = emitted;
                 rec.update(id, |n| {
                     n.emitted = emitted;
@@ -265,7 +273,8 @@ impl<'a> PathTracer<'a> {
                     }
                 });
             }
-            let end = |reason: EndReason, rec: &mut R, link: &Link| {
+            let mut end = |reason: EndReason, rec: &mut R, link: &Link| {
+                ended = reason;
                 rec.update(id, |n| {
                     n.end = reason;
                     n.local = link.local;
@@ -388,6 +397,9 @@ impl<'a> PathTracer<'a> {
             depth += 1;
         }
         counts.budget_samples += u64::from(counts.budget_cuts > cuts);
+        if R::PATHS {
+            rec.path_end(depth + 1, ended);
+        }
         if R::RECORDS {
             // Each ray's radiance: attenuation x (local + next weight x the next ray's), so the
             // tree reads as Whitted's (analysis::invariants).
