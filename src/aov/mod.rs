@@ -14,6 +14,7 @@
 
 mod classes;
 mod mc;
+mod nodes;
 mod recorder;
 mod spec;
 #[cfg(test)]
@@ -21,7 +22,8 @@ mod tests;
 mod versus;
 
 pub use classes::{CLASSES, Class, standard_classes};
-pub use mc::{McPixel, McView, ramp};
+pub use mc::{McPixel, McView, ramp, spread};
+pub use nodes::{classify, pixel_from_nodes};
 pub use recorder::{AovRecorder, MAX_AOVS};
 pub use spec::{Aov, AovSpecError, parse_aovs};
 pub use versus::{ClassShare, Versus, versus};
@@ -182,7 +184,12 @@ fn pixel<I: Integrator, S: PixelSampler>(
             for (a, c) in aov.iter_mut().zip(&rec.sample) {
                 *a += *c;
             }
-            lums.push(crate::bsdf::luminance(l));
+            // (A non-finite Whitted sample makes a black pixel: it adds no spread.)
+            lums.push(if l.is_finite() {
+                crate::bsdf::luminance(l)
+            } else {
+                0.0
+            });
         } else {
             // Dropped as the render drops it: black, counted.
             counts.dropped_samples += 1;

@@ -64,6 +64,15 @@ fn the_standard_classes_partition_every_path_string() {
         }
     }
     assert!(checked > 1000);
+    // classify, the inspector's regex-free rule, agrees with the expressions.
+    for s in &strings {
+        for end in ['L', 'B'] {
+            let path = format!("{s}{end}");
+            let k = lpes.iter().position(|l| l.matches(&path));
+            assert_eq!(classify(&path), k, "{path}");
+        }
+        assert_eq!(classify(s), None, "{s}");
+    }
     assert!(lpes[4].matches("C<RD><TS><TS>L") && lpes[5].matches("C<RS><RD><TS><RG>B"));
 }
 
@@ -296,4 +305,31 @@ fn whitted_misses_the_caustic_under_the_ball() {
     // The classes sum to the path-traced image.
     let sum: f64 = v.classes.iter().map(|c| c.luminance).sum();
     assert!((sum - v.path_luminance).abs() <= 1e-9 * v.path_luminance);
+}
+
+#[test]
+fn the_inspectors_node_statistics_are_the_light_recorders() {
+    let scene = caustic(16);
+    let lpes = standard_classes();
+    let r = render_aovs(&SceneIntegrator::new(&scene), &lpes, &|_| {}).unwrap();
+    let w = scene.camera.width;
+    for (x, y) in [(98, 112), (60, 140), (150, 100), (5, 5)] {
+        let tree = crate::trace_pixel(&scene, x, y).unwrap();
+        let (px, shares) = pixel_from_nodes(&tree.nodes);
+        let i = (y * w + x) as usize;
+        let want = r.mc[i];
+        assert_eq!(
+            (px.samples, px.dropped, px.roulette),
+            (want.samples, want.dropped, want.roulette)
+        );
+        assert!((px.rel_err - want.rel_err).abs() <= 1e-12 * want.rel_err.max(1.0));
+        assert!((px.path_length - want.path_length).abs() <= 1e-12);
+        for (k, s) in shares.iter().enumerate() {
+            let v = McView::Share(k).value(&r, i);
+            assert!((s - v).abs() <= 1e-9, "class {k}: {s} vs {v}");
+        }
+    }
+    // Under the ball the caustic class dominates.
+    let (_, shares) = pixel_from_nodes(&crate::trace_pixel(&scene, 98, 112).unwrap().nodes);
+    assert!(shares[4] > 0.5, "{shares:?}");
 }
