@@ -153,7 +153,6 @@ impl<'a> PathTracer<'a> {
         let mut lpe = String::new();
         let mut chain: Vec<Link> = Vec::new();
         let mut depth = 0u32;
-        let mut ended = EndReason::Miss;
         loop {
             counts.add_kind(kind);
             if R::PATHS {
@@ -219,9 +218,9 @@ impl<'a> PathTracer<'a> {
                 // An escaping ray sees the background (not sampled by light sampling: weight 1).
                 let c = beta * scene.background;
                 l += c;
-                ended = EndReason::Miss;
                 if R::PATHS {
                     rec.contribution(&lpe, "", 'B', c);
+                    rec.path_end(depth + 1, EndReason::Miss);
                 }
                 link.local = scene.background;
                 rec.update(id, |n| {
@@ -273,8 +272,10 @@ impl<'a> PathTracer<'a> {
                     }
                 });
             }
-            let mut end = |reason: EndReason, rec: &mut R, link: &Link| {
-                ended = reason;
+            let end = |reason: EndReason, rec: &mut R, link: &Link| {
+                if R::PATHS && reason != EndReason::Continued {
+                    rec.path_end(depth + 1, reason);
+                }
                 rec.update(id, |n| {
                     n.end = reason;
                     n.local = link.local;
@@ -397,9 +398,6 @@ impl<'a> PathTracer<'a> {
             depth += 1;
         }
         counts.budget_samples += u64::from(counts.budget_cuts > cuts);
-        if R::PATHS {
-            rec.path_end(depth + 1, ended);
-        }
         if R::RECORDS {
             // Each ray's radiance: attenuation x (local + next weight x the next ray's), so the
             // tree reads as Whitted's (analysis::invariants).
