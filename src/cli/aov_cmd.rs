@@ -8,6 +8,7 @@ use super::load::load;
 use super::output::{Inputs, Pending, encode_counting, image_format};
 use super::say::{sayln, warnln};
 use anyhow::{Result, bail};
+use indicatif::{ProgressBar, ProgressStyle};
 use raytree::aov::{AovRender, McView, parse_aovs, ramp, render_aovs};
 use raytree::scene::IntegratorKind;
 use std::path::{Path, PathBuf};
@@ -58,7 +59,11 @@ pub fn run(a: &RenderArgs) -> Result<()> {
             v.file_name(&[])
         );
     }
-    super::budget::check_image(scene, super::budget::mib(a.overrides.max_memory))?;
+    super::budget::check_aov_images(
+        scene,
+        aovs.len(),
+        super::budget::mib(a.overrides.max_memory),
+    )?;
     let names: Vec<&str> = aovs.iter().map(|x| x.name.as_str()).collect();
     let ext = a
         .output
@@ -84,10 +89,19 @@ pub fn run(a: &RenderArgs) -> Result<()> {
         .map(|p| Pending::create(p, &inputs))
         .collect::<Result<Vec<_>>>()?;
     let lpes: Vec<_> = aovs.iter().map(|x| x.lpe.clone()).collect();
+    let bar = ProgressBar::new(u64::from(scene.camera.height)).with_style(
+        ProgressStyle::with_template("{msg} [{bar:40}] {pos}/{len} rows {elapsed_precise}")
+            .expect("valid template")
+            .progress_chars("=> "),
+    );
+    bar.set_message(format!("rendering {} with AOVs", loaded.label));
     let start = Instant::now();
     let integrator = raytree::SceneIntegrator::new(scene);
-    let r = render_aovs(&integrator, &lpes, &|_| {})?;
+    let r = render_aovs(&integrator, &lpes, &|rows| {
+        bar.set_position(u64::from(rows))
+    })?;
     let secs = start.elapsed().as_secs_f64();
+    bar.finish_and_clear();
     let mut files = Vec::new();
     let (bytes, _) = encode_counting(&r.beauty, format)?;
     files.push(bytes);
