@@ -88,31 +88,35 @@ pub fn render_aovs<I: Integrator>(
     let (w, h) = (scene.camera.width, scene.camera.height);
     let sampler = StratifiedJitter::for_settings(&scene.settings);
     let done = std::sync::atomic::AtomicU32::new(0);
+    // A recorder per rayon work split (`map_init`: a few per thread), so each distinct path
+    // string is matched a few times per thread, not once per row.
     let rows: Vec<Row> = (0..h)
         .into_par_iter()
-        .map(|y| {
-            let mut rec = AovRecorder::new(lpes);
-            let mut sampler = sampler;
-            let mut counts = RayCounts::default();
-            let mut lums = Vec::new();
-            let mut row: Row = (Vec::new(), Vec::new(), Vec::new(), RayCounts::default());
-            for x in 0..w {
-                let px = pixel(
-                    integrator,
-                    &mut sampler,
-                    &mut rec,
-                    (x, y),
-                    &mut counts,
-                    &mut lums,
-                );
-                row.0.push(px.0);
-                row.1.extend(px.1);
-                row.2.push(px.2);
-            }
-            row.3 = counts;
-            progress(done.fetch_add(1, std::sync::atomic::Ordering::Relaxed) + 1);
-            row
-        })
+        .map_init(
+            || AovRecorder::new(lpes),
+            |rec, y| {
+                let mut sampler = sampler;
+                let mut counts = RayCounts::default();
+                let mut lums = Vec::new();
+                let mut row: Row = (Vec::new(), Vec::new(), Vec::new(), RayCounts::default());
+                for x in 0..w {
+                    let px = pixel(
+                        integrator,
+                        &mut sampler,
+                        rec,
+                        (x, y),
+                        &mut counts,
+                        &mut lums,
+                    );
+                    row.0.push(px.0);
+                    row.1.extend(px.1);
+                    row.2.push(px.2);
+                }
+                row.3 = counts;
+                progress(done.fetch_add(1, std::sync::atomic::Ordering::Relaxed) + 1);
+                row
+            },
+        )
         .collect();
     let k = lpes.len();
     let n = (w * h) as usize;
