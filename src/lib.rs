@@ -7,6 +7,7 @@
 #![warn(missing_docs)]
 
 pub mod analysis;
+pub mod aov;
 pub mod bsdf;
 pub mod bvh;
 pub mod codec;

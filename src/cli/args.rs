@@ -39,6 +39,9 @@ pub enum Command {
     Explain(super::explain_cmd::ExplainArgs),
     /// Trace one pixel under two sets of overrides (or two scenes) and print where the trees differ.
     Diff(super::diff_cmd::DiffArgs),
+    /// Whitted vs path tracing side by side, the difference image, and what Whitted misses by
+    /// light path class.
+    Versus(super::versus_cmd::VersusArgs),
 }
 
 /// Settings every tracing command can override (defaults come from the scene file).
@@ -132,6 +135,14 @@ pub struct RenderArgs {
     /// OUT.normal.EXT (the normal mapped from [-1, 1] to [0, 1]).
     #[arg(long)]
     pub features: bool,
+    /// Also write the image of the paths matching a light path expression (OSL grammar, path
+    /// integrator), NAME=LPE, to OUTPUT.NAME.png/.exr; repeatable.
+    #[arg(long = "aov", value_name = "NAME=LPE")]
+    pub aov: Vec<String>,
+    /// Also write a Monte Carlo debug view with a legend to OUTPUT.view-VIEW.png: noise, spp,
+    /// path-length, roulette, dropped or share:AOV; repeatable.
+    #[arg(long = "debug-view", value_name = "VIEW")]
+    pub debug_view: Vec<String>,
     /// Settings overrides.
     #[command(flatten)]
     pub overrides: Overrides,

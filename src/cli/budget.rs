@@ -70,6 +70,22 @@ pub fn check_image_with(scene: &Scene, mib: u64, per_pixel: u64) -> Result<()> {
     Ok(())
 }
 
+/// Refuse an AOV render (`render --aov`) that cannot fit the budget: the beauty image, one
+/// image per AOV and the per-pixel statistics ([`raytree::aov::McPixel`]).
+pub fn check_aov_images(scene: &Scene, aovs: usize, mib: u64) -> Result<()> {
+    let (w, h) = (scene.camera.width, scene.camera.height);
+    let per_pixel =
+        PIXEL_BYTES * (1 + aovs as u64) + std::mem::size_of::<raytree::aov::McPixel>() as u64;
+    let need = u64::from(w) * u64::from(h) * per_pixel;
+    if need > budget_bytes(mib) {
+        bail!(
+            "a {w}x{h} image with {aovs} AOVs needs about {} ({per_pixel} bytes per pixel), more than the memory budget of {mib} MiB; use a smaller --size, fewer --aov or raise --max-memory",
+            gib(need)
+        );
+    }
+    Ok(())
+}
+
 /// Lower the scene's per-sample ray budget so that the recorded tree of one pixel fits the
 /// memory budget; refuse when not even each sample's camera and shadow rays fit. Returns the
 /// ray budget when the memory lowered it.

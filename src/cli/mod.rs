@@ -4,6 +4,7 @@
 
 mod acne_cmd;
 mod acne_figures;
+mod aov_cmd;
 mod args;
 mod budget;
 mod canvas;
@@ -23,6 +24,7 @@ mod plot;
 mod render_cmd;
 mod say;
 mod trace_cmd;
+mod versus_cmd;
 #[cfg(feature = "gui")]
 mod view_cmd;
 
@@ -57,6 +59,7 @@ pub fn run() -> ExitCode {
         Command::Diagram(a) => diagram_cmd::run(&a),
         Command::Explain(a) => explain_cmd::run(&a),
         Command::Diff(a) => diff_cmd::run(&a),
+        Command::Versus(a) => versus_cmd::run(&a),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,

@@ -10,6 +10,14 @@ use std::time::Instant;
 
 /// Render the scene to a PNG or EXR file and report time and rays.
 pub fn run(a: &RenderArgs) -> Result<()> {
+    if !a.aov.is_empty() || !a.debug_view.is_empty() {
+        if a.denoise || a.features {
+            anyhow::bail!(
+                "--denoise and --features do not combine with --aov or --debug-view: render them in two runs"
+            );
+        }
+        return super::aov_cmd::run(a);
+    }
     let format = image_format(&a.output)?;
     let loaded = load(a.scene.as_deref(), &a.overrides)?;
     let scene = &loaded.scene;

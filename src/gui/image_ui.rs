@@ -378,8 +378,10 @@ fn legend(painter: &egui::Painter, area: Rect, doc: &Document) {
     painter.text(
         bar.right_bottom() + vec2(0.0, 3.0),
         Align2::RIGHT_TOP,
-        if view.clips() {
+        if view.clips() && max >= 10.0 {
             format!("{max:.0} and above (99th percentile)")
+        } else if view.clips() {
+            format!("{max:.3} and above (99th percentile)")
         } else {
             format!("{max:.3}")
         },

@@ -1,6 +1,7 @@
 //! Per-pixel debug statistics for the false-colour views, gathered by a cheap [`Recorder`] during
 //! the same pass that renders the image (so the colour is bit-identical to `raytree render`).
 
+use crate::aov::CLASSES;
 use crate::math::Rgb;
 use crate::trace::Recorder;
 use crate::tree::{EndReason, NodeId, RayNode};
@@ -24,6 +25,19 @@ pub struct PixelStats {
     /// Acceleration-structure work of every ray: BVH nodes plus primitive tests
     /// ([`crate::bvh::TraversalCost::total`]), the traversal heat map.
     pub traversal: u32,
+    /// Monte Carlo statistics of the samples ([`crate::aov::pixel_from_nodes`]): relative
+    /// standard error of the pixel mean.
+    pub rel_err: f32,
+    /// Samples taken.
+    pub samples: u32,
+    /// Mean path rays per sample (path integrator).
+    pub path_length: f32,
+    /// Russian-roulette terminations.
+    pub roulette: u32,
+    /// NaN/Inf samples dropped.
+    pub dropped: u32,
+    /// Share of each light transport class ([`crate::aov::CLASSES`]) in the pixel.
+    pub shares: [f32; CLASSES.len()],
 }
 
 /// A [`Recorder`] that keeps a small scratch arena for one pixel and folds it into
@@ -78,6 +92,13 @@ pub fn summarize(nodes: &[RayNode], spp: u32) -> PixelStats {
         }
     }
     s.cut = (cut / f64::from(spp.max(1))) as f32;
+    let (mc, shares) = crate::aov::pixel_from_nodes(nodes);
+    s.rel_err = mc.rel_err as f32;
+    s.samples = mc.samples;
+    s.path_length = mc.path_length as f32;
+    s.roulette = mc.roulette;
+    s.dropped = mc.dropped;
+    s.shares = shares.map(|x| x as f32);
     s
 }
 
@@ -101,11 +122,33 @@ pub enum DebugView {
     Cut,
     /// BVH nodes and primitive tests of all the pixel's rays.
     Traversal,
+    /// Relative standard error of the pixel mean (Monte Carlo noise).
+    Noise,
+    /// Samples per pixel.
+    Samples,
+    /// Mean path rays per sample.
+    PathLength,
+    /// Russian-roulette terminations.
+    Roulette,
+    /// NaN/Inf samples dropped.
+    Dropped,
+    /// Share of light transport class `k` ([`crate::aov::CLASSES`]) in the pixel.
+    Share(u8),
 }
+
+/// Menu labels of the class shares, in [`CLASSES`] order.
+const SHARE_LABELS: [&str; CLASSES.len()] = [
+    "share: emission (CS*L)",
+    "share: background (CS*B)",
+    "share: direct (CS*[DG]L)",
+    "share: environment (CS*[DG]B)",
+    "share: caustics (CS*[DG]S+[LB])",
+    "share: indirect (CS*[DG]S*[DG].*[LB])",
+];
 
 impl DebugView {
     /// All views in menu order.
-    pub const ALL: [DebugView; 8] = [
+    pub const ALL: [DebugView; 19] = [
         DebugView::Off,
         DebugView::Depth,
         DebugView::Rays,
@@ -114,6 +157,17 @@ impl DebugView {
         DebugView::Leaks,
         DebugView::Cut,
         DebugView::Traversal,
+        DebugView::Noise,
+        DebugView::Samples,
+        DebugView::PathLength,
+        DebugView::Roulette,
+        DebugView::Dropped,
+        DebugView::Share(0),
+        DebugView::Share(1),
+        DebugView::Share(2),
+        DebugView::Share(3),
+        DebugView::Share(4),
+        DebugView::Share(5),
     ];
 
     /// Menu label.
@@ -128,13 +182,19 @@ impl DebugView {
             DebugView::Leaks => "offset leaks",
             DebugView::Cut => "weight cut by max depth",
             DebugView::Traversal => "BVH traversal cost",
+            DebugView::Noise => "noise (relative standard error)",
+            DebugView::Samples => "samples per pixel",
+            DebugView::PathLength => "mean path length (rays per sample)",
+            DebugView::Roulette => "Russian-roulette terminations",
+            DebugView::Dropped => "NaN/Inf samples dropped",
+            DebugView::Share(k) => SHARE_LABELS.get(usize::from(k)).copied().unwrap_or("share"),
         }
     }
 
     /// Whether the colour range ends at the 99th percentile rather than the maximum.
     #[must_use]
     pub fn clips(self) -> bool {
-        self == DebugView::Traversal
+        matches!(self, DebugView::Traversal | DebugView::Noise)
     }
 
     /// The scalar this view maps to colour.
@@ -149,6 +209,12 @@ impl DebugView {
             DebugView::Leaks => s.leaks as f32,
             DebugView::Cut => s.cut,
             DebugView::Traversal => s.traversal as f32,
+            DebugView::Noise => s.rel_err,
+            DebugView::Samples => s.samples as f32,
+            DebugView::PathLength => s.path_length,
+            DebugView::Roulette => s.roulette as f32,
+            DebugView::Dropped => s.dropped as f32,
+            DebugView::Share(k) => s.shares.get(usize::from(k)).copied().unwrap_or(0.0),
         }
     }
 }
@@ -159,6 +225,9 @@ impl DebugView {
 /// ([`DebugView::clips`]).
 #[must_use]
 pub fn range(view: DebugView, stats: &[PixelStats]) -> (f32, f32) {
+    if matches!(view, DebugView::Share(_)) {
+        return (0.0, 1.0);
+    }
     let max = if view.clips() && !stats.is_empty() {
         let mut v: Vec<f32> = stats.iter().map(|s| view.value(s)).collect();
         let k = (v.len() - 1) * 99 / 100;
@@ -169,27 +238,7 @@ pub fn range(view: DebugView, stats: &[PixelStats]) -> (f32, f32) {
     (0.0, if max > 0.0 { max } else { 1.0 })
 }
 
-/// A perceptually ordered ramp (a compact "turbo"-like map): black for zero, then blue, cyan,
-/// green, yellow, red as `t` goes from 0 to 1. Returns sRGB bytes.
-#[must_use]
-pub fn ramp(t: f32) -> [u8; 3] {
-    if t <= 0.0 {
-        return [0, 0, 0];
-    }
-    const STOPS: [[f32; 3]; 6] = [
-        [0.05, 0.05, 0.35],
-        [0.1, 0.35, 0.95],
-        [0.1, 0.85, 0.85],
-        [0.3, 0.9, 0.2],
-        [0.98, 0.85, 0.1],
-        [0.9, 0.1, 0.1],
-    ];
-    let x = t.clamp(0.0, 1.0) * (STOPS.len() - 1) as f32;
-    let i = (x.floor() as usize).min(STOPS.len() - 2);
-    let f = x - i as f32;
-    let c = |k: usize| STOPS[i][k] + (STOPS[i + 1][k] - STOPS[i][k]) * f;
-    [0, 1, 2].map(|k| (c(k) * 255.0 + 0.5) as u8)
-}
+pub use crate::aov::ramp;
 
 /// sRGB bytes of one pixel in `view` given its `(0, max)` range.
 #[must_use]

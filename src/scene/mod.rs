@@ -429,6 +429,7 @@ impl Scene {
     /// (sphere by its cone, quad, triangle and mesh by area; boxes and planes are not
     /// sampled): the sampler and the emitted radiance.
     #[must_use]
+    #[inline]
     pub fn area_light(&self, i: usize) -> Option<(AreaEmitter<'_>, Rgb)> {
         let emission = self.material_of(i).emission;
         if emission.max_element() <= 0.0 {

@@ -1,6 +1,7 @@
 //! The recorder hook: a generic parameter of the tracer, so the no-op one compiles away.
 
-use crate::tree::{NodeId, RayNode};
+use crate::math::Rgb;
+use crate::tree::{EndReason, NodeId, RayNode};
 
 /// Receives the rays of a trace. All methods take closures so that a recorder that ignores them
 /// never builds the node data.
@@ -17,6 +18,24 @@ pub trait Recorder {
     fn push(&mut self, parent: Option<NodeId>, make: impl FnOnce() -> RayNode) -> Option<NodeId>;
     /// Fill in node `id` once its results are known.
     fn update(&mut self, id: Option<NodeId>, edit: impl FnOnce(&mut RayNode));
+
+    /// Whether the path integrator builds each path's light path expression and reports its
+    /// contributions and ends through [`Recorder::contribution`] and [`Recorder::path_end`]
+    /// (a recorder that keeps only those, `crate::aov::AovRecorder`, says `true` without
+    /// recording nodes). Defaults to [`Recorder::RECORDS`].
+    const PATHS: bool = Self::RECORDS;
+
+    /// The path integrator added `c` to the sample's radiance, through the path whose light
+    /// path expression is `lpe` followed by `event` and `end` (`L` or `B`), e.g. `C<RD>`,
+    /// `<TS>`, `L`. Called where the sample's radiance grows, in that order, only when
+    /// [`Recorder::PATHS`].
+    #[inline(always)]
+    fn contribution(&mut self, _lpe: &str, _event: &str, _end: char, _c: Rgb) {}
+
+    /// The path integrator's sample ended after `segments` path rays (the camera ray and its
+    /// continuations, shadow rays not counted) for `reason`. Only when [`Recorder::PATHS`].
+    #[inline(always)]
+    fn path_end(&mut self, _segments: u32, _reason: EndReason) {}
 }
 
 /// Records nothing; the render path uses it.

@@ -155,7 +155,7 @@ impl<'a> PathTracer<'a> {
         let mut depth = 0u32;
         loop {
             counts.add_kind(kind);
-            if R::RECORDS {
+            if R::PATHS {
                 lpe.push_str(match sampled.0 {
                     None => "C",
                     Some(k) => event(k),
@@ -218,6 +218,10 @@ impl<'a> PathTracer<'a> {
                 // An escaping ray sees the background (not sampled by light sampling: weight 1).
                 let c = beta * scene.background;
                 l += c;
+                if R::PATHS {
+                    rec.contribution(&lpe, "", 'B', c);
+                    rec.path_end(depth + 1, EndReason::Miss);
+                }
                 link.local = scene.background;
                 rec.update(id, |n| {
                     n.end = EndReason::Miss;
@@ -255,6 +259,9 @@ impl<'a> PathTracer<'a> {
                 let emitted = m.emission * w;
                 let c = beta * emitted;
                 l += c;
+                if R::PATHS {
+                    rec.contribution(&lpe, "", 'L', c);
+                }
                 link.local = emitted;
                 rec.update(id, |n| {
                     n.emitted = emitted;
@@ -266,6 +273,9 @@ impl<'a> PathTracer<'a> {
                 });
             }
             let end = |reason: EndReason, rec: &mut R, link: &Link| {
+                if R::PATHS && reason != EndReason::Continued {
+                    rec.path_end(depth + 1, reason);
+                }
                 rec.update(id, |n| {
                     n.end = reason;
                     n.local = link.local;

@@ -205,6 +205,10 @@ impl PathTracer<'_> {
             weight * radiance
         };
         let c = beta * local;
+        if R::PATHS {
+            let reflect = up == (si.wo.dot(si.n) > 0.0);
+            rec.contribution(lpe, lobe_event(bsdf, reflect), 'L', c);
+        }
         rec.update(id, |node| {
             node.traversal = cost;
             node.radiance = radiance;

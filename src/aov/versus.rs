@@ -1,0 +1,132 @@
+//! Whitted vs path tracing of one scene: both images, and the difference broken down by the
+//! light transport classes ([`super::CLASSES`]) the path tracer's paths fall into.
+//!
+//! Over a region (the whole image by default) the path-traced luminance is the sum of its
+//! classes' AOVs. The classes Whitted cannot render (environment light on diffuse surfaces,
+//! caustics, indirect light) are what it misses; the classes both render (emission, background,
+//! direct light) still differ by Whitted's approximations (ambient, Blinn-Phong highlights,
+//! translucent shadows) and by Monte Carlo noise: that difference, `shared - whitted`, is
+//! reported as one more term. Shares are of the sum of the magnitudes of these terms.
+
+use super::{AovError, AovRender, CLASSES, render_aovs, standard_classes};
+use crate::bsdf::luminance;
+use crate::render::{Image, RenderStats};
+use crate::scene::{IntegratorKind, Scene};
+use crate::trace::SceneIntegrator;
+
+/// One class's part of the difference.
+#[derive(Clone, Debug, PartialEq)]
+pub struct ClassShare {
+    /// The class's name ([`super::Class::name`]).
+    pub name: &'static str,
+    /// Its expression.
+    pub lpe: &'static str,
+    /// Whether Whitted renders it too.
+    pub whitted: bool,
+    /// Summed luminance of the class's AOV over the region.
+    pub luminance: f64,
+}
+
+/// The comparison ([`versus`]).
+#[derive(Clone, Debug)]
+pub struct Versus {
+    /// The Whitted render.
+    pub whitted: Image,
+    /// Its counts.
+    pub whitted_stats: RenderStats,
+    /// The path-traced render with one AOV per class (in [`CLASSES`] order).
+    pub path: AovRender,
+    /// The region `[x0, y0, x1, y1)` the sums are over.
+    pub region: [u32; 4],
+    /// Summed luminance of the Whitted image over the region.
+    pub whitted_luminance: f64,
+    /// Summed luminance of the path-traced image over the region.
+    pub path_luminance: f64,
+    /// Each class's summed luminance.
+    pub classes: Vec<ClassShare>,
+}
+
+impl Versus {
+    /// What the classes Whitted also renders differ by: their path-traced luminance minus
+    /// Whitted's (its approximations and the noise).
+    #[must_use]
+    pub fn shared_difference(&self) -> f64 {
+        let shared: f64 = self
+            .classes
+            .iter()
+            .filter(|c| c.whitted)
+            .map(|c| c.luminance)
+            .sum();
+        shared - self.whitted_luminance
+    }
+
+    /// The terms of the breakdown: each class Whitted misses with its luminance, then
+    /// `("shared", shared_difference)`; and the share of each (its magnitude over the sum of
+    /// the magnitudes; all 0 when nothing differs).
+    #[must_use]
+    pub fn breakdown(&self) -> Vec<(&'static str, f64, f64)> {
+        let mut terms: Vec<(&'static str, f64)> = self
+            .classes
+            .iter()
+            .filter(|c| !c.whitted)
+            .map(|c| (c.name, c.luminance))
+            .collect();
+        terms.push(("shared", self.shared_difference()));
+        let total: f64 = terms.iter().map(|t| t.1.abs()).sum();
+        terms
+            .into_iter()
+            .map(|(n, v)| (n, v, if total > 0.0 { v.abs() / total } else { 0.0 }))
+            .collect()
+    }
+}
+
+/// Sum of `f(pixel)` over `region` of `image`.
+fn region_sum(image: &Image, [x0, y0, x1, y1]: [u32; 4]) -> f64 {
+    (y0..y1)
+        .flat_map(|y| (x0..x1).map(move |x| (x, y)))
+        .map(|(x, y)| luminance(image.get(x, y)))
+        .sum()
+}
+
+/// Render `scene` with both integrators (the scene's other settings unchanged) and break the
+/// difference over `region` (`[x0, y0, x1, y1)`, clamped to the image; the whole image when
+/// `None`) down by light transport class.
+///
+/// # Errors
+/// None in practice ([`render_aovs`] under the path integrator with the six classes).
+pub fn versus(
+    scene: &Scene,
+    region: Option<[u32; 4]>,
+    progress: &(dyn Fn(u32) + Sync),
+) -> Result<Versus, AovError> {
+    let (w, h) = (scene.camera.width, scene.camera.height);
+    let region = region.map_or([0, 0, w, h], |[x0, y0, x1, y1]| {
+        [x0.min(w), y0.min(h), x1.min(w), y1.min(h)]
+    });
+    let mut whitted_scene = scene.clone();
+    whitted_scene.settings.integrator = IntegratorKind::Whitted;
+    let mut path_scene = scene.clone();
+    path_scene.settings.integrator = IntegratorKind::Path;
+    let (whitted, whitted_stats) = crate::render::render(&whitted_scene, progress);
+    let lpes = standard_classes();
+    let path = render_aovs(&SceneIntegrator::new(&path_scene), &lpes, progress)?;
+    let classes = CLASSES
+        .iter()
+        .zip(&path.aovs)
+        .map(|(c, img)| ClassShare {
+            name: c.name,
+            lpe: c.lpe,
+            whitted: c.whitted,
+            luminance: region_sum(img, region),
+        })
+        .collect();
+    Ok(Versus {
+        whitted_luminance: region_sum(&whitted, region),
+        path_luminance: region_sum(&path.beauty, region),
+        whitted,
+        whitted_stats,
+        path,
+        region,
+        classes,
+    })
+}

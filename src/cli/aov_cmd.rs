@@ -1,0 +1,190 @@
+//! `raytree render --aov NAME=LPE --debug-view VIEW`: the beauty image, one image per light
+//! path expression (`OUTPUT.NAME.png`/`.exr`) and Monte Carlo debug views as false colour with
+//! a legend (`OUTPUT.view-VIEW.png`), all from one pass ([`raytree::aov::render_aovs`]).
+
+use super::args::RenderArgs;
+use super::canvas::Canvas;
+use super::load::load;
+use super::output::{Inputs, Pending, encode_counting, image_format};
+use super::say::{sayln, warnln};
+use anyhow::{Result, bail};
+use indicatif::{ProgressBar, ProgressStyle};
+use raytree::aov::{AovRender, McView, parse_aovs, ramp, render_aovs};
+use raytree::scene::IntegratorKind;
+use std::path::{Path, PathBuf};
+use std::time::Instant;
+
+/// `OUTPUT` with `.tag` before its extension: `out.png` -> `out.caustics.png`.
+pub(super) fn beside(output: &Path, tag: &str, ext: &str) -> PathBuf {
+    let stem = output
+        .file_stem()
+        .map_or_else(String::new, |s| s.to_string_lossy().into_owned());
+    output.with_file_name(format!("{stem}.{tag}.{ext}"))
+}
+
+/// Parse `--aov` (with a caret under the bad column) and `--debug-view`.
+fn parse(a: &RenderArgs) -> Result<(Vec<raytree::aov::Aov>, Vec<McView>)> {
+    let aovs = parse_aovs(&a.aov).map_err(|e| {
+        anyhow::anyhow!(
+            "--aov {e}\n  {}\n  {}^",
+            e.spec,
+            " ".repeat(e.column.saturating_sub(1))
+        )
+    })?;
+    let names: Vec<&str> = aovs.iter().map(|x| x.name.as_str()).collect();
+    let views = a
+        .debug_view
+        .iter()
+        .map(|v| McView::parse(v, &names).map_err(|e| anyhow::anyhow!("--debug-view: {e}")))
+        .collect::<Result<Vec<_>>>()?;
+    Ok((aovs, views))
+}
+
+/// Render with AOVs and debug views.
+pub fn run(a: &RenderArgs) -> Result<()> {
+    if a.diagnose {
+        bail!("--diagnose does not combine with --aov or --debug-view (render them separately)");
+    }
+    let format = image_format(&a.output)?;
+    let (aovs, views) = parse(a)?;
+    let loaded = load(a.scene.as_deref(), &a.overrides)?;
+    let scene = &loaded.scene;
+    let whitted = scene.settings.integrator == IntegratorKind::Whitted;
+    if whitted && !aovs.is_empty() {
+        bail!("--aov: {}", raytree::aov::AovError::Whitted);
+    }
+    if let Some(v) = views.iter().find(|v| whitted && v.needs_paths()) {
+        bail!(
+            "--debug-view {}: needs the path integrator (Whitted reports no paths): add --integrator path",
+            v.file_name(&[])
+        );
+    }
+    super::budget::check_aov_images(
+        scene,
+        aovs.len(),
+        super::budget::mib(a.overrides.max_memory),
+    )?;
+    let names: Vec<&str> = aovs.iter().map(|x| x.name.as_str()).collect();
+    let ext = a
+        .output
+        .extension()
+        .map_or("png".into(), |e| e.to_string_lossy());
+    let inputs = Inputs::new(loaded.inputs.iter().map(|p| p.as_path()));
+    let mut paths = vec![a.output.clone()];
+    paths.extend(names.iter().map(|n| beside(&a.output, n, &ext)));
+    paths.extend(
+        views
+            .iter()
+            .map(|v| beside(&a.output, &format!("view-{}", v.file_name(&names)), "png")),
+    );
+    if let Some(p) = paths
+        .iter()
+        .enumerate()
+        .find_map(|(i, p)| paths[..i].contains(p).then_some(p))
+    {
+        bail!("two outputs would both be {}: rename an AOV", p.display());
+    }
+    let pending = paths
+        .iter()
+        .map(|p| Pending::create(p, &inputs))
+        .collect::<Result<Vec<_>>>()?;
+    let lpes: Vec<_> = aovs.iter().map(|x| x.lpe.clone()).collect();
+    let bar = ProgressBar::new(u64::from(scene.camera.height)).with_style(
+        ProgressStyle::with_template("{msg} [{bar:40}] {pos}/{len} rows {elapsed_precise}")
+            .expect("valid template")
+            .progress_chars("=> "),
+    );
+    bar.set_message(format!("rendering {} with AOVs", loaded.label));
+    let start = Instant::now();
+    let integrator = raytree::SceneIntegrator::new(scene);
+    let r = render_aovs(&integrator, &lpes, &|rows| {
+        bar.set_position(u64::from(rows))
+    })?;
+    let secs = start.elapsed().as_secs_f64();
+    bar.finish_and_clear();
+    let mut files = Vec::new();
+    let (bytes, _) = encode_counting(&r.beauty, format)?;
+    files.push(bytes);
+    for img in &r.aovs {
+        files.push(encode_counting(img, format)?.0);
+    }
+    for v in &views {
+        files.push(false_colour(&r, v, &names)?);
+    }
+    for (p, bytes) in pending.into_iter().zip(&files) {
+        p.commit(bytes)?;
+    }
+    report(a, &r, &paths, secs, &names)
+}
+
+/// What was written, the AOVs' shares of the image, dropped samples.
+fn report(
+    a: &RenderArgs,
+    r: &AovRender,
+    paths: &[PathBuf],
+    secs: f64,
+    names: &[&str],
+) -> Result<()> {
+    let (w, h) = (r.beauty.width, r.beauty.height);
+    let lum = |img: &raytree::Image| -> f64 {
+        img.pixels
+            .iter()
+            .map(|p| raytree::bsdf::luminance(*p))
+            .sum()
+    };
+    let total = lum(&r.beauty);
+    sayln!(
+        "wrote {} ({w}x{h}, {} spp) in {secs:.3} s, {} rays",
+        a.output.display(),
+        r.mc.first().map_or(0, |p| p.samples),
+        r.stats.rays.total()
+    )?;
+    for (k, img) in r.aovs.iter().enumerate() {
+        let share = if total > 0.0 { lum(img) / total } else { 0.0 };
+        sayln!(
+            "aov {}: {} ({:.1}% of the image's luminance)",
+            names[k],
+            paths[1 + k].display(),
+            100.0 * share
+        )?;
+    }
+    for p in &paths[1 + names.len()..] {
+        sayln!("debug view: {}", p.display())?;
+    }
+    if let Some((x, y, s)) = r.stats.rays.first_dropped {
+        warnln!(
+            "warning: {} samples were NaN or infinite and were dropped (counted black); first: sample {s} of pixel {x},{y}",
+            r.stats.rays.dropped_samples
+        );
+    }
+    Ok(())
+}
+
+/// Height of the legend strip under a debug view.
+const LEGEND: u32 = 40;
+
+/// The view as false colour (the ramp of the inspector's debug views) with a legend strip: the
+/// colour bar from 0 to its top value, and what it measures.
+fn false_colour(r: &AovRender, view: &McView, names: &[&str]) -> Result<Vec<u8>> {
+    let (w, h) = (r.beauty.width, r.beauty.height);
+    let values = view.values(r);
+    let (_, max) = view.range(&values);
+    let mut c = Canvas::new(w.max(160), h + LEGEND, [24, 24, 24])?;
+    for (i, v) in values.iter().enumerate() {
+        let (x, y) = (i as u32 % w.max(1), i as u32 / w.max(1));
+        c.pixel(x, y, ramp((v / max) as f32));
+    }
+    let bar = (w.max(160) - 16) as f32;
+    for i in 0..bar as u32 {
+        let t = (i as f32 + 0.5) / bar;
+        c.rect(8.0 + i as f32, (h + 4) as f32, 1.0, 10.0, ramp(t));
+    }
+    let white = [230, 230, 230];
+    let y = (h + 26) as f32;
+    c.text(8.0, y, 11.0, "0", white);
+    let top = format!("{}{max:.3}", if view == &McView::Noise { ">=" } else { "" });
+    let tw = c.text_width(&top, 11.0);
+    c.text(8.0 + bar - tw, y, 11.0, &top, white);
+    c.text(8.0, y + 12.0, 10.0, &view.label(names), white);
+    c.png()
+}

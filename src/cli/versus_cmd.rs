@@ -1,0 +1,217 @@
+//! `raytree versus SCENE -o DIR`: Whitted and path tracing of the same scene side by side, the
+//! difference image, and the difference broken down by light transport class
+//! ([`raytree::aov::versus`]).
+
+use super::canvas::Canvas;
+use super::load::load;
+use super::output::{Inputs, OutDir};
+use super::say::sayln;
+use anyhow::{Context, Result, bail};
+use clap::Args;
+use raytree::aov::{CLASSES, Versus, versus};
+use std::path::PathBuf;
+use std::time::Instant;
+
+/// `raytree versus`.
+#[derive(Debug, Args)]
+pub struct VersusArgs {
+    /// Scene JSON (default: the built-in classic scene).
+    pub scene: Option<PathBuf>,
+    /// Output directory (whitted.png, path.png, side-by-side.png, difference.png,
+    /// breakdown.json).
+    #[arg(short, long, default_value = "versus")]
+    pub output: PathBuf,
+    /// Break the difference down over this pixel rectangle only, X0,Y0,X1,Y1 (X1 and Y1
+    /// excluded); default the whole image.
+    #[arg(long, value_name = "X0,Y0,X1,Y1")]
+    pub region: Option<String>,
+    /// Print the breakdown as JSON instead of text.
+    #[arg(long)]
+    pub json: bool,
+    /// Settings overrides (the integrator is set by the command).
+    #[command(flatten)]
+    pub overrides: super::args::Overrides,
+}
+
+fn parse_region(s: &str) -> Result<[u32; 4]> {
+    let v: Vec<u32> = s
+        .split(',')
+        .map(|p| p.trim().parse::<u32>())
+        .collect::<Result<_, _>>()
+        .with_context(|| format!("--region {s}: expected X0,Y0,X1,Y1 (pixels)"))?;
+    let [x0, y0, x1, y1] = v[..] else {
+        bail!("--region {s}: expected four numbers X0,Y0,X1,Y1");
+    };
+    if x0 >= x1 || y0 >= y1 {
+        bail!("--region {s}: empty (X0 < X1 and Y0 < Y1 are needed)");
+    }
+    Ok([x0, y0, x1, y1])
+}
+
+/// Run the command.
+pub fn run(a: &VersusArgs) -> Result<()> {
+    let region = a.region.as_deref().map(parse_region).transpose()?;
+    let loaded = load(a.scene.as_deref(), &a.overrides)?;
+    let scene = &loaded.scene;
+    let (w, h) = (scene.camera.width, scene.camera.height);
+    if let Some([x0, y0, ..]) = region
+        && (x0 >= w || y0 >= h)
+    {
+        bail!("--region: starts outside the {w}x{h} image");
+    }
+    super::budget::check_image(scene, super::budget::mib(a.overrides.max_memory))?;
+    let inputs = Inputs::new(loaded.inputs.iter().map(|p| p.as_path()));
+    let dir = OutDir::create(&a.output)?;
+    let names = [
+        "whitted.png",
+        "path.png",
+        "side-by-side.png",
+        "difference.png",
+        "breakdown.json",
+    ];
+    let pending = names
+        .iter()
+        .map(|n| dir.file(n, &inputs))
+        .collect::<Result<Vec<_>>>()?;
+    let start = Instant::now();
+    let v = versus(scene, region, &|_| {})?;
+    let secs = start.elapsed().as_secs_f64();
+    let json = serde_json::to_string_pretty(&breakdown_json(&v, &loaded.label))?;
+    let files = [
+        raytree::codec::png(&v.whitted)?,
+        raytree::codec::png(&v.path.beauty)?,
+        side_by_side(&v)?,
+        difference(&v)?,
+        json.clone().into_bytes(),
+    ];
+    for (p, bytes) in pending.into_iter().zip(&files) {
+        p.commit(bytes)?;
+    }
+    dir.keep();
+    if a.json {
+        sayln!("{json}")?;
+    } else {
+        sayln!("{}", breakdown_text(&v))?;
+        sayln!("wrote {} ({secs:.2} s)", a.output.display())?;
+    }
+    Ok(())
+}
+
+/// The breakdown in words.
+fn breakdown_text(v: &Versus) -> String {
+    let [x0, y0, x1, y1] = v.region;
+    let mut s = format!(
+        "region {x0},{y0}..{x1},{y1}: Whitted luminance {:.4}, path {:.4} (sums over pixels)\n",
+        v.whitted_luminance, v.path_luminance
+    );
+    let terms = v.breakdown();
+    let parts: Vec<String> = terms
+        .iter()
+        .filter(|t| t.0 != "shared")
+        .map(|(n, _, share)| format!("{:.0}% {n}", 100.0 * share))
+        .collect();
+    let shared = terms.iter().find(|t| t.0 == "shared");
+    s.push_str(&format!("what Whitted misses here: {}", parts.join(", ")));
+    if let Some((_, d, share)) = shared {
+        s.push_str(&format!(
+            "; {:.0}% differs in what both render (path - Whitted = {d:+.4}: ambient, Phong highlights, translucent shadows, noise)",
+            100.0 * share
+        ));
+    }
+    s.push_str("\nclass        expression            luminance  Whitted renders it\n");
+    for c in &v.classes {
+        s.push_str(&format!(
+            "{:<12} {:<21} {:>10.4}  {}\n",
+            c.name,
+            c.lpe,
+            c.luminance,
+            if c.whitted { "yes" } else { "no" }
+        ));
+    }
+    s.trim_end().to_owned()
+}
+
+fn breakdown_json(v: &Versus, scene: &str) -> serde_json::Value {
+    let classes: Vec<serde_json::Value> = v
+        .classes
+        .iter()
+        .zip(CLASSES)
+        .map(|(c, k)| {
+            serde_json::json!({"name": c.name, "lpe": c.lpe, "whitted": c.whitted,
+                "luminance": c.luminance, "what": k.what})
+        })
+        .collect();
+    let shares: serde_json::Map<String, serde_json::Value> = v
+        .breakdown()
+        .into_iter()
+        .map(|(n, d, s)| {
+            (
+                n.to_owned(),
+                serde_json::json!({"luminance": d, "share": s}),
+            )
+        })
+        .collect();
+    serde_json::json!({
+        "scene": scene,
+        "region": v.region,
+        "whitted_luminance": v.whitted_luminance,
+        "path_luminance": v.path_luminance,
+        "classes": classes,
+        "difference": shares,
+    })
+}
+
+/// Whitted | path, with captions.
+fn side_by_side(v: &Versus) -> Result<Vec<u8>> {
+    let (w, h) = (v.whitted.width, v.whitted.height);
+    let mut c = Canvas::new(2 * w + 8, h + 20, [24, 24, 24])?;
+    for (k, img) in [&v.whitted, &v.path.beauty].into_iter().enumerate() {
+        let bytes = img.to_srgb8();
+        let x0 = k as u32 * (w + 8);
+        for (i, p) in bytes.chunks(3).enumerate() {
+            let (x, y) = (i as u32 % w, i as u32 / w);
+            c.pixel(x0 + x, y, [p[0], p[1], p[2]]);
+        }
+        let label = if k == 0 { "Whitted" } else { "path" };
+        c.text(
+            x0 as f32 + 4.0,
+            (h + 15) as f32,
+            12.0,
+            label,
+            [230, 230, 230],
+        );
+    }
+    c.png()
+}
+
+/// The signed luminance difference path - Whitted: red where the path tracer is brighter
+/// (light Whitted misses), blue where Whitted is; full colour at the 99th percentile of the
+/// magnitude.
+fn difference(v: &Versus) -> Result<Vec<u8>> {
+    let (w, h) = (v.whitted.width, v.whitted.height);
+    let lum = raytree::bsdf::luminance;
+    let d: Vec<f64> = v
+        .whitted
+        .pixels
+        .iter()
+        .zip(&v.path.beauty.pixels)
+        .map(|(a, b)| lum(*b) - lum(*a))
+        .collect();
+    let mut mags: Vec<f64> = d.iter().map(|x| x.abs()).collect();
+    let scale = if mags.is_empty() {
+        1.0
+    } else {
+        let k = (mags.len() - 1) * 99 / 100;
+        let m = *mags.select_nth_unstable_by(k, f64::total_cmp).1;
+        if m > 0.0 { m } else { 1.0 }
+    };
+    let mut c = Canvas::new(w.max(200), h + 20, [24, 24, 24])?;
+    for (i, x) in d.iter().enumerate() {
+        let t = ((x.abs() / scale).min(1.0) * 255.0).round() as u8;
+        let col = if *x >= 0.0 { [t, 0, 0] } else { [0, t / 3, t] };
+        c.pixel(i as u32 % w, i as u32 / w, col);
+    }
+    let caption = format!("path-Whitted: red +, blue -, full {scale:.2}");
+    c.text(4.0, (h + 15) as f32, 11.0, &caption, [230, 230, 230]);
+    c.png()
+}

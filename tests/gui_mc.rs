@@ -1,0 +1,93 @@
+//! The inspector's Monte Carlo debug views (issue 16) through egui_kittest: the noise view is
+//! picked in the "show" menu, draws a legend under the image, and its values are the recorded
+//! samples' relative standard error; the class shares read the recorded paths.
+
+use egui_kittest::Harness;
+use egui_kittest::kittest::Queryable;
+use raytree::gui::stats::DebugView;
+use raytree::gui::{Files, InspectorApp, Session};
+use std::path::Path;
+use std::sync::Arc;
+use std::time::SystemTime;
+
+const CAUSTIC: &str = include_str!("../fixtures/caustic.json");
+
+/// The caustic scene, read-only.
+struct OneScene;
+
+impl Files for OneScene {
+    fn read(&self, _: &Path) -> std::io::Result<String> {
+        Ok(CAUSTIC.to_owned())
+    }
+    fn modified(&self, _: &Path) -> Option<SystemTime> {
+        Some(SystemTime::UNIX_EPOCH)
+    }
+    fn write(&self, _: &Path, _: &[u8]) -> std::io::Result<()> {
+        Err(std::io::Error::other("read-only"))
+    }
+}
+
+#[test]
+fn the_noise_view_is_picked_from_the_menu_and_shows_a_legend() {
+    // The caustic fixture at its size, 8 samples per pixel.
+    let adjust = Box::new(|s: &mut raytree::Scene| {
+        s.settings.spp = 8;
+        Ok(())
+    });
+    let session = Session::new(
+        Some("caustic.json".into()),
+        Box::new(OneScene),
+        adjust,
+        Arc::new(|| {}),
+    );
+    let mut h = Harness::builder()
+        .with_size([1500.0, 950.0])
+        .with_max_steps(16)
+        .build_ui_state(
+            |ui, app: &mut InspectorApp| app.show(ui),
+            InspectorApp::new(session),
+        );
+    h.run();
+    h.state_mut().session.wait_render();
+    h.run();
+    assert!(h.state().placement().unwrap().legend.is_none());
+    h.get_by_label("show").click();
+    h.run();
+    h.get_by_label("noise (relative standard error)").click();
+    h.run();
+    h.run();
+    let doc = &h.state().session.doc;
+    assert_eq!(doc.view.debug, DebugView::Noise);
+    let place = h.state().placement().unwrap();
+    let legend = place.legend.expect("a legend under the noise view");
+    assert!(!legend.intersects(place.rect));
+    // Each pixel's value is its recorded samples' relative standard error, computed by hand.
+    let doc = &h.state().session.doc;
+    for (x, y) in [(98, 112), (60, 140)] {
+        let tree = raytree::trace_pixel(&doc.scene, x, y).unwrap();
+        let l: Vec<f64> = tree
+            .samples
+            .iter()
+            .map(|s| raytree::bsdf::luminance(s.radiance))
+            .collect();
+        let n = l.len() as f64;
+        let mean = l.iter().sum::<f64>() / n;
+        let var = l.iter().map(|v| (v - mean).powi(2)).sum::<f64>() / (n - 1.0);
+        let want = ((var / n).sqrt() / mean) as f32;
+        let got = DebugView::Noise.value(&doc.stats_at(x, y));
+        assert!(
+            (got - want).abs() <= 1e-6 * want,
+            "{x},{y}: {got} vs {want}"
+        );
+        assert!(got > 0.0);
+        assert_eq!(DebugView::Samples.value(&doc.stats_at(x, y)), 8.0);
+    }
+    // Under the ball most of the light is the caustic; on the open floor it is direct light.
+    let caustics = DebugView::Share(4).value(&doc.stats_at(98, 112));
+    let direct = DebugView::Share(2).value(&doc.stats_at(30, 150));
+    assert!(caustics > 0.5 && direct > 0.9, "{caustics} {direct}");
+    assert_eq!(
+        DebugView::Share(4).label(),
+        "share: caustics (CS*[DG]S+[LB])"
+    );
+}
