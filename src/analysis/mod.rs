@@ -6,6 +6,10 @@ pub mod acne;
 pub mod cost;
 pub mod diff;
 pub mod explain;
+pub mod firefly;
 pub mod growth;
+#[cfg(test)]
+mod hand_tree;
 pub mod invariants;
+pub mod samples;
 pub mod teach;
