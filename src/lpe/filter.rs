@@ -19,6 +19,22 @@ pub struct LpeFilter {
     pub share: Option<f64>,
 }
 
+impl LpeFilter {
+    /// What matched, in words: `3 of 130 paths match, 99.5% of the pixel (radiance [..])`
+    /// (the header of `raytree trace --lpe`, and the inspector's filter line).
+    #[must_use]
+    pub fn summary(&self) -> String {
+        format!(
+            "{} of {} paths match, {} of the pixel (radiance {})",
+            self.matched,
+            self.paths,
+            self.share
+                .map_or_else(|| "none".to_owned(), |s| format!("{:.1}%", 100.0 * s)),
+            crate::text::rgb(self.radiance)
+        )
+    }
+}
+
 /// Whether a recorded string is a complete path (it ends at a light or the background).
 fn complete(lpe: &str) -> bool {
     lpe.ends_with(['L', 'B'])

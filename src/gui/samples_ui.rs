@@ -1,0 +1,398 @@
+//! The "Samples" section of the right panel: the LPE filter field, a histogram of the pixel's
+//! sample values on a log scale (click a bar to list only its samples), the firefly
+//! explanation of the selected sample, and the sample list sorted by value (click a row to
+//! select that sample's path in the tree, the overlay and the diagram).
+
+use super::app::{ERROR, WARNING};
+use super::document::{Command, Document};
+use super::style::{SELECTED, rgb, square, swatch};
+use crate::analysis::firefly::{self, Firefly};
+use crate::analysis::samples::{Histogram, SampleRow, histogram, sample_rows};
+use egui::{Color32, RichText, Sense, pos2, vec2};
+
+/// Height of the histogram (points).
+const HIST_HEIGHT: f32 = 84.0;
+/// Height of one row of the sample list.
+const ROW_HEIGHT: f32 = 18.0;
+/// Rows of the list shown before it scrolls.
+const ROWS_SHOWN: usize = 8;
+
+/// A histogram bar chosen by a click: the list shows only its samples.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum Bar {
+    /// Bar `k` of [`Histogram::bins`].
+    Bin(usize),
+    /// The samples of value 0.
+    Zero,
+    /// The non-finite samples.
+    NonFinite,
+}
+
+/// The section's own state: rows and histogram of the current tree, and the chosen bar.
+#[derive(Default)]
+pub struct SamplesView {
+    version: Option<u64>,
+    rows: Vec<SampleRow>,
+    hist: Histogram,
+    /// The bar whose samples the list shows (`None`: all).
+    pub bar: Option<Bar>,
+    /// The explanation of the selected sample (sample index, explanation).
+    firefly: Option<(usize, Option<Firefly>)>,
+}
+
+impl SamplesView {
+    fn sync(&mut self, doc: &Document) {
+        if self.version == Some(doc.tree_version) {
+            return;
+        }
+        self.version = Some(doc.tree_version);
+        self.bar = None;
+        self.firefly = None;
+        match &doc.tree {
+            Some(t) => {
+                self.rows = sample_rows(t);
+                self.hist = histogram(t);
+            }
+            None => {
+                self.rows.clear();
+                self.hist = Histogram::default();
+            }
+        }
+    }
+
+    /// The rows the list shows (all, or the chosen bar's), largest first.
+    #[must_use]
+    pub fn shown_rows(&self) -> Vec<&SampleRow> {
+        let members: Option<&[usize]> = match self.bar {
+            None => None,
+            Some(Bar::Bin(k)) => self.hist.bins.get(k).map(|b| b.samples.as_slice()),
+            Some(Bar::Zero) => Some(&self.hist.zero),
+            Some(Bar::NonFinite) => Some(&self.hist.non_finite),
+        };
+        self.rows
+            .iter()
+            .filter(|r| members.is_none_or(|m| m.contains(&r.index)))
+            .collect()
+    }
+
+    /// The firefly explanation of the selected sample, if it is one.
+    #[must_use]
+    pub fn firefly(&self) -> Option<&Firefly> {
+        self.firefly.as_ref()?.1.as_ref()
+    }
+}
+
+/// Select sample `index` (its camera ray) and make the diagram follow it.
+fn select_sample(doc: &Document, index: usize, cmds: &mut Vec<Command>) {
+    let Some(s) = doc.tree.as_ref().and_then(|t| t.samples.get(index)) else {
+        return;
+    };
+    cmds.push(Command::SelectNode(Some(s.root)));
+    if doc.view.diagram.sample.is_some() {
+        let mut v = doc.view;
+        v.diagram.sample = None;
+        cmds.push(Command::SetView(v));
+    }
+}
+
+/// The section.
+pub fn samples_ui(
+    ui: &mut egui::Ui,
+    doc: &Document,
+    view: &mut SamplesView,
+    cmds: &mut Vec<Command>,
+) {
+    lpe_ui(ui, doc, cmds);
+    view.sync(doc);
+    let Some(tree) = &doc.tree else {
+        return;
+    };
+    let selected = doc
+        .node
+        .and_then(|id| super::diagram_controls::sample_of(doc, id));
+    histogram_ui(ui, doc, view, selected, cmds);
+    if let Some(s) = selected {
+        if view.firefly.as_ref().is_none_or(|f| f.0 != s) {
+            view.firefly = Some((s, firefly::explain(tree, s)));
+        }
+        firefly_ui(ui, doc, view, s, cmds);
+    }
+    list_ui(ui, doc, view, selected, cmds);
+}
+
+/// The filter field, its parse error (red, with a caret under the column) and what matched.
+fn lpe_ui(ui: &mut egui::Ui, doc: &Document, cmds: &mut Vec<Command>) {
+    let st = &doc.lpe;
+    ui.horizontal(|ui| {
+        let label = ui.label("LPE filter");
+        let mut text = st.field.clone();
+        let r = ui
+            .add(
+                egui::TextEdit::singleline(&mut text)
+                    .id_salt("lpe-filter")
+                    .hint_text("e.g. C<RD>S+L")
+                    .font(egui::TextStyle::Monospace)
+                    .desired_width(f32::INFINITY),
+            )
+            .labelled_by(label.id)
+            .on_hover_text(
+                "keep only the paths matching this light path expression (OSL grammar, as raytree trace --lpe); empty: all",
+            );
+        if r.changed() {
+            cmds.push(Command::SetLpe(text));
+        }
+    });
+    if let Some(e) = &st.error {
+        let caret = format!("{}^", " ".repeat(e.column.saturating_sub(1)));
+        ui.label(RichText::new(e.to_string()).color(ERROR));
+        ui.label(
+            RichText::new(format!("{}\n{caret}", st.field.trim()))
+                .monospace()
+                .color(ERROR),
+        );
+    }
+    if let (Some(lpe), Some(s)) = (&st.active, &st.summary) {
+        let colour = if st.inapplicable {
+            WARNING
+        } else {
+            ui.visuals().text_color()
+        };
+        ui.label(RichText::new(format!("{}: {s}", lpe.as_str())).color(colour));
+        if doc.tree.is_none() {
+            ui.label(RichText::new("no path of this pixel matches").color(WARNING));
+        }
+    }
+}
+
+/// The histogram: a bar per half decade of sample value, the zero (and non-finite) samples in
+/// bars of their own at the left (right); the selected sample's bar outlined.
+fn histogram_ui(
+    ui: &mut egui::Ui,
+    doc: &Document,
+    view: &mut SamplesView,
+    selected: Option<usize>,
+    cmds: &mut Vec<Command>,
+) {
+    let h = &view.hist;
+    let mut bars: Vec<(Bar, usize, String)> = Vec::new();
+    if !h.zero.is_empty() {
+        bars.push((Bar::Zero, h.zero.len(), "0".into()));
+    }
+    for (k, b) in h.bins.iter().enumerate() {
+        bars.push((Bar::Bin(k), b.samples.len(), format!("1e{:+.1}", b.lo)));
+    }
+    if !h.non_finite.is_empty() {
+        bars.push((Bar::NonFinite, h.non_finite.len(), "NaN".into()));
+    }
+    ui.small(format!(
+        "{} samples by luminance (log10, 2 bars a decade; value 0 apart): click a bar to list its samples",
+        view.rows.len()
+    ));
+    let (rect, _) = ui.allocate_exact_size(vec2(ui.available_width(), HIST_HEIGHT), Sense::hover());
+    let painter = ui.painter_at(rect);
+    painter.rect_filled(rect, 2.0, ui.visuals().extreme_bg_color);
+    let max = bars.iter().map(|b| b.1).max().unwrap_or(1).max(1);
+    let n = bars.len().max(1) as f32;
+    let w = rect.width() / n;
+    let plot_h = rect.height() - 16.0;
+    let text = ui.visuals().text_color();
+    let sel_bar = selected.and_then(|s| {
+        if h.zero.contains(&s) {
+            Some(Bar::Zero)
+        } else if h.non_finite.contains(&s) {
+            Some(Bar::NonFinite)
+        } else {
+            h.bin_of(s).map(Bar::Bin)
+        }
+    });
+    for (i, (bar, count, label)) in bars.iter().enumerate() {
+        let x0 = rect.left() + i as f32 * w;
+        let cell = egui::Rect::from_min_size(pos2(x0, rect.top()), vec2(w, rect.height()));
+        let bh = plot_h * *count as f32 / max as f32;
+        let bar_rect = egui::Rect::from_min_max(
+            pos2(x0 + 1.5, rect.top() + plot_h - bh),
+            pos2(x0 + w - 1.5, rect.top() + plot_h),
+        );
+        let resp = ui.interact(
+            cell,
+            ui.make_persistent_id(("sample-bar", *bar)),
+            Sense::click(),
+        );
+        let chosen = view.bar == Some(*bar);
+        let what = match bar {
+            Bar::Zero => "value 0".to_string(),
+            Bar::NonFinite => "non-finite".to_string(),
+            Bar::Bin(k) => format!("1e{:.1} to 1e{:.1}", h.bins[*k].lo, h.bins[*k].hi),
+        };
+        let name = format!("bar {what}: {count} samples");
+        resp.widget_info(|| egui::WidgetInfo::selected(egui::Role::Button, true, chosen, &name));
+        let fill = match (bar, chosen) {
+            (_, true) => SELECTED,
+            (Bar::NonFinite, _) => ERROR,
+            (Bar::Zero, _) => Color32::from_gray(120),
+            _ if resp.hovered() => Color32::from_rgb(140, 190, 255),
+            _ => Color32::from_rgb(90, 150, 230),
+        };
+        if *count > 0 {
+            painter.rect_filled(bar_rect, 1.0, fill);
+        }
+        if sel_bar == Some(*bar) {
+            painter.rect_stroke(
+                bar_rect.expand(1.0),
+                1.0,
+                egui::Stroke::new(1.5, SELECTED),
+                egui::StrokeKind::Outside,
+            );
+        }
+        if *count > 0 {
+            painter.text(
+                pos2(cell.center().x, bar_rect.top() - 1.0),
+                egui::Align2::CENTER_BOTTOM,
+                count.to_string(),
+                egui::FontId::proportional(10.0),
+                text,
+            );
+        }
+        // Axis labels on every other bar when they are narrow.
+        if w >= 34.0 || i % 2 == 0 || matches!(bar, Bar::Zero | Bar::NonFinite) {
+            painter.text(
+                pos2(cell.center().x, rect.bottom() - 1.0),
+                egui::Align2::CENTER_BOTTOM,
+                label,
+                egui::FontId::proportional(10.0),
+                text,
+            );
+        }
+        let tip = format!("{name}; click to list them");
+        let resp = resp.on_hover_text(tip);
+        if resp.clicked() {
+            if chosen {
+                view.bar = None;
+            } else {
+                view.bar = Some(*bar);
+                // Select the bar's largest sample.
+                if let Some(r) = view.shown_rows().first() {
+                    select_sample(doc, r.index, cmds);
+                }
+            }
+        }
+    }
+}
+
+/// The selected sample's firefly sentence, a link to the blamed node.
+fn firefly_ui(
+    ui: &mut egui::Ui,
+    doc: &Document,
+    view: &SamplesView,
+    sample: usize,
+    cmds: &mut Vec<Command>,
+) {
+    match view.firefly() {
+        Some(f) => {
+            let on = doc.node == Some(f.node);
+            let text = RichText::new(format!("Firefly. {}", f.sentence())).color(if on {
+                SELECTED
+            } else {
+                WARNING
+            });
+            if ui
+                .add(egui::Button::selectable(on, text).wrap())
+                .on_hover_text("select the blamed node in the tree")
+                .clicked()
+            {
+                cmds.push(Command::SelectNode(Some(f.node)));
+            }
+        }
+        None => {
+            let ratio = doc.tree.as_ref().and_then(|t| {
+                let (typ, by_median) = firefly::typical(t)?;
+                let v = crate::analysis::samples::sample_value(t.samples.get(sample)?.radiance);
+                Some((v / typ, if by_median { "median" } else { "mean" }))
+            });
+            if let Some((r, what)) = ratio {
+                ui.small(format!(
+                    "sample {sample}: {r:.2}x the pixel's {what} (a firefly above {}x)",
+                    firefly::FIREFLY_RATIO
+                ));
+            }
+        }
+    }
+}
+
+/// One row per sample (of the chosen bar), largest first.
+fn list_ui(
+    ui: &mut egui::Ui,
+    doc: &Document,
+    view: &mut SamplesView,
+    selected: Option<usize>,
+    cmds: &mut Vec<Command>,
+) {
+    let rows = view.shown_rows();
+    let mut show_all = false;
+    ui.horizontal(|ui| {
+        match view.bar {
+            Some(_) => {
+                ui.small(format!(
+                    "{} of {} samples (the bar's)",
+                    rows.len(),
+                    view.rows.len()
+                ));
+                show_all = ui.small_button("show all").clicked();
+            }
+            None => {
+                ui.small("sample, luminance, rays along the path, dominant path's LPE");
+            }
+        };
+    });
+    let height = ROWS_SHOWN.min(rows.len()).max(1) as f32 * (ROW_HEIGHT + 2.0);
+    let Some(tree) = &doc.tree else { return };
+    egui::ScrollArea::vertical()
+        .id_salt("samples-scroll")
+        .max_height(height)
+        .auto_shrink([false, true])
+        .show_rows(ui, ROW_HEIGHT, rows.len(), |ui, range| {
+            for r in &rows[range] {
+                let on = selected == Some(r.index);
+                let lpe = match (r.dominant(), r.paths.len()) {
+                    (Some(p), 1) => p.lpe.clone(),
+                    (Some(p), n) => format!("{} (+{} paths)", p.lpe, n - 1),
+                    (None, 0) => "-".into(),
+                    (None, n) => format!("no light ({n} paths)"),
+                };
+                let record = tree
+                    .samples
+                    .get(r.index)
+                    .map_or(r.index, |s| s.index as usize);
+                let line = format!(
+                    "sample {record:<3} {:>10}  len {:<2} {lpe}",
+                    value_text(r.value),
+                    r.length
+                );
+                ui.horizontal(|ui| {
+                    square(ui, swatch(r.radiance));
+                    let text = RichText::new(line).monospace();
+                    let text = if on { text.color(SELECTED) } else { text };
+                    if ui
+                        .add(egui::Button::selectable(on, text).truncate())
+                        .on_hover_text(format!("radiance {}", rgb(r.radiance)))
+                        .clicked()
+                    {
+                        select_sample(doc, r.index, cmds);
+                    }
+                });
+            }
+        });
+    if show_all {
+        view.bar = None;
+    }
+}
+
+fn value_text(v: f64) -> String {
+    if !v.is_finite() {
+        format!("{v}")
+    } else if v != 0.0 && !(1e-3..1e4).contains(&v) {
+        format!("{v:.3e}")
+    } else {
+        format!("{v:.4}")
+    }
+}
