@@ -8,7 +8,7 @@ use raytree::analysis::samples::{histogram, sample_rows};
 use raytree::gui::diagram_ui::{build_display_list, diagram_options};
 use raytree::gui::document::Command;
 use raytree::gui::{Files, InspectorApp, Session};
-use raytree::lpe::{Lpe, filter_tree};
+use raytree::lpe::{Lpe, filter_tree_all_samples};
 use std::collections::HashMap;
 use std::path::{Path, PathBuf};
 use std::sync::{Arc, Mutex};
@@ -190,11 +190,13 @@ fn the_lpe_filter_keeps_the_matching_paths_and_shows_a_bad_expression_in_red() {
     field.type_text("C<RD><TS><TS>L");
     h.run();
     h.run();
-    let expected = filter_tree(&full, &[Lpe::parse("C<RD><TS><TS>L").unwrap()]).unwrap();
+    let expected =
+        filter_tree_all_samples(&full, &[Lpe::parse("C<RD><TS><TS>L").unwrap()]).unwrap();
     let doc = &h.state().session.doc;
     assert_eq!(doc.tree.as_ref(), Some(&expected.tree));
     assert!(expected.tree.nodes.len() < full.nodes.len());
     assert!(expected.matched >= 1);
+    assert_eq!(expected.tree.samples.len(), full.samples.len());
     // The count and share, the samples and the diagram of the filtered tree.
     let _ = h.get_by_label_contains(&expected.summary());
     assert_eq!(

@@ -137,3 +137,35 @@ fn the_diagram_command_draws_all_samples() {
     assert!(all.matches("<polyline").count() > one.matches("<polyline").count());
     std::fs::remove_dir_all(&dir).ok();
 }
+
+#[test]
+fn the_inspector_filter_keeps_every_sample_s_camera_ray() {
+    use raytree::lpe::{Lpe, filter_tree, filter_tree_all_samples};
+    let (_, t) = caustic();
+    let lpe = [Lpe::parse("C<RD><TS><TS>L").unwrap()];
+    let cli = filter_tree(&t, &lpe).unwrap();
+    let gui = filter_tree_all_samples(&t, &lpe).unwrap();
+    assert_eq!(
+        (gui.matched, gui.paths, gui.share),
+        (cli.matched, cli.paths, cli.share)
+    );
+    assert_eq!(gui.tree.samples.len(), t.samples.len());
+    assert!(cli.tree.samples.len() < t.samples.len());
+    // A sample without a match: its camera ray alone; with one: as the command line keeps it.
+    for s in &gui.tree.samples {
+        let n = gui.tree.depth_first(s.root).len();
+        match cli.tree.samples.iter().find(|c| c.index == s.index) {
+            None => assert_eq!(n, 1),
+            Some(c) => assert_eq!(n, cli.tree.depth_first(c.root).len()),
+        }
+    }
+    // Shares against the whole pixel: the caustic's paths carry it all here.
+    let rows = samples::sample_rows(&gui.tree);
+    let carried: f64 = rows
+        .iter()
+        .flat_map(|r| &r.paths)
+        .map(|p| lum(p.contribution))
+        .sum::<f64>()
+        / gui.tree.samples.len() as f64;
+    assert!((carried / lum(t.radiance) - gui.share.unwrap()).abs() < 1e-9);
+}

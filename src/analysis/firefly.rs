@@ -39,6 +39,8 @@ pub enum Cause {
     Caustic {
         /// The bounce's BSDF pdf (solid angle).
         pdf: Option<f64>,
+        /// The bounce's lobe (diffuse or glossy).
+        lobe: LobeKind,
     },
     /// Emission found by a BSDF-sampled ray with MIS weight `mis` near 1.
     BsdfEmission {
@@ -112,8 +114,13 @@ impl Firefly {
             self.path.0
         );
         let why = match &self.cause {
-            Cause::Caustic { pdf } => format!(
-                "a caustic found by BSDF sampling. Light sampling cannot reach the light through the specular chain, so only the diffuse/glossy bounce's rare sample{} finds it, at full MIS weight",
+            Cause::Caustic { pdf, lobe } => format!(
+                "a caustic found by BSDF sampling. Light sampling cannot reach the light through the specular chain, so only the {} bounce's rare sample{} finds it, at full MIS weight",
+                if *lobe == LobeKind::Diffuse {
+                    "diffuse"
+                } else {
+                    "glossy"
+                },
                 pdf_text(*pdf)
             ),
             Cause::BsdfEmission { mis, pdf } => format!(
@@ -268,8 +275,9 @@ fn blame(tree: &RayTree, chain: &[NodeId], end: NodeId) -> Option<(NodeId, Cause
                     )
                 })
             })?;
-            let pdf = density(tree.node(bounce).path.as_ref()?.pdf);
-            return Some((bounce, Cause::Caustic { pdf }));
+            let info = tree.node(bounce).path.as_ref()?;
+            let (pdf, lobe) = (density(info.pdf), info.lobe?);
+            return Some((bounce, Cause::Caustic { pdf, lobe }));
         }
         let mis = info.mis_weight.unwrap_or(1.0);
         if mis >= MIS_NEAR_ONE && density(info.pdf).is_some() {
@@ -377,7 +385,13 @@ mod tests {
         });
         let f = explain(&t, 9).expect("a firefly");
         assert_eq!(f.node, bounce);
-        assert_eq!(f.cause, Cause::Caustic { pdf: Some(0.06) });
+        assert_eq!(
+            f.cause,
+            Cause::Caustic {
+                pdf: Some(0.06),
+                lobe: LobeKind::Diffuse
+            }
+        );
         assert_eq!(f.lpe, "C<RD><TS><TS>L");
         assert!((f.ratio() - 350.0).abs() < 1e-9, "{}", f.ratio());
         assert!(f.sentence().contains("caustic"), "{}", f.sentence());

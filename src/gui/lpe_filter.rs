@@ -2,9 +2,10 @@
 //! selected pixel's tree before filtering. The tree the panels show (`Document::tree`) is the
 //! filtered one, [`crate::lpe::filter_tree`]'s (the filter of `raytree trace --lpe` and
 //! `raytree diagram --lpe`), so the tree, the overlay, the diagram, the samples and the exports
-//! all show only the matching paths.
+//! all show only the matching paths. Unlike the command line, a sample without a match keeps
+//! its camera ray, so the sample count (the divisor of every per-sample mean) is the pixel's.
 
-use crate::lpe::{Lpe, LpeError, filter_tree};
+use crate::lpe::{Lpe, LpeError, filter_tree_all_samples};
 use crate::tree::RayTree;
 
 /// The filter's state (in [`super::Document::lpe`]).
@@ -47,7 +48,8 @@ impl LpeState {
     }
 
     /// The tree to show for `tree` (the pixel's, or `None`) under the filter; keeps the
-    /// unfiltered tree in `full`. `None` when no path matches.
+    /// unfiltered tree in `full`. A sample without a matching path keeps its camera ray alone
+    /// ([`filter_tree_all_samples`]), so shares stay shares of the whole pixel.
     pub fn apply(&mut self, tree: Option<RayTree>) -> Option<RayTree> {
         self.summary = None;
         self.inapplicable = false;
@@ -57,7 +59,7 @@ impl LpeState {
             return Some(tree);
         };
         let full = tree;
-        match filter_tree(&full, std::slice::from_ref(lpe)) {
+        match filter_tree_all_samples(&full, std::slice::from_ref(lpe)) {
             None => {
                 self.summary = Some(
                     "not applied: a Whitted tree records no light paths (choose the path integrator)"
@@ -69,7 +71,7 @@ impl LpeState {
             Some(f) => {
                 self.summary = Some(f.summary());
                 self.full = Some(full);
-                (!f.tree.samples.is_empty()).then_some(f.tree)
+                Some(f.tree)
             }
         }
     }

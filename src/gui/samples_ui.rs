@@ -158,9 +158,6 @@ fn lpe_ui(ui: &mut egui::Ui, doc: &Document, cmds: &mut Vec<Command>) {
             ui.visuals().text_color()
         };
         ui.label(RichText::new(format!("{}: {s}", lpe.as_str())).color(colour));
-        if doc.tree.is_none() {
-            ui.label(RichText::new("no path of this pixel matches").color(WARNING));
-        }
     }
 }
 
@@ -179,13 +176,13 @@ fn histogram_ui(
         bars.push((Bar::Zero, h.zero.len(), "0".into()));
     }
     for (k, b) in h.bins.iter().enumerate() {
-        bars.push((Bar::Bin(k), b.samples.len(), format!("1e{:+.1}", b.lo)));
+        bars.push((Bar::Bin(k), b.samples.len(), edge(b.lo)));
     }
     if !h.non_finite.is_empty() {
         bars.push((Bar::NonFinite, h.non_finite.len(), "NaN".into()));
     }
     ui.small(format!(
-        "{} samples by luminance (log10, 2 bars a decade; value 0 apart): click a bar to list its samples",
+        "{} samples by luminance, log scale (2 bars a decade, each labelled with its lower edge; 0 apart): click a bar to list its samples",
         view.rows.len()
     ));
     let (rect, _) = ui.allocate_exact_size(vec2(ui.available_width(), HIST_HEIGHT), Sense::hover());
@@ -194,7 +191,9 @@ fn histogram_ui(
     let max = bars.iter().map(|b| b.1).max().unwrap_or(1).max(1);
     let n = bars.len().max(1) as f32;
     let w = rect.width() / n;
+    // Room for the axis labels below and the counts above the tallest bar.
     let plot_h = rect.height() - 16.0;
+    let bar_h = plot_h - 13.0;
     let text = ui.visuals().text_color();
     let sel_bar = selected.and_then(|s| {
         if h.zero.contains(&s) {
@@ -208,7 +207,7 @@ fn histogram_ui(
     for (i, (bar, count, label)) in bars.iter().enumerate() {
         let x0 = rect.left() + i as f32 * w;
         let cell = egui::Rect::from_min_size(pos2(x0, rect.top()), vec2(w, rect.height()));
-        let bh = plot_h * *count as f32 / max as f32;
+        let bh = bar_h * *count as f32 / max as f32;
         let bar_rect = egui::Rect::from_min_max(
             pos2(x0 + 1.5, rect.top() + plot_h - bh),
             pos2(x0 + w - 1.5, rect.top() + plot_h),
@@ -309,9 +308,14 @@ fn firefly_ui(
                 let v = crate::analysis::samples::sample_value(t.samples.get(sample)?.radiance);
                 Some((v / typ, if by_median { "median" } else { "mean" }))
             });
+            let record = doc
+                .tree
+                .as_ref()
+                .and_then(|t| t.samples.get(sample))
+                .map_or(sample, |s| s.index as usize);
             if let Some((r, what)) = ratio {
                 ui.small(format!(
-                    "sample {sample}: {r:.2}x the pixel's {what} (a firefly above {}x)",
+                    "sample {record}: {r:.2}x the pixel's {what} (a firefly above {}x)",
                     firefly::FIREFLY_RATIO
                 ));
             }
@@ -384,6 +388,17 @@ fn list_ui(
         });
     if show_all {
         view.bar = None;
+    }
+}
+
+/// A bar's lower edge `10^lo`, two significant digits.
+fn edge(lo: f64) -> String {
+    let v = 10f64.powf(lo);
+    if (1e-3..1e4).contains(&v) {
+        let digits = (1.0 - v.log10().floor()).max(0.0) as usize;
+        format!("{v:.digits$}")
+    } else {
+        format!("{v:.1e}")
     }
 }
 

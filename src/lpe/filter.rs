@@ -45,6 +45,18 @@ fn complete(lpe: &str) -> bool {
 /// the tree holds no path-integrator records (a Whitted tree).
 #[must_use]
 pub fn filter_tree(tree: &RayTree, lpes: &[Lpe]) -> Option<LpeFilter> {
+    filter(tree, lpes, false)
+}
+
+/// As [`filter_tree`], but a sample without a matching path keeps its camera ray (alone), so
+/// the filtered tree still has the pixel's `spp` samples and every per-sample mean and share
+/// computed from it (the inspector's Explain and breakdown) stays one of the whole pixel.
+#[must_use]
+pub fn filter_tree_all_samples(tree: &RayTree, lpes: &[Lpe]) -> Option<LpeFilter> {
+    filter(tree, lpes, true)
+}
+
+fn filter(tree: &RayTree, lpes: &[Lpe], all_samples: bool) -> Option<LpeFilter> {
     if !tree.nodes.iter().any(|n| n.path.is_some()) {
         return None;
     }
@@ -74,6 +86,11 @@ pub fn filter_tree(tree: &RayTree, lpes: &[Lpe]) -> Option<LpeFilter> {
             }
             keep[id.index()] = true;
             at = tree.node(id).parent;
+        }
+    }
+    if all_samples {
+        for s in &tree.samples {
+            keep[s.root.index()] = true;
         }
     }
     let mut out = tree.clone();
