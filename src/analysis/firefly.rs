@@ -189,13 +189,15 @@ pub fn typical(tree: &RayTree) -> Option<(f64, bool)> {
     }
 }
 
-/// Whether sample `sample` is a firefly (see the module docs).
+/// Whether sample `sample` is a firefly (see the module docs); a non-finite one is not (it is
+/// counted apart, as the render drops it).
 #[must_use]
 pub fn is_firefly(tree: &RayTree, sample: usize) -> bool {
     let Some(s) = tree.samples.get(sample) else {
         return false;
     };
-    typical(tree).is_some_and(|(t, _)| sample_value(s.radiance) > FIREFLY_RATIO * t)
+    let v = sample_value(s.radiance);
+    v.is_finite() && typical(tree).is_some_and(|(t, _)| v > FIREFLY_RATIO * t)
 }
 
 /// Explain sample `sample` if it is a firefly with a dominant path; `None` otherwise (not a
@@ -205,7 +207,8 @@ pub fn explain(tree: &RayTree, sample: usize) -> Option<Firefly> {
     let s = tree.samples.get(sample)?;
     let (typical, by_median) = typical(tree)?;
     let value = sample_value(s.radiance);
-    if value <= FIREFLY_RATIO * typical {
+    // A non-finite value (a NaN sample, which the render drops) is no firefly.
+    if !value.is_finite() || value <= FIREFLY_RATIO * typical {
         return None;
     }
     let end = tree

@@ -135,6 +135,13 @@ fn emission_found_by_a_bsdf_sample_with_mis_near_one() {
 }
 
 #[test]
+fn a_nan_sample_is_no_firefly() {
+    let t = grey_samples(&[f64::NAN, 0.1, 0.1]);
+    assert!(explain(&t, 0).is_none() && !is_firefly(&t, 0));
+    assert_eq!(typical(&t), Some((0.1, true)));
+}
+
+#[test]
 fn a_black_median_compares_with_the_mean() {
     let t = grey_samples(&[0.0; 15].iter().chain(&[3.0]).copied().collect::<Vec<_>>());
     let (typ, by_median) = typical(&t).unwrap();
