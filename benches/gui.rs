@@ -199,6 +199,45 @@ fn frames(c: &mut Criterion) {
             frame(&mut app, Vec::new())
         })
     });
+    // A path-traced pixel with its Samples section: the Cornell box at spp 16 (a firefly pixel,
+    // 16 rows, a 5-bar histogram), every level open.
+    let adjust = Box::new(|s: &mut raytree::Scene| {
+        s.settings.spp = 16;
+        Ok(())
+    });
+    let mut session = Session::new(
+        Some("fixtures/cornell-box.json".into()),
+        Box::new(FixtureFiles),
+        adjust,
+        Arc::new(|| {}),
+    );
+    session.wait_render();
+    session.apply(Command::SelectPixel([159, 46]));
+    eprintln!(
+        "cornell-box 159,46 spp 16: {} rays",
+        session.doc.tree.as_ref().map_or(0, |t| t.nodes.len())
+    );
+    let mut app = InspectorApp::new(session);
+    for _ in 0..3 {
+        frame(&mut app, Vec::new());
+    }
+    expand_all(&mut app);
+    frame(&mut app, Vec::new());
+    g.bench_function("frame_cornell_spp16_hover", |b| {
+        b.iter(|| {
+            k = (k + 1) % 50;
+            let pos = egui::pos2(500.0 + k as f32, 300.0);
+            frame(&mut app, vec![egui::Event::PointerMoved(pos)])
+        })
+    });
+    g.bench_function("frame_cornell_spp16_after_select", |b| {
+        b.iter(|| {
+            flip = !flip;
+            let p = if flip { [160, 46] } else { [159, 46] };
+            app.session.apply(Command::SelectPixel(p));
+            frame(&mut app, Vec::new())
+        })
+    });
     g.finish();
 }
 

@@ -7,6 +7,10 @@ pub mod converge;
 pub mod cost;
 pub mod diff;
 pub mod explain;
+pub mod firefly;
 pub mod growth;
+#[cfg(test)]
+mod hand_tree;
 pub mod invariants;
+pub mod samples;
 pub mod teach;

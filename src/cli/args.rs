@@ -321,6 +321,9 @@ pub struct DiagramArgs {
     /// Which sample of the pixel to draw (for spp > 1).
     #[arg(long, value_name = "K", default_value_t = 0)]
     pub sample: usize,
+    /// Also draw every other sample of the pixel under --sample, faded by its value.
+    #[arg(long)]
+    pub all_samples: bool,
     /// Zoomed insets at spawn points showing the offset epsilon to scale.
     #[arg(long)]
     pub zoom_offsets: bool,

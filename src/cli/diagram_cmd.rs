@@ -126,7 +126,13 @@ pub fn run(a: &DiagramArgs) -> Result<()> {
         .map_or("built-in classic".to_string(), |n| {
             n.to_string_lossy().into_owned()
         });
-    let sample = if tree.samples.len() > 1 {
+    let sample = if tree.samples.len() > 1 && a.all_samples {
+        format!(
+            ", all {} samples (sample {} in full)",
+            tree.samples.len(),
+            a.sample
+        )
+    } else if tree.samples.len() > 1 {
         format!(", sample {}", a.sample)
     } else {
         String::new()
@@ -139,6 +145,7 @@ pub fn run(a: &DiagramArgs) -> Result<()> {
         kinds,
         sample: a.sample,
         zoom_offsets: a.zoom_offsets,
+        all_samples: a.all_samples,
         highlight: None,
         label_depth: a.label_depth,
         min_share: a.min_share,

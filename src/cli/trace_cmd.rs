@@ -76,15 +76,8 @@ pub(super) fn filter_lpe(
             "--lpe needs the path integrator's records (each node's light path), and this pixel was traced by Whitted: add --integrator path"
         );
     };
-    let header = format!(
-        "lpe {}: {} of {} paths match, {} of the pixel (radiance {})\n",
-        exprs.join(" | "),
-        f.matched,
-        f.paths,
-        f.share
-            .map_or_else(|| "none".to_owned(), |s| format!("{:.1}%", 100.0 * s)),
-        raytree::text::rgb(f.radiance)
-    );
+    let header = format!("lpe {}: {}
+", exprs.join(" | "), f.summary());
     let summary = serde_json::json!({
         "expressions": exprs,
         "matched": f.matched,

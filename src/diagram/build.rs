@@ -125,7 +125,17 @@ impl Diagram {
         frame.plane_center = centre + if pan.is_finite() { pan } else { DVec2::ZERO };
         frame.canvas_center = (view.min + view.max) * 0.5;
 
-        let mut rays = Vec::with_capacity(segs.len());
+        // The other samples (all_samples) under the chosen one, faded by their value.
+        let others = super::all_samples::other_segs(scene, tree, opts);
+        let fades = super::all_samples::sample_fades(tree);
+        let mut rays = Vec::with_capacity(others.len() + segs.len());
+        for (k, s) in &others {
+            let mut r = project(s, &frame, &view, extent3, fs, opts);
+            r.fade *= fades[*k];
+            clip_to(&mut r, &view);
+            rays.push(r);
+        }
+        let first = others.len();
         for s in &segs {
             let mut r = project(s, &frame, &view, extent3, fs, opts);
             r.tir = s.node.kind == RayKind::Reflected
@@ -146,8 +156,16 @@ impl Diagram {
             ));
         }
         let objs = objects::slices(scene, &frame, &view, fs, &mut pending);
-        let hits = annotate::hits(tree, &segs, &rays, &frame, fs, opts, &mut pending);
-        let lights = light_marks(scene, &segs, &rays, &frame, extent3, fs, &mut pending);
+        let hits = annotate::hits(tree, &segs, &rays[first..], &frame, fs, opts, &mut pending);
+        let lights = light_marks(
+            scene,
+            &segs,
+            &rays[first..],
+            &frame,
+            extent3,
+            fs,
+            &mut pending,
+        );
         let eye_visible = view.contains_rect(&Rect::new(
             frame.to_canvas(cam.position),
             frame.to_canvas(cam.position),

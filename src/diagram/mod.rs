@@ -4,6 +4,7 @@
 //! giving a pure-data [`Diagram`] in canvas pixels. [`to_svg`] and [`to_png`] draw it; the GUI
 //! can paint the same primitives ([`paint::display_list`]).
 
+pub mod all_samples;
 mod annotate;
 mod build;
 pub mod font;
@@ -62,6 +63,9 @@ pub struct DiagramOptions {
     pub zoom: f64,
     /// Shift of the view's centre from the automatic framing, in plane units (right, up).
     pub pan: [f64; 2],
+    /// Also draw every other sample of the pixel, under `sample`, faded by its value
+    /// ([`all_samples`]).
+    pub all_samples: bool,
 }
 
 /// The default contribution threshold: 1 % of the sample's value.
@@ -83,6 +87,7 @@ impl Default for DiagramOptions {
             min_share: MIN_SHARE,
             zoom: 1.0,
             pan: [0.0, 0.0],
+            all_samples: false,
         }
     }
 }

@@ -32,6 +32,7 @@ pub struct InspectorApp {
     overlay: OverlayCache,
     explain: ExplainCache,
     compare: CompareView,
+    samples: super::samples_ui::SamplesView,
 }
 
 impl InspectorApp {
@@ -49,6 +50,7 @@ impl InspectorApp {
             overlay: OverlayCache::default(),
             explain: ExplainCache::default(),
             compare: CompareView::default(),
+            samples: Default::default(),
         }
     }
 
@@ -81,6 +83,12 @@ impl InspectorApp {
     #[must_use]
     pub fn explanation(&self) -> Option<&crate::analysis::explain::Explanation> {
         self.explain.explanation()
+    }
+
+    /// The samples section's state: its rows, histogram, chosen bar, firefly (for tests).
+    #[must_use]
+    pub fn samples_view(&self) -> &super::samples_ui::SamplesView {
+        &self.samples
     }
 
     /// The pinned-versus-current difference the compare window shows (for tests).
@@ -141,6 +149,7 @@ impl InspectorApp {
             });
         let tree_view = &mut self.tree_view;
         let explain = &mut self.explain;
+        let samples = &mut self.samples;
         egui::Panel::right("tree")
             .resizable(true)
             .default_size(470.0)
@@ -154,6 +163,11 @@ impl InspectorApp {
                 egui::ScrollArea::vertical()
                     .id_salt("details-scroll")
                     .show(ui, |ui| {
+                        egui::CollapsingHeader::new("Samples")
+                            .default_open(true)
+                            .show(ui, |ui| {
+                                super::samples_ui::samples_ui(ui, doc, samples, &mut cmds);
+                            });
                         egui::CollapsingHeader::new("Explain")
                             .default_open(true)
                             .show(ui, |ui| explain_ui(ui, doc, explain, &mut cmds));

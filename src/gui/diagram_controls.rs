@@ -45,6 +45,8 @@ pub struct DiagramView {
     pub min_share: f64,
     /// The sample drawn; `None` follows the selected node's sample.
     pub sample: Option<usize>,
+    /// Draw every other sample too, faded by its value ([`crate::diagram::all_samples`]).
+    pub all_samples: bool,
     /// Magnification on the automatic framing.
     pub zoom: f64,
     /// Shift from the automatic framing in plane units.
@@ -64,6 +66,7 @@ impl Default for DiagramView {
             label_depth: d.label_depth,
             min_share: MIN_SHARE,
             sample: None,
+            all_samples: false,
             zoom: 1.0,
             pan: [0.0, 0.0],
             export_highlight: false,
@@ -72,7 +75,7 @@ impl Default for DiagramView {
 }
 
 /// The sample holding node `id` (the overlay's rule).
-fn sample_of(doc: &Document, id: NodeId) -> Option<usize> {
+pub(super) fn sample_of(doc: &Document, id: NodeId) -> Option<usize> {
     let tree = doc.tree.as_ref()?;
     let mut cur = id;
     while let Some(p) = tree.nodes.get(cur.index())?.parent {
@@ -127,6 +130,7 @@ impl DiagramView {
             min_share: self.min_share,
             zoom: self.zoom,
             pan: self.pan,
+            all_samples: self.all_samples,
             ..DiagramOptions::default()
         }
     }
@@ -209,6 +213,8 @@ pub(super) fn controls_ui(ui: &mut egui::Ui, doc: &Document, v: &mut DiagramView
                 follow = false;
             }
             v.sample = (!follow).then_some(k);
+            ui.checkbox(&mut v.all_samples, "all samples")
+                .on_hover_text("draw every sample of the pixel, faded by its value");
         }
         ui.separator();
         ui.checkbox(&mut v.export_highlight, "highlight in exports");

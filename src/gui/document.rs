@@ -156,6 +156,8 @@ pub struct Document {
     pub step: Step,
     /// The acne lab.
     pub lab: Lab,
+    /// The light path expression filter (`tree` is the filtered tree while one applies).
+    pub lpe: super::lpe_filter::LpeState,
 }
 
 impl Document {
@@ -203,6 +205,7 @@ impl Document {
             pin: None,
             step: Step::default(),
             lab: Lab::default(),
+            lpe: Default::default(),
         }
     }
 
@@ -251,4 +254,6 @@ pub enum Command {
     SetStep(Step),
     /// Run the acne lab with these parameters (cancelling its last job).
     SetLab(super::acne_lab::LabParams),
+    /// New text in the LPE filter field (applied when it parses; empty: no filter).
+    SetLpe(String),
 }

@@ -98,7 +98,10 @@ impl Session {
                 let versions = (self.doc.tree_version, self.doc.image_version);
                 let (pin, step) = (self.doc.pin.take(), self.doc.step);
                 let lab = std::mem::take(&mut self.doc.lab);
+                let mut lpe = std::mem::take(&mut self.doc.lpe);
+                lpe.full = None;
                 self.doc = Document::new(scene, source);
+                self.doc.lpe = lpe;
                 self.doc.view = view;
                 self.doc.pin = pin;
                 self.doc.step = step;
@@ -163,12 +166,20 @@ impl Session {
     fn select(&mut self, [x, y]: [u32; 2]) {
         let keep = self.doc.node;
         self.doc.selection = Some([x, y]);
+        self.doc.lpe.full = None;
         self.doc.tree = trace_pixel(&self.doc.scene, x, y);
-        self.doc.tree_version += 1;
+        self.refilter();
         let n = self.doc.tree.as_ref().map_or(0, |t| t.nodes.len());
         self.doc.node = keep
             .filter(|id| id.index() < n)
             .or(Some(crate::NodeId(0)).filter(|_| n > 0));
+    }
+
+    /// Apply the LPE filter to the selected pixel's unfiltered tree (a new tree version).
+    fn refilter(&mut self) {
+        let full = self.doc.lpe.full.take().or_else(|| self.doc.tree.take());
+        self.doc.tree = self.doc.lpe.apply(full);
+        self.doc.tree_version += 1;
     }
 
     /// Apply one command.
@@ -236,6 +247,13 @@ impl Session {
             }
             Command::Unpin => self.doc.pin = None,
             Command::SetStep(step) => self.doc.step = step,
+            Command::SetLpe(text) => {
+                if self.doc.lpe.set_text(text) {
+                    self.refilter();
+                    let n = self.doc.tree.as_ref().map_or(0, |t| t.nodes.len());
+                    self.doc.node = Some(crate::NodeId(0)).filter(|_| n > 0);
+                }
+            }
             Command::SetLab(params) => {
                 self.doc.lab.params = params;
                 self.start_lab();

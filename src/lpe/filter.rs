@@ -19,6 +19,22 @@ pub struct LpeFilter {
     pub share: Option<f64>,
 }
 
+impl LpeFilter {
+    /// What matched, in words: `3 of 130 paths match, 99.5% of the pixel (radiance [..])`
+    /// (the header of `raytree trace --lpe`, and the inspector's filter line).
+    #[must_use]
+    pub fn summary(&self) -> String {
+        format!(
+            "{} of {} paths match, {} of the pixel (radiance {})",
+            self.matched,
+            self.paths,
+            self.share
+                .map_or_else(|| "none".to_owned(), |s| format!("{:.1}%", 100.0 * s)),
+            crate::text::rgb(self.radiance)
+        )
+    }
+}
+
 /// Whether a recorded string is a complete path (it ends at a light or the background).
 fn complete(lpe: &str) -> bool {
     lpe.ends_with(['L', 'B'])
@@ -29,6 +45,18 @@ fn complete(lpe: &str) -> bool {
 /// the tree holds no path-integrator records (a Whitted tree).
 #[must_use]
 pub fn filter_tree(tree: &RayTree, lpes: &[Lpe]) -> Option<LpeFilter> {
+    filter(tree, lpes, false)
+}
+
+/// As [`filter_tree`], but a sample without a matching path keeps its camera ray (alone), so
+/// the filtered tree still has the pixel's `spp` samples and every per-sample mean and share
+/// computed from it (the inspector's Explain and breakdown) stays one of the whole pixel.
+#[must_use]
+pub fn filter_tree_all_samples(tree: &RayTree, lpes: &[Lpe]) -> Option<LpeFilter> {
+    filter(tree, lpes, true)
+}
+
+fn filter(tree: &RayTree, lpes: &[Lpe], all_samples: bool) -> Option<LpeFilter> {
     if !tree.nodes.iter().any(|n| n.path.is_some()) {
         return None;
     }
@@ -58,6 +86,11 @@ pub fn filter_tree(tree: &RayTree, lpes: &[Lpe]) -> Option<LpeFilter> {
             }
             keep[id.index()] = true;
             at = tree.node(id).parent;
+        }
+    }
+    if all_samples {
+        for s in &tree.samples {
+            keep[s.root.index()] = true;
         }
     }
     let mut out = tree.clone();

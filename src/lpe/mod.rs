@@ -12,7 +12,7 @@ mod parse;
 #[cfg(test)]
 mod tests;
 
-pub use filter::{LpeFilter, filter_tree};
+pub use filter::{LpeFilter, filter_tree, filter_tree_all_samples};
 
 use regex_automata::meta::Regex;
 use regex_automata::util::syntax;

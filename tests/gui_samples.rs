@@ -1,0 +1,257 @@
+//! The inspector's samples section (issue 16) through egui_kittest: the sample list sorted by
+//! value, selecting a sample everywhere, the log-scale histogram and its bars, the firefly
+//! explanation, the LPE filter field, and the diagram's "all samples" option.
+
+use egui_kittest::Harness;
+use egui_kittest::kittest::Queryable;
+use raytree::analysis::samples::{histogram, sample_rows};
+use raytree::gui::diagram_ui::{build_display_list, diagram_options};
+use raytree::gui::document::Command;
+use raytree::gui::{Files, InspectorApp, Session};
+use raytree::lpe::{Lpe, filter_tree_all_samples};
+use std::collections::HashMap;
+use std::path::{Path, PathBuf};
+use std::sync::{Arc, Mutex};
+use std::time::{Duration, SystemTime};
+
+const CAUSTIC: &str = include_str!("../fixtures/caustic.json");
+const CLASSIC: &str = include_str!("../fixtures/classic.json");
+
+#[derive(Clone, Default)]
+struct MemFiles(Arc<Mutex<HashMap<PathBuf, (String, u64)>>>);
+
+impl MemFiles {
+    fn put(&self, path: &str, text: &str) {
+        let mut m = self.0.lock().unwrap();
+        let version = m.get(Path::new(path)).map_or(1, |(_, v)| v + 1);
+        m.insert(path.into(), (text.to_string(), version));
+    }
+    fn get(&self, path: &str) -> Option<String> {
+        let m = self.0.lock().unwrap();
+        m.get(Path::new(path)).map(|(t, _)| t.clone())
+    }
+}
+
+impl Files for MemFiles {
+    fn read(&self, path: &Path) -> std::io::Result<String> {
+        self.get(&path.display().to_string())
+            .ok_or_else(|| std::io::Error::new(std::io::ErrorKind::NotFound, "no such file"))
+    }
+    fn modified(&self, path: &Path) -> Option<SystemTime> {
+        let v = self.0.lock().unwrap().get(path)?.1;
+        Some(SystemTime::UNIX_EPOCH + Duration::from_secs(v))
+    }
+    fn write(&self, path: &Path, bytes: &[u8]) -> std::io::Result<()> {
+        self.put(&path.display().to_string(), &String::from_utf8_lossy(bytes));
+        Ok(())
+    }
+}
+
+/// `text` at `path` with `spp` samples, pixel (x, y) selected; the render finished.
+fn harness(path: &str, text: &str, spp: u32, [x, y]: [u32; 2]) -> Harness<'static, InspectorApp> {
+    let files = MemFiles::default();
+    files.put(path, text);
+    let adjust = Box::new(move |s: &mut raytree::Scene| {
+        s.settings.spp = spp;
+        Ok(())
+    });
+    let session = Session::new(Some(path.into()), Box::new(files), adjust, Arc::new(|| {}));
+    let mut h = Harness::builder()
+        .with_size([1600.0, 1000.0])
+        .with_max_steps(16)
+        .build_ui_state(
+            |ui, app: &mut InspectorApp| app.show(ui),
+            InspectorApp::new(session),
+        );
+    h.run();
+    h.state_mut().session.wait_render();
+    h.state_mut().session.apply(Command::SelectPixel([x, y]));
+    h.run();
+    h
+}
+
+/// The caustic pixel under the glass ball at spp 16: sample 6 is the caustic firefly.
+fn caustic() -> Harness<'static, InspectorApp> {
+    harness("scenes/caustic.json", CAUSTIC, 16, [98, 112])
+}
+
+/// The sample the selected node belongs to.
+fn selected_sample(h: &Harness<'static, InspectorApp>) -> Option<usize> {
+    let doc = &h.state().session.doc;
+    let tree = doc.tree.as_ref()?;
+    let mut id = doc.node?;
+    while let Some(p) = tree.node(id).parent {
+        id = p;
+    }
+    tree.samples.iter().position(|s| s.root == id)
+}
+
+/// The panel's diagram equals a fresh build of its options.
+fn diagram_is_current(h: &Harness<'static, InspectorApp>) -> raytree::diagram::DiagramOptions {
+    let (size, prims) = h.state().diagram_display_list().expect("a diagram");
+    let doc = &h.state().session.doc;
+    assert!(prims == build_display_list(doc, size).unwrap().as_slice());
+    diagram_options(doc, size)
+}
+
+#[test]
+fn the_sample_list_is_sorted_and_a_row_selects_its_sample_everywhere() {
+    let mut h = caustic();
+    let tree = h.state().session.doc.tree.clone().unwrap();
+    let rows = h
+        .state()
+        .samples_view()
+        .shown_rows()
+        .iter()
+        .map(|r| r.index)
+        .collect::<Vec<_>>();
+    assert_eq!(
+        rows,
+        sample_rows(&tree)
+            .iter()
+            .map(|r| r.index)
+            .collect::<Vec<_>>()
+    );
+    assert_eq!(rows.len(), 16);
+    assert_eq!(rows[0], 6, "the caustic sample first");
+    assert_eq!(selected_sample(&h), Some(0));
+    h.get_by_label_contains("sample 6 ").click();
+    h.run();
+    h.run();
+    let root = tree.samples[6].root;
+    assert_eq!(h.state().session.doc.node, Some(root));
+    // The diagram draws it, the overlay draws its rays, the tree shows its row.
+    assert_eq!(diagram_is_current(&h).sample, 6);
+    let in_image = h.state().overlay_rays();
+    assert!(in_image > 0);
+    let row = format!("#{} camera -> floor", root.0);
+    assert!(
+        h.query_all_by_label_contains(&row).count() >= 1,
+        "the tree shows {row}"
+    );
+    // The row shows the sample's dominant path.
+    let label = format!(
+        "sample 6   {:>10}  len 4  C<RD><TS><TS>L",
+        format!("{:.4}", sample_rows(&tree)[0].value)
+    );
+    let _ = h.get_by_label_contains(&label);
+}
+
+#[test]
+fn a_histogram_bar_lists_its_samples_and_the_firefly_is_explained() {
+    let mut h = caustic();
+    let tree = h.state().session.doc.tree.clone().unwrap();
+    let hist = histogram(&tree);
+    // 33.1 (the caustic's luminance): the bar [1.5, 2).
+    let k = hist.bin_of(6).unwrap();
+    assert_eq!((hist.bins[k].lo, hist.bins[k].hi), (1.5, 2.0));
+    h.get_by_label_contains("bar 1e1.5 to 1e2.0").click();
+    h.run();
+    h.run();
+    let shown: Vec<usize> = h
+        .state()
+        .samples_view()
+        .shown_rows()
+        .iter()
+        .map(|r| r.index)
+        .collect();
+    assert_eq!(shown, hist.bins[k].samples);
+    assert_eq!(
+        selected_sample(&h),
+        Some(6),
+        "the bar's largest sample is selected"
+    );
+    // The firefly sentence names the caustic and links to the diffuse floor bounce.
+    let f = h
+        .state()
+        .samples_view()
+        .firefly()
+        .expect("sample 6 is a firefly")
+        .clone();
+    assert_eq!(tree.node(f.node).kind, raytree::RayKind::Diffuse);
+    h.get_by_label_contains("Firefly. Sample 6").click();
+    h.run();
+    assert_eq!(h.state().session.doc.node, Some(f.node));
+    // The zero bar lists the black samples; "show all" lists every one again.
+    h.get_by_label_contains("bar value 0").click();
+    h.run();
+    assert_eq!(h.state().samples_view().shown_rows().len(), hist.zero.len());
+    h.get_by_label("show all").click();
+    h.run();
+    assert_eq!(h.state().samples_view().shown_rows().len(), 16);
+}
+
+#[test]
+fn the_lpe_filter_keeps_the_matching_paths_and_shows_a_bad_expression_in_red() {
+    let mut h = caustic();
+    let full = h.state().session.doc.tree.clone().unwrap();
+    let field = h.get_by_label("LPE filter");
+    field.focus();
+    field.type_text("C<RD><TS><TS>L");
+    h.run();
+    h.run();
+    let expected =
+        filter_tree_all_samples(&full, &[Lpe::parse("C<RD><TS><TS>L").unwrap()]).unwrap();
+    let doc = &h.state().session.doc;
+    assert_eq!(doc.tree.as_ref(), Some(&expected.tree));
+    assert!(expected.tree.nodes.len() < full.nodes.len());
+    assert!(expected.matched >= 1);
+    assert_eq!(expected.tree.samples.len(), full.samples.len());
+    // The count and share, the samples and the diagram of the filtered tree.
+    let _ = h.get_by_label_contains(&expected.summary());
+    assert_eq!(
+        h.state().samples_view().shown_rows().len(),
+        expected.tree.samples.len()
+    );
+    diagram_is_current(&h);
+    // A bad expression: the error with its column, in red; the last good filter stays.
+    h.get_by_label("LPE filter").type_text("<");
+    h.run();
+    let doc = &h.state().session.doc;
+    let err = doc
+        .lpe
+        .error
+        .clone()
+        .expect("C<RD><TS><TS>L< does not parse");
+    let _ = h.get_by_label_contains(&format!("column {}", err.column));
+    assert_eq!(doc.tree.as_ref(), Some(&expected.tree));
+    // Cleared: the whole tree again.
+    h.state_mut().session.apply(Command::SetLpe(String::new()));
+    h.run();
+    assert_eq!(h.state().session.doc.tree.as_ref(), Some(&full));
+}
+
+#[test]
+fn the_lpe_filter_on_a_whitted_tree_says_it_does_not_apply() {
+    let mut h = harness("scenes/classic.json", CLASSIC, 1, [400, 200]);
+    let full = h.state().session.doc.tree.clone().unwrap();
+    h.state_mut()
+        .session
+        .apply(Command::SetLpe("C<RD>L".into()));
+    h.run();
+    assert_eq!(h.state().session.doc.tree.as_ref(), Some(&full));
+    let _ = h.get_by_label_contains("not applied: a Whitted tree");
+}
+
+#[test]
+fn all_samples_in_the_diagram() {
+    let mut h = caustic();
+    h.get_by_label("all samples").click();
+    h.run();
+    h.run();
+    let opts = diagram_is_current(&h);
+    assert!(opts.all_samples);
+    let doc = &h.state().session.doc;
+    let d =
+        raytree::diagram::Diagram::build(&doc.scene, doc.tree.as_ref().unwrap(), &opts).unwrap();
+    let one = raytree::diagram::Diagram::build(
+        &doc.scene,
+        doc.tree.as_ref().unwrap(),
+        &raytree::diagram::DiagramOptions {
+            all_samples: false,
+            ..opts.clone()
+        },
+    )
+    .unwrap();
+    assert!(d.rays.len() > one.rays.len());
+}
