@@ -3,8 +3,12 @@
 For each scene the script converts the raytree JSON to a Mitsuba 3 scene (`to_mitsuba`), renders
 a reference with Mitsuba's path tracer at high spp (cached beside the output), then renders the
 scene with both renderers at increasing spp and reports the relative RMSE against the reference
-and the wall time of each render. From the two error-vs-seconds curves it interpolates (log-log)
-the time each renderer needs to reach the same error, and prints the ratio raytree / Mitsuba.
+and the time of each render: Mitsuba's `mi.render` (after `load_dict`, which builds its
+acceleration structure, and a warm-up render that compiles its kernels), raytree's own render
+time as it prints it (after loading the scene and building its BVH, before writing the image)
+and raytree's wall time (process start to exit). From the two error-vs-seconds curves it
+interpolates (log-log) the time each renderer needs to reach the same error, and prints the
+ratios raytree / Mitsuba of both raytree times.
 
 Only light transport both renderers compute the same way can be compared: the scenes must use
 constant colours, `diffuse` (Lambert), `reflectivity` (a mirror without Fresnel: Mitsuba's
@@ -35,6 +39,7 @@ import hashlib
 import json
 import math
 import os
+import re
 import subprocess
 import sys
 import time
@@ -201,9 +206,13 @@ def raytree_render(path, spp, size, max_depth, integrator, extra, out):
     if size:
         cmd += ["--size", f"{size[0]}x{size[1]}"]
     t = time.perf_counter()
-    subprocess.run(cmd, check=True, stdout=subprocess.DEVNULL)
-    secs = time.perf_counter() - t
-    return np.array(mi.Bitmap(out))[:, :, :3], secs
+    done = subprocess.run(cmd, check=True, stdout=subprocess.PIPE, text=True)
+    wall = time.perf_counter() - t
+    # raytree's own render time ("time S s, ..."): without process start, scene load, BVH
+    # build and writing the EXR, as Mitsuba's time is without load_dict and kernel compiles.
+    m = re.search(r"^time ([0-9.]+) s", done.stdout, re.M)
+    secs = float(m.group(1)) if m else wall
+    return np.array(mi.Bitmap(out))[:, :, :3], secs, wall
 
 
 def time_to_error(curve, target):
@@ -256,7 +265,7 @@ def main():
             print(f"{name}: reference {a.ref_spp} spp in {secs:.1f} s")
         mitsuba_render(d, 1)  # compile (kernels are cached for the timed runs)
         # Interleaved (mitsuba, raytree, mitsuba, ...) so that load on the machine hits both.
-        mts, rt = [], []
+        mts, rt, walls = [], [], []
         out = os.path.join(a.out, f"{name}-raytree.exr")
         jobs = [("mitsuba", int(s)) for s in a.mitsuba_spp.split(",")]
         jobs2 = [("raytree", int(s)) for s in a.raytree_spp.split(",")]
@@ -267,17 +276,21 @@ def main():
                 img, secs = mitsuba_render(d, spp)
                 curve = mts
             else:
-                img, secs = raytree_render(path, spp, size, a.max_depth, a.integrator,
-                                           a.raytree.split(), out)
+                img, secs, wall = raytree_render(path, spp, size, a.max_depth, a.integrator,
+                                                 a.raytree.split(), out)
                 curve = rt
+                walls.append(wall)
             curve.append((secs, rel_rmse(img, ref)))
-            print(f"{name}: {who:8s} {spp:5d} spp {secs:8.3f} s rel-RMSE {curve[-1][1]:.4f}")
-        # For each raytree render: the time Mitsuba needs for the same error, and the ratio.
-        print(f"{name}: rel-RMSE | raytree s | mitsuba s (interpolated) | raytree / mitsuba")
-        for secs, err in rt:
+            print(f"{name}: {who:8s} {spp:5d} spp {secs:8.3f} s rel-RMSE {curve[-1][1]:.4f}"
+                  f" load {os.getloadavg()[0]:.1f}")
+        # For each raytree render: the time Mitsuba needs for the same error, and the ratio,
+        # of raytree's render time and of its wall time (process start to exit).
+        print(f"{name}: rel-RMSE | raytree render s | raytree wall s | mitsuba s (interpolated)"
+              " | render / mitsuba | wall / mitsuba")
+        for (secs, err), wall in zip(rt, walls):
             tm, extrapolated = time_to_error(mts, err)
-            cell = f"{tm:9.3f}{'~' if extrapolated else ' '} | {secs / tm:5.2f}"
-            print(f"{name}: {err:8.4f} | {secs:9.3f} | {cell}")
+            cell = f"{tm:9.3f}{'~' if extrapolated else ' '} | {secs / tm:5.2f} | {wall / tm:5.2f}"
+            print(f"{name}: {err:8.4f} | {secs:9.3f} | {wall:9.3f} | {cell}")
 
 if __name__ == "__main__":
     sys.exit(main())

@@ -9,7 +9,7 @@ use crate::bvh::TraversalCost;
 use crate::bvh::wide::PACKET;
 use crate::geometry::Shape;
 use crate::math::{Ray, Rgb};
-use crate::sampling::{PixelFilter, PixelSampler, StratifiedJitter};
+use crate::sampling::{PixelFilter, PixelSampler, SceneSampler, StratifiedJitter};
 use crate::scene::{Film, IntegratorKind, Scene};
 use crate::trace::{
     DiagnosticRecorder, Integrator, NoopRecorder, RayCounts, Recorder, SceneIntegrator,
@@ -144,7 +144,7 @@ pub fn render_pixel<R: Recorder>(
 }
 
 /// [`render_pixel`] with a prepared integrator (and so a chosen effect plan) and the scene's
-/// default sampler ([`StratifiedJitter`] with the settings' `spp` and `seed`).
+/// sampler ([`SceneSampler::for_settings`]: its kind, `spp` and `seed`).
 pub fn render_pixel_with<I: Integrator, R: Recorder>(
     integrator: &I,
     x: u32,
@@ -153,7 +153,7 @@ pub fn render_pixel_with<I: Integrator, R: Recorder>(
     counts: &mut RayCounts,
     on_sample: impl FnMut(SampleRecord),
 ) -> Rgb {
-    let mut sampler = StratifiedJitter::for_settings(&integrator.scene().settings);
+    let mut sampler = SceneSampler::for_settings(&integrator.scene().settings);
     render_pixel_sampled(integrator, &mut sampler, x, y, rec, counts, on_sample)
 }
 
@@ -238,7 +238,7 @@ pub fn render_with<I: Integrator>(
     integrator: &I,
     progress: &(dyn Fn(u32) + Sync),
 ) -> (Image, RenderStats) {
-    let sampler = StratifiedJitter::for_settings(&integrator.scene().settings);
+    let sampler = SceneSampler::for_settings(&integrator.scene().settings);
     render_sampled(integrator, &sampler, progress)
 }
 
@@ -259,7 +259,7 @@ pub fn render_diagnosed(
     progress: &(dyn Fn(u32) + Sync),
 ) -> (Image, RenderStats, DiagnosticMap) {
     let integrator = SceneIntegrator::new(scene);
-    let sampler = StratifiedJitter::for_settings(&scene.settings);
+    let sampler = SceneSampler::for_settings(&scene.settings);
     render_recorded::<DiagnosticRecorder, _, _>(&integrator, &sampler, progress)
 }
 
@@ -273,7 +273,7 @@ pub fn render_rows<I: Integrator>(
 ) -> (Vec<Rgb>, RayCounts) {
     let scene = integrator.scene();
     let w = scene.camera.width;
-    let sampler = StratifiedJitter::for_settings(&scene.settings);
+    let sampler = SceneSampler::for_settings(&scene.settings);
     let parts: Vec<(Vec<Rgb>, RayCounts)> = if uses_packets::<NoopRecorder, I>(integrator) {
         packet_bands::<NoopRecorder, I, _>(integrator, &sampler, rows, &|_| {})
     } else {

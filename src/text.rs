@@ -280,7 +280,7 @@ fn node_summary(n: &RayNode) -> String {
 pub fn tree_text(tree: &RayTree) -> String {
     let st = &tree.settings;
     let mut out = format!(
-        "pixel ({}, {})  radiance {}  spp {}  max_depth {}  fresnel {}  shadows {}  offset {} {}\n",
+        "pixel ({}, {})  radiance {}  spp {}  max_depth {}  fresnel {}  shadows {}  offset {} {}  integrator {}  sampler {}\n",
         tree.pixel[0],
         tree.pixel[1],
         rgb(tree.radiance),
@@ -290,6 +290,8 @@ pub fn tree_text(tree: &RayTree) -> String {
         serde_name(&st.shadows),
         serde_name(&st.offset.strategy),
         sci(st.offset.epsilon, None),
+        st.integrator.name(),
+        st.sampler_kind().name(),
     );
     for s in &tree.samples {
         let _ = writeln!(

@@ -21,7 +21,7 @@ fn fixture(name: &str, w: u32, h: u32) -> Scene {
 fn denoising_lowers_the_error_at_4_spp_on_every_path_traced_fixture() {
     for (name, w, h) in [
         ("cornell-box.json", 48, 48),
-        ("caustic.json", 64, 48),
+        ("caustic.json", 128, 96),
         ("glossy.json", 64, 40),
         ("depth-of-field.json", 64, 36),
     ] {

@@ -41,14 +41,23 @@ fn fixtures() -> Vec<(String, Scene)> {
     out
 }
 
-/// Every fixture under the path integrator at spp 1, 4 and 16: each pixel's recorded tree
+/// Every fixture under the path integrator at spp 1, 4 and 16 (its default Sobol sampler) and
+/// at spp 4 with the stratified sampler: each pixel's recorded tree
 /// gives the rendered value bit for bit and keeps the invariants (the sample's radiance is the
 /// sum of its contributions, LPEs extend, the Whitted-shaped sums).
 #[test]
 fn every_fixture_tree_equals_pixel_under_the_path_integrator() {
+    use raytree::scene::SamplerKind;
     for (name, mut scene) in fixtures() {
         scene.settings.integrator = IntegratorKind::Path;
-        for (spp, w, h) in [(1, 16, 10), (4, 8, 5), (16, 4, 3)] {
+        // The default (Sobol, unless the fixture names one), then the stratified sampler.
+        for (spp, w, h, sampler) in [
+            (1, 16, 10, scene.settings.sampler),
+            (4, 8, 5, scene.settings.sampler),
+            (16, 4, 3, scene.settings.sampler),
+            (4, 8, 5, Some(SamplerKind::Stratified)),
+        ] {
+            scene.settings.sampler = sampler;
             scene.camera = scene.camera.with_size(w, h);
             scene.settings.spp = spp;
             let (image, stats) = render(&scene, &|_| {});

@@ -198,18 +198,33 @@ fn every_tracing_command_takes_integrator_and_seed() {
             &with(&["--integrator", "nope"]),
             "unknown integrator \"nope\"",
         );
+        fails_with(
+            &with(&["--sampler", "halton"]),
+            "--sampler: unknown sampler \"halton\"",
+        );
         assert!(
             std::fs::read_dir(d).unwrap().next().is_none(),
             "{cmd:?} wrote"
         );
         if cmd[0] != "cost" && cmd[0] != "acne" {
             for integrator in ["whitted", "path"] {
-                let o = with(&["--integrator", integrator, "--seed", "3", "--rr-depth", "2"]);
-                assert!(
-                    o.status.success(),
-                    "{cmd:?}: {}",
-                    String::from_utf8_lossy(&o.stderr)
-                );
+                for sampler in ["stratified", "sobol"] {
+                    let o = with(&[
+                        "--integrator",
+                        integrator,
+                        "--seed",
+                        "3",
+                        "--rr-depth",
+                        "2",
+                        "--sampler",
+                        sampler,
+                    ]);
+                    assert!(
+                        o.status.success(),
+                        "{cmd:?}: {}",
+                        String::from_utf8_lossy(&o.stderr)
+                    );
+                }
             }
         }
         for f in ["out.png", "out.svg"] {
@@ -225,6 +240,62 @@ fn every_tracing_command_takes_integrator_and_seed() {
     let o = raytree(&["render", "p.json", "-o", "p.png"], d);
     fails_with(&o, "settings.integrator: unknown integrator \"bidir\"");
     assert!(!d.join("p.png").exists());
+    std::fs::write(
+        d.join("p.json"),
+        "{\"camera\": {\"position\": [0,0,5], \"look_at\": [0,0,0], \"fov_y\": 40, \"width\": 4,\n\
+         \"height\": 3},\n\"settings\": {\"sampler\": \"halton\"}}",
+    )
+    .unwrap();
+    let o = raytree(&["render", "p.json", "-o", "p.png"], d);
+    fails_with(
+        &o,
+        "p.json:3:33: settings.sampler: unknown sampler \"halton\", expected \"stratified\" or \"sobol\"",
+    );
+    assert!(!d.join("p.png").exists());
+}
+
+/// The path integrator draws from the Sobol sampler unless the scene or `--sampler` asks for
+/// the stratified one; Whitted from the stratified one. Every choice gives trees equal to
+/// their pixels, and the samplers built by hand give the renders.
+#[test]
+fn the_sampler_follows_the_integrator_and_the_setting() {
+    use raytree::sampling::SobolSampler;
+    use raytree::scene::SamplerKind;
+    let mut path = small(Scene::default_scene(), 12, 8, 4);
+    path.settings.integrator = IntegratorKind::Path;
+    path.settings.seed = 5;
+    assert_eq!(path.settings.sampler_kind(), SamplerKind::Sobol);
+    let sobol = render(&path, &|_| {}).0;
+    let integrator = SceneIntegrator::new(&path);
+    let by_hand = render_sampled(&integrator, &SobolSampler::new(5, (0, 0), 0), &|_| {}).0;
+    assert_eq!(by_hand, sobol);
+    let mut strat = path.clone();
+    strat.settings.sampler = Some(SamplerKind::Stratified);
+    let stratified = render(&strat, &|_| {}).0;
+    let by_hand = render_sampled(&integrator, &StratifiedJitter::new(4, 5), &|_| {}).0;
+    assert_eq!(by_hand, stratified);
+    assert_ne!(sobol, stratified);
+    for (scene, image) in [(&path, &sobol), (&strat, &stratified)] {
+        for y in 0..8 {
+            for x in 0..12 {
+                assert_eq!(trace_pixel(scene, x, y).unwrap().radiance, image.get(x, y));
+            }
+        }
+    }
+    // Whitted asked for Sobol renders with it; its default stays stratified.
+    let mut whitted = small(Scene::default_scene(), 12, 8, 4);
+    assert_eq!(whitted.settings.sampler_kind(), SamplerKind::Stratified);
+    let plain = render(&whitted, &|_| {}).0;
+    whitted.settings.sampler = Some(SamplerKind::Sobol);
+    let w_sobol = render(&whitted, &|_| {}).0;
+    assert_ne!(plain, w_sobol);
+    assert_eq!(
+        trace_pixel(&whitted, 3, 2).unwrap().radiance,
+        w_sobol.get(3, 2)
+    );
+    // The tree records the choice when the scene made one.
+    let tree = serde_json::to_value(trace_pixel(&strat, 1, 1).unwrap()).unwrap();
+    assert_eq!(tree["settings"]["sampler"], "stratified");
 }
 
 /// `--seed` reaches the samples: the trace JSON records it, and its jittered positions differ

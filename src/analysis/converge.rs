@@ -6,8 +6,8 @@
 use crate::denoise::{DenoiseParams, denoise, gather_sampled};
 use crate::math::Rgb;
 use crate::render::{Image, render_sampled};
-use crate::sampling::{PixelSampler, SobolSampler, StratifiedJitter};
-use crate::scene::{IntegratorKind, Scene};
+use crate::sampling::{PixelSampler, SceneSampler};
+use crate::scene::{IntegratorKind, SamplerKind, Scene};
 use crate::trace::{Integrator, PathStrategy, PathTracer, SceneIntegrator};
 use serde::Serialize;
 use std::time::Instant;
@@ -51,7 +51,7 @@ pub fn loglog_slope(points: &[(f64, f64)]) -> Option<f64> {
 /// What one curve renders.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
 pub enum Series {
-    /// The scene's integrator as set (path: MIS), stratified jitter.
+    /// The scene's integrator and sampler as set (path: MIS, Sobol unless the scene says).
     Default,
     /// Path tracing with light sampling only.
     LightOnly,
@@ -59,6 +59,9 @@ pub enum Series {
     BsdfOnly,
     /// The scene's integrator with the Owen-scrambled Sobol sampler.
     Sobol,
+    /// The scene's integrator with stratified jitter (the film offset stratified, the other
+    /// dimensions independent).
+    Stratified,
     /// The scene's integrator with Russian roulette from this bounce on.
     RrDepth(u32),
     /// [`Series::Default`] denoised ([`crate::denoise`]); its time includes the feature rays
@@ -67,8 +70,8 @@ pub enum Series {
 }
 
 impl Series {
-    /// Parse a `--series` name: `default`, `light-only`, `bsdf-only`, `sobol`, `rr:N`,
-    /// `denoise`.
+    /// Parse a `--series` name: `default`, `light-only`, `bsdf-only`, `sobol`, `stratified`,
+    /// `rr:N`, `denoise`.
     ///
     /// # Errors
     /// An unknown name, with the accepted ones.
@@ -78,12 +81,13 @@ impl Series {
             "light-only" => Self::LightOnly,
             "bsdf-only" => Self::BsdfOnly,
             "sobol" => Self::Sobol,
+            "stratified" => Self::Stratified,
             "denoise" => Self::Denoised,
             _ => match s.strip_prefix("rr:").map(str::parse::<u32>) {
                 Some(Ok(n)) => Self::RrDepth(n),
                 _ => {
                     return Err(format!(
-                        "unknown series {s:?}: expected default, light-only, bsdf-only, sobol, rr:N or denoise"
+                        "unknown series {s:?}: expected default, light-only, bsdf-only, sobol, stratified, rr:N or denoise"
                     ));
                 }
             },
@@ -98,6 +102,7 @@ impl Series {
             Self::LightOnly => "light-only".into(),
             Self::BsdfOnly => "bsdf-only".into(),
             Self::Sobol => "sobol".into(),
+            Self::Stratified => "stratified".into(),
             Self::RrDepth(n) => format!("rr:{n}"),
             Self::Denoised => "denoise".into(),
         }
@@ -109,21 +114,25 @@ impl Series {
         matches!(self, Self::LightOnly | Self::BsdfOnly | Self::RrDepth(_))
     }
 
-    /// The default series for `scene`: for the path integrator the MIS estimator against light
-    /// and BSDF sampling alone, the Sobol sampler and the denoised default; otherwise the
-    /// default, Sobol and denoised.
+    /// The default series for `scene`: for the path integrator the MIS estimator (with the
+    /// scene's sampler) against light and BSDF sampling alone, the other sampler and the
+    /// denoised default; otherwise the default, the other sampler and denoised.
     #[must_use]
     pub fn defaults(scene: &Scene) -> Vec<Self> {
+        let other = match scene.settings.sampler_kind() {
+            SamplerKind::Sobol => Self::Stratified,
+            SamplerKind::Stratified => Self::Sobol,
+        };
         if scene.settings.integrator == IntegratorKind::Path {
             vec![
                 Self::Default,
                 Self::LightOnly,
                 Self::BsdfOnly,
-                Self::Sobol,
+                other,
                 Self::Denoised,
             ]
         } else {
-            vec![Self::Default, Self::Sobol, Self::Denoised]
+            vec![Self::Default, other, Self::Denoised]
         }
     }
 }
@@ -161,7 +170,7 @@ pub fn render_series(scene: &Scene, series: Series) -> (Image, f64) {
     if let Series::RrDepth(n) = series {
         s.settings.rr_depth = n;
     }
-    let strat = StratifiedJitter::for_settings(&s.settings);
+    let strat = SceneSampler::for_settings(&s.settings);
     let start = Instant::now();
     let image = match series {
         Series::LightOnly => run(
@@ -172,9 +181,13 @@ pub fn render_series(scene: &Scene, series: Series) -> (Image, f64) {
             &PathTracer::with_strategy(&s, PathStrategy::BsdfOnly),
             &strat,
         ),
-        Series::Sobol => {
-            let sobol = SobolSampler::new(s.settings.seed, (0, 0), 0);
-            run(&SceneIntegrator::new(&s), &sobol)
+        Series::Sobol | Series::Stratified => {
+            let kind = match series {
+                Series::Sobol => SamplerKind::Sobol,
+                _ => SamplerKind::Stratified,
+            };
+            let sampler = SceneSampler::new(kind, s.settings.spp, s.settings.seed);
+            run(&SceneIntegrator::new(&s), &sampler)
         }
         Series::Denoised => {
             let (image, _, features) = gather_sampled(&SceneIntegrator::new(&s), &strat, &|_| {});
@@ -281,6 +294,7 @@ mod tests {
             Series::LightOnly,
             Series::BsdfOnly,
             Series::Sobol,
+            Series::Stratified,
             Series::RrDepth(3),
             Series::Denoised,
         ] {

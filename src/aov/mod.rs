@@ -31,7 +31,7 @@ pub use versus::{ClassShare, Versus, versus};
 use crate::lpe::Lpe;
 use crate::math::Rgb;
 use crate::render::{Image, RenderStats, camera_sample};
-use crate::sampling::{PixelSampler, StratifiedJitter};
+use crate::sampling::{PixelSampler, SceneSampler};
 use crate::scene::IntegratorKind;
 use crate::trace::{Integrator, RayCounts};
 use rayon::prelude::*;
@@ -86,7 +86,7 @@ pub fn render_aovs<I: Integrator>(
     }
     let scene = integrator.scene();
     let (w, h) = (scene.camera.width, scene.camera.height);
-    let sampler = StratifiedJitter::for_settings(&scene.settings);
+    let sampler = SceneSampler::for_settings(&scene.settings);
     let done = std::sync::atomic::AtomicU32::new(0);
     // A recorder per rayon work split (`map_init`: a few per thread), so each distinct path
     // string is matched a few times per thread, not once per row.

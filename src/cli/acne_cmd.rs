@@ -62,6 +62,7 @@ pub fn run(a: &AcneArgs) -> Result<()> {
     let overrides = Overrides {
         integrator: a.integrator.clone(),
         rr_depth: a.rr_depth,
+        sampler: a.sampler.clone(),
         seed: a.seed,
         light_samples: a.light_samples,
         glossy_samples: a.glossy_samples,

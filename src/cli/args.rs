@@ -90,6 +90,10 @@ pub struct Overrides {
     /// Path integrator: Russian roulette from this bounce on (default 5).
     #[arg(long, value_name = "N")]
     pub rr_depth: Option<u32>,
+    /// Sampler: stratified or sobol (default: sobol under the path integrator, stratified
+    /// under Whitted).
+    #[arg(long, value_name = "stratified|sobol")]
+    pub sampler: Option<String>,
     /// Seed of the per-pixel sample positions (0 = the default positions).
     #[arg(long)]
     pub seed: Option<u64>,
@@ -198,6 +202,10 @@ pub struct AcneArgs {
     /// Path integrator: Russian roulette from this bounce on (default 5).
     #[arg(long, value_name = "N")]
     pub rr_depth: Option<u32>,
+    /// Sampler: stratified or sobol (default: sobol under the path integrator, stratified
+    /// under Whitted).
+    #[arg(long, value_name = "stratified|sobol")]
+    pub sampler: Option<String>,
     /// Seed of the per-pixel sample positions (0 = the default positions).
     #[arg(long)]
     pub seed: Option<u64>,

@@ -35,8 +35,8 @@ pub struct ConvergeArgs {
     #[arg(long, value_name = "N")]
     pub max_spp: Option<u32>,
     /// Comma-separated series: default, light-only, bsdf-only (path integrator), sobol,
-    /// rr:N (Russian roulette from bounce N), denoise [default: for the path integrator all
-    /// but rr:N; else default,sobol,denoise].
+    /// stratified, rr:N (Russian roulette from bounce N), denoise [default: for the path
+    /// integrator default,light-only,bsdf-only,stratified,denoise; else default,sobol,denoise].
     #[arg(long, value_name = "LIST")]
     pub series: Option<String>,
     /// A small run: 64 pixels wide, up to 16 spp against 256.

@@ -174,6 +174,11 @@ pub fn apply(scene: &mut Scene, o: &Overrides) -> Result<()> {
     if let Some(v) = o.rr_depth {
         s.rr_depth = v;
     }
+    if let Some(v) = &o.sampler {
+        s.sampler = Some(
+            raytree::scene::SamplerKind::from_name(v).map_err(|msg| anyhow!("--sampler: {msg}"))?,
+        );
+    }
     if let Some(v) = o.light_samples {
         s.light_samples = Some(v);
     }

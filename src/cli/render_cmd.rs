@@ -78,10 +78,11 @@ pub fn run(a: &RenderArgs) -> Result<()> {
     if scene.settings.integrator == raytree::scene::IntegratorKind::Path {
         let samples = u64::from(w) * u64::from(h) * u64::from(scene.settings.spp);
         sayln!(
-            "path: {samples} samples ({:.0} samples/s), diffuse bounces {}, rr depth {}",
+            "path: {samples} samples ({:.0} samples/s), diffuse bounces {}, rr depth {}, sampler {}",
             samples as f64 / secs,
             r.diffuse,
-            scene.settings.rr_depth
+            scene.settings.rr_depth,
+            scene.settings.sampler_kind().name()
         )?;
     }
     if let Some((x, y, s)) = r.first_dropped {

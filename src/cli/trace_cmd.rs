@@ -76,8 +76,12 @@ pub(super) fn filter_lpe(
             "--lpe needs the path integrator's records (each node's light path), and this pixel was traced by Whitted: add --integrator path"
         );
     };
-    let header = format!("lpe {}: {}
-", exprs.join(" | "), f.summary());
+    let header = format!(
+        "lpe {}: {}
+",
+        exprs.join(" | "),
+        f.summary()
+    );
     let summary = serde_json::json!({
         "expressions": exprs,
         "matched": f.matched,

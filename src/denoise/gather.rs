@@ -8,7 +8,7 @@ use super::features::first_non_delta;
 use crate::bsdf::luminance;
 use crate::math::Rgb;
 use crate::render::{Image, RenderStats, camera_sample};
-use crate::sampling::{PixelSampler, StratifiedJitter};
+use crate::sampling::{PixelSampler, SceneSampler};
 use crate::scene::IntegratorKind;
 use crate::trace::{Integrator, NoopRecorder, RayCounts, Tracer};
 use glam::DVec3;
@@ -28,7 +28,7 @@ pub fn gather<I: Integrator>(
     integrator: &I,
     progress: &(dyn Fn(u32) + Sync),
 ) -> (Image, RenderStats, Features) {
-    let sampler = StratifiedJitter::for_settings(&integrator.scene().settings);
+    let sampler = SceneSampler::for_settings(&integrator.scene().settings);
     gather_sampled(integrator, &sampler, progress)
 }
 

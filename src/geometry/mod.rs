@@ -9,10 +9,12 @@ use glam::DVec3;
 use std::sync::Arc;
 
 mod intersect;
+mod reject;
 mod spawn;
 
 pub(crate) use crate::mesh::triangle::triangle_t;
 use intersect::{accept, box_normal, slab_interval, sphere_hit, sphere_roots};
+use reject::{plane_out_of_range, quad_surely_missed};
 pub use spawn::{SELF_HIT_FRACTION, gamma};
 
 /// A primitive. Every shape has an outward normal; planes bound the half-space behind the normal.
@@ -100,7 +102,7 @@ impl Shape {
                 accept(t, ray.t_min, t_max).then_some(ShapeHit { t, normal })
             }
             Shape::Quad { vertices, normal } => {
-                if plane_out_of_range(vertices[0], normal, ray, t_max) {
+                if quad_surely_missed(&vertices, normal, ray, t_max) {
                     return None;
                 }
                 let t = quad_t(&vertices, ray)?;
@@ -185,31 +187,13 @@ impl Shape {
 /// The watertight ray-parallelogram test: the parallelogram's two triangles `(0, 1, 2)` and
 /// `(0, 2, 3)` (a plane hit exactly on the shared diagonal is found by at least one).
 #[inline]
-fn quad_t(v: &[DVec3; 4], ray: &Ray) -> Option<f64> {
+pub(super) fn quad_t(v: &[DVec3; 4], ray: &Ray) -> Option<f64> {
     // One shear for both triangles: bit for bit two `triangle_t` calls (the shear depends on
     // the ray only), without the second's three divisions.
     let sheared = crate::mesh::triangle::ShearedRay::new(ray)?;
     sheared
         .t(&[v[0], v[1], v[2]])
         .or_else(|| sheared.t(&[v[0], v[2], v[3]]))
-}
-
-/// Whether the plane of a flat shape (through `p` with unit `normal`) is crossed so far outside
-/// `(t_min, t_max)` along `ray` that the exact test cannot accept its hit: a cheap rejection
-/// before the watertight test. The margin (a millionth of the distance scale `|p - o| / |cos|`
-/// plus of `t` itself) is far above the rounding that separates this plane distance from the
-/// watertight test's, so no hit the exact test would accept is rejected (renders stay bit for
-/// bit; `.ci/fixcheck`).
-#[inline]
-fn plane_out_of_range(p: DVec3, normal: DVec3, ray: &Ray, t_max: f64) -> bool {
-    let denom = normal.dot(ray.direction);
-    let to = p - ray.origin;
-    let t = to.dot(normal) / denom;
-    if !t.is_finite() {
-        return false;
-    }
-    let margin = 1e-6 * (to.length() / denom.abs() + t.abs());
-    t > t_max + margin || t < ray.t_min - margin
 }
 
 #[cfg(test)]

@@ -1,10 +1,12 @@
 //! Monte Carlo building blocks: the per-pixel sampler seam ([`PixelSampler`]) with the default
-//! [`StratifiedJitter`] and an Owen-scrambled Sobol sampler ([`SobolSampler`]), warps from the unit square
+//! [`StratifiedJitter`] and an Owen-scrambled Sobol sampler ([`SobolSampler`]), the scene's choice
+//! between them ([`SceneSampler`]), warps from the unit square
 //! with their pdfs, and importance-sampled pixel filters. See `docs/monte-carlo.md`.
 
 #[cfg(test)]
 pub(crate) mod chi2;
 mod filter;
+mod scene_sampler;
 mod sobol;
 mod stratified;
 #[cfg(test)]
@@ -12,5 +14,6 @@ mod tests;
 pub mod warp;
 
 pub use filter::PixelFilter;
+pub use scene_sampler::SceneSampler;
 pub use sobol::{SobolSampler, SplitMix64, mix64, nested_uniform_scramble, pixel_key, sample_2d};
 pub use stratified::{PixelSampler, StratifiedJitter, splitmix64, unit};

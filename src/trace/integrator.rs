@@ -157,7 +157,7 @@ impl Integrator for PathTracer<'_> {
 
 /// The integrator a scene's `settings.integrator` names, ready to trace. Every command builds
 /// this one, so a new [`IntegratorKind`] is one more arm here and nothing else in the commands.
-#[derive(Clone, Copy, Debug)]
+#[derive(Clone, Debug)]
 pub enum SceneIntegrator<'a> {
     /// `"whitted"`.
     Whitted(Whitted<'a>),

@@ -129,6 +129,57 @@ impl TryFrom<String> for IntegratorKind {
     }
 }
 
+/// Where a path's random numbers come from (`settings.sampler`, `--sampler`).
+///
+/// Absent from the scene: [`SamplerKind::Sobol`] under the path integrator,
+/// [`SamplerKind::Stratified`] under Whitted ([`Settings::sampler_kind`]).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "lowercase", try_from = "String")]
+pub enum SamplerKind {
+    /// Stratified jittered film offsets, independent hashed values for the other dimensions
+    /// ([`crate::sampling::StratifiedJitter`]).
+    Stratified,
+    /// Owen-scrambled Sobol points, one scrambled 2D pair per draw (Burley 2020;
+    /// [`crate::sampling::SobolSampler`]).
+    Sobol,
+}
+
+impl SamplerKind {
+    /// Every sampler, in documentation order.
+    pub const ALL: [SamplerKind; 2] = [SamplerKind::Stratified, SamplerKind::Sobol];
+
+    /// The name used in JSON and on the command line.
+    #[must_use]
+    pub fn name(self) -> &'static str {
+        match self {
+            SamplerKind::Stratified => "stratified",
+            SamplerKind::Sobol => "sobol",
+        }
+    }
+
+    /// The sampler named `name`, or why there is none.
+    ///
+    /// # Errors
+    /// A message for unknown names.
+    pub fn from_name(name: &str) -> Result<Self, String> {
+        match name {
+            "stratified" => Ok(SamplerKind::Stratified),
+            "sobol" => Ok(SamplerKind::Sobol),
+            _ => Err(format!(
+                "unknown sampler {name:?}, expected \"stratified\" or \"sobol\""
+            )),
+        }
+    }
+}
+
+impl TryFrom<String> for SamplerKind {
+    type Error = String;
+
+    fn try_from(name: String) -> Result<Self, String> {
+        Self::from_name(&name)
+    }
+}
+
 /// The pixel filter (`settings.filter`), importance-sampled: the camera ray's offset from the
 /// pixel centre is drawn from it ([`crate::sampling::PixelFilter`]).
 #[derive(Clone, Copy, Debug, Default, PartialEq, Serialize, Deserialize)]
@@ -256,6 +307,22 @@ pub struct Settings {
     /// integrator, at the first rough hit of a path (below a sampled ray, one per lobe).
     #[serde(skip_serializing_if = "is_one")]
     pub glossy_samples: u32,
+    /// The sampler (absent: the integrator's default, [`Settings::sampler_kind`]).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub sampler: Option<SamplerKind>,
+}
+
+impl Settings {
+    /// The sampler in effect: `sampler` if set, otherwise Sobol for the path integrator (lower
+    /// error per sample, `docs/path-tracing.md`) and stratified for Whitted (its images as
+    /// they always were).
+    #[must_use]
+    pub fn sampler_kind(&self) -> SamplerKind {
+        self.sampler.unwrap_or(match self.integrator {
+            IntegratorKind::Path => SamplerKind::Sobol,
+            IntegratorKind::Whitted => SamplerKind::Stratified,
+        })
+    }
 }
 
 /// Default [`Settings::rr_depth`].
@@ -292,6 +359,7 @@ impl Default for Settings {
             light_samples: None,
             rr_depth: DEFAULT_RR_DEPTH,
             glossy_samples: 1,
+            sampler: None,
         }
     }
 }

@@ -11,7 +11,10 @@
 //! multiplies the throughput inside absorbing media (the media stack). Escaping rays see the
 //! background. The recorder sees one node per ray with [`crate::tree::PathInfo`].
 
+mod lights;
 mod nee;
+
+use lights::LightTable;
 
 use nee::{event, transmits};
 
@@ -50,14 +53,15 @@ fn material_roughness(m: &Material) -> f64 {
 }
 
 /// The path integrator (`settings.integrator: "path"`).
-#[derive(Clone, Copy, Debug)]
+#[derive(Clone, Debug)]
 pub struct PathTracer<'a> {
     /// The Whitted tracer's machinery: surface interactions, offsets, shadow rays, diagnostics.
     tracer: Tracer<'a>,
     strategy: PathStrategy,
-    /// Lights that light sampling chooses among: the scene's point and directional lights, then
-    /// every emissive sphere, quad, triangle and mesh ([`Scene::area_light`]).
-    lights: usize,
+    /// Lights that light sampling chooses among, in proportion to power: the scene's point and
+    /// directional lights, then every emissive sphere, quad, triangle and mesh
+    /// ([`Scene::area_light`]); built once here.
+    lights: LightTable<'a>,
 }
 
 /// The scattering event that spawned the current ray, for the MIS weight of the emission it
@@ -96,13 +100,10 @@ impl<'a> PathTracer<'a> {
         // sampling the BSDF, not by Whitted's translucent-shadow approximation.
         plan.translucent_shadows = false;
         plan.specular = false;
-        let areas = (0..scene.objects.len())
-            .filter(|&i| scene.area_light(i).is_some())
-            .count();
         Self {
             tracer: Tracer::with_plan(scene, plan),
             strategy,
-            lights: scene.lights.len() + areas,
+            lights: LightTable::new(scene),
         }
     }
 

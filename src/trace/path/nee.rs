@@ -1,6 +1,7 @@
 //! Next-event estimation and the MIS weights of the path tracer: one light sample per hit,
-//! the light chosen uniformly among the scene's point and directional lights and its emissive
-//! spheres, quads, triangles and meshes, then a point (direction) on it from the light-sampling kernel
+//! the light chosen in proportion to its power among the scene's point and directional lights
+//! and its emissive spheres, quads, triangles and meshes ([`super::lights`]), then a point
+//! (direction) on it from the light-sampling kernel
 //! ([`crate::scene::Light::sample`], [`crate::scene::AreaEmitter::sample`]).
 //!
 //! The light sample's estimator is `f |cos| Le V / (p_select p_light)`, weighted by the power
@@ -8,6 +9,7 @@
 //! `PathIntegrator::SampleLd`); delta lights have weight 1. Emission found by a BSDF-sampled
 //! ray is weighted by the power heuristic the other way round ([`PathTracer::emission_weight`]).
 
+use super::lights::Source;
 use super::{PathStrategy, PathTracer, Prev};
 use crate::bsdf::{Bsdf, Lobe, LobeKind};
 use crate::interaction::SurfaceInteraction;
@@ -21,16 +23,6 @@ use crate::tree::{
 };
 
 impl PathTracer<'_> {
-    /// The area light `k` (counting from 0 among the emissive spheres, quads, triangles and
-    /// meshes):
-    /// its object index.
-    fn area_object(&self, k: usize) -> Option<usize> {
-        let scene = self.scene();
-        (0..scene.objects.len())
-            .filter(|&i| scene.area_light(i).is_some())
-            .nth(k)
-    }
-
     /// The MIS weight of emission from `object` found along `dir` by the ray spawned at `prev`
     /// (`None`: a camera ray, weight 1).
     pub(super) fn emission_weight(
@@ -45,12 +37,12 @@ impl PathTracer<'_> {
         if prev.delta || self.strategy == PathStrategy::BsdfOnly || prev.object == object {
             return 1.0;
         }
-        let Some((emitter, _)) = self.scene().area_light(object) else {
-            // Not sampled by light sampling (a box or plane emitter): BSDF sampling is
-            // the only strategy.
+        let Some((emitter, select)) = self.lights.area(object) else {
+            // Not sampled by light sampling (a box or plane emitter): BSDF sampling is the only
+            // strategy.
             return 1.0;
         };
-        let light_pdf = emitter.pdf(prev.p, dir) / self.lights as f64;
+        let light_pdf = emitter.pdf(prev.p, dir) * select;
         if light_pdf <= 0.0 {
             return 1.0;
         }
@@ -76,27 +68,26 @@ impl PathTracer<'_> {
         counts: &mut RayCounts,
     ) -> (Rgb, Rgb) {
         let scene = self.scene();
-        if self.lights == 0 {
+        if self.lights.is_empty() {
             return (Rgb::ZERO, Rgb::ZERO);
         }
         let uc = sampler.next_1d();
         let u = sampler.next_2d();
-        let n = self.lights;
-        let k = ((uc * n as f64) as usize).min(n - 1);
-        let select = 1.0 / n as f64;
-        let (ls, area, light) = if k < scene.lights.len() {
-            (Some(scene.lights[k].sample(si.p, u)), None, k)
-        } else {
-            let Some(object) = self.area_object(k - scene.lights.len()) else {
-                return (Rgb::ZERO, Rgb::ZERO);
-            };
-            // A surface does not light itself (spheres, quads and triangles are convex; a mesh
-            // does not light its own other triangles).
-            let ls = (object != si.object)
-                .then(|| scene.area_light(object))
-                .flatten()
-                .and_then(|(e, emission)| e.sample(si.p, emission, u));
-            (ls, Some(object), scene.lights.len() + object)
+        let (_, source, select) = self.lights.choose(uc);
+        let (ls, area, light) = match source {
+            Source::Delta(k) => (Some(scene.lights[k].sample(si.p, u)), None, k),
+            Source::Area {
+                object,
+                emitter,
+                emission,
+            } => {
+                // A surface does not light itself (spheres, quads and triangles are convex; a
+                // mesh does not light its own other triangles).
+                let ls = (object != si.object)
+                    .then(|| emitter.sample(si.p, emission, u))
+                    .flatten();
+                (ls, Some(object), scene.lights.len() + object)
+            }
         };
         let Some(ls) = ls else {
             return (Rgb::ZERO, Rgb::ZERO);

@@ -1,0 +1,110 @@
+//! The sampler a scene asks for (`settings.sampler`, [`crate::scene::SamplerKind`]): one type
+//! behind the [`PixelSampler`] seam for every place that renders or re-traces a pixel, so the
+//! tree of a pixel draws exactly the numbers its render drew.
+
+use super::{PixelSampler, SobolSampler, StratifiedJitter};
+use crate::scene::{SamplerKind, Settings};
+
+/// [`StratifiedJitter`] or [`SobolSampler`], chosen at run time from the settings
+/// ([`Settings::sampler_kind`]: Sobol for the path integrator, stratified for Whitted unless
+/// the scene or `--sampler` says otherwise).
+#[derive(Clone, Copy, Debug)]
+pub enum SceneSampler {
+    /// Stratified film offsets, hashed independent values after them.
+    Stratified(StratifiedJitter),
+    /// Owen-scrambled Sobol points.
+    Sobol(SobolSampler),
+}
+
+impl SceneSampler {
+    /// The sampler of `settings`: its kind, `spp` and `seed`.
+    #[must_use]
+    pub fn for_settings(settings: &Settings) -> Self {
+        Self::new(settings.sampler_kind(), settings.spp, settings.seed)
+    }
+
+    /// A sampler of `kind` for `spp` samples per pixel and `seed`.
+    #[must_use]
+    pub fn new(kind: SamplerKind, spp: u32, seed: u64) -> Self {
+        match kind {
+            SamplerKind::Stratified => Self::Stratified(StratifiedJitter::new(spp, seed)),
+            SamplerKind::Sobol => Self::Sobol(SobolSampler::new(seed, (0, 0), 0)),
+        }
+    }
+
+    /// Which sampler this is.
+    #[must_use]
+    pub fn kind(&self) -> SamplerKind {
+        match self {
+            Self::Stratified(_) => SamplerKind::Stratified,
+            Self::Sobol(_) => SamplerKind::Sobol,
+        }
+    }
+}
+
+impl PixelSampler for SceneSampler {
+    #[inline]
+    fn start_sample(&mut self, pixel: (u32, u32), index: u32) {
+        match self {
+            Self::Stratified(s) => s.start_sample(pixel, index),
+            Self::Sobol(s) => PixelSampler::start_sample(s, pixel, index),
+        }
+    }
+
+    #[inline]
+    fn next_1d(&mut self) -> f64 {
+        match self {
+            Self::Stratified(s) => s.next_1d(),
+            Self::Sobol(s) => PixelSampler::next_1d(s),
+        }
+    }
+
+    #[inline]
+    fn next_2d(&mut self) -> (f64, f64) {
+        match self {
+            Self::Stratified(s) => s.next_2d(),
+            Self::Sobol(s) => PixelSampler::next_2d(s),
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::scene::IntegratorKind;
+
+    fn draws<S: PixelSampler>(mut s: S) -> Vec<u64> {
+        let mut out = Vec::new();
+        for (pixel, index) in [((3, 4), 0), ((3, 4), 5), ((200, 7), 63)] {
+            s.start_sample(pixel, index);
+            let (a, b) = s.next_2d();
+            let c = s.next_1d();
+            let (d, e) = s.next_2d();
+            out.extend([a, b, c, d, e].map(f64::to_bits));
+        }
+        out
+    }
+
+    /// Each variant draws exactly what the sampler it wraps draws (Whitted's images stay bit
+    /// for bit), and the default follows the integrator.
+    #[test]
+    fn variants_draw_what_they_wrap_and_the_default_follows_the_integrator() {
+        let strat = SceneSampler::new(SamplerKind::Stratified, 16, 9);
+        assert_eq!(draws(strat), draws(StratifiedJitter::new(16, 9)));
+        let sobol = SceneSampler::new(SamplerKind::Sobol, 16, 9);
+        assert_eq!(draws(sobol), draws(SobolSampler::new(9, (0, 0), 0)));
+        assert_ne!(draws(strat), draws(sobol));
+        let mut s = Settings::default();
+        assert_eq!(
+            SceneSampler::for_settings(&s).kind(),
+            SamplerKind::Stratified
+        );
+        s.integrator = IntegratorKind::Path;
+        assert_eq!(SceneSampler::for_settings(&s).kind(), SamplerKind::Sobol);
+        s.sampler = Some(SamplerKind::Stratified);
+        assert_eq!(
+            SceneSampler::for_settings(&s).kind(),
+            SamplerKind::Stratified
+        );
+    }
+}
