@@ -19,6 +19,7 @@ mod output;
 mod plot;
 mod render_cmd;
 mod say;
+mod spp_map;
 mod trace_cmd;
 #[cfg(feature = "gui")]
 mod view_cmd;

@@ -2,6 +2,7 @@
 //! [`StratifiedJitter`] and an Owen-scrambled Sobol sampler ([`SobolSampler`]), warps from the unit square
 //! with their pdfs, and importance-sampled pixel filters. See `docs/monte-carlo.md`.
 
+mod adaptive;
 #[cfg(test)]
 pub(crate) mod chi2;
 mod filter;
@@ -11,6 +12,7 @@ mod stratified;
 mod tests;
 pub mod warp;
 
+pub use adaptive::{CONTRAST_FLOOR, Spread, contrast};
 pub use filter::PixelFilter;
 pub use sobol::{SobolSampler, SplitMix64, mix64, nested_uniform_scramble, pixel_key, sample_2d};
 pub use stratified::{PixelSampler, StratifiedJitter, splitmix64, unit};

@@ -256,6 +256,40 @@ pub struct Settings {
     /// integrator, at the first rough hit of a path (below a sampled ray, one per lobe).
     #[serde(skip_serializing_if = "is_one")]
     pub glossy_samples: u32,
+    /// Adaptive antialiasing: more samples only for pixels whose first `spp` samples disagree
+    /// (absent: every pixel takes `spp` samples).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub adaptive: Option<AdaptiveDesc>,
+}
+
+/// Adaptive antialiasing (`settings.adaptive`, after Whitted 1980 and Mitchell 1987): a pixel's
+/// first pass is its `spp` stratified samples; if in any channel their contrast
+/// `(max - min) / (max + min + 0.01)` exceeds `threshold`, the pixel takes a second pass of
+/// `max_spp - spp` samples stratified on their own complete grid, and its value is the mean of
+/// all `max_spp` samples. The decision uses only the pixel's own samples, so `raytree trace`
+/// re-traces exactly the samples the render used ([`crate::sampling::contrast`]).
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct AdaptiveDesc {
+    /// Contrast above which a pixel is refined (>= 0; 0 refines every pixel whose samples
+    /// differ at all).
+    pub threshold: f64,
+    /// Samples of a refined pixel in all (first pass included); absent:
+    /// [`ADAPTIVE_FACTOR`] times `spp` (at most 65536).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub max_spp: Option<u32>,
+}
+
+/// A refined pixel's samples per first-pass sample when `adaptive.max_spp` is absent.
+pub const ADAPTIVE_FACTOR: u32 = 16;
+
+impl AdaptiveDesc {
+    /// The samples of a refined pixel when the first pass has `spp` samples.
+    #[must_use]
+    pub fn max_spp(&self, spp: u32) -> u32 {
+        self.max_spp
+            .unwrap_or_else(|| spp.saturating_mul(ADAPTIVE_FACTOR).min(65_536))
+    }
 }
 
 /// Default [`Settings::rr_depth`].
@@ -292,6 +326,7 @@ impl Default for Settings {
             light_samples: None,
             rr_depth: DEFAULT_RR_DEPTH,
             glossy_samples: 1,
+            adaptive: None,
         }
     }
 }
