@@ -116,6 +116,10 @@ pub struct Overrides {
     /// Adaptive antialiasing: samples of a refined pixel in all (default 16 x --spp).
     #[arg(long, value_name = "N")]
     pub max_spp: Option<u32>,
+    /// From this depth on (0 = the camera ray's hit), a glass hit follows reflection or
+    /// refraction chosen by Russian roulette instead of both (exact in expectation, noisy).
+    #[arg(long, value_name = "DEPTH")]
+    pub dielectric_roulette: Option<u32>,
 }
 
 /// `raytree render`.

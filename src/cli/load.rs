@@ -184,6 +184,9 @@ pub fn apply(scene: &mut Scene, o: &Overrides) -> Result<()> {
         s.filter =
             raytree::scene::FilterDesc::parse(v).map_err(|msg| anyhow!("--filter: {msg}"))?;
     }
+    if let Some(v) = o.dielectric_roulette {
+        s.dielectric_roulette = Some(v);
+    }
     if let Some(t) = o.adaptive {
         s.adaptive = Some(raytree::scene::AdaptiveDesc {
             threshold: t,

@@ -378,6 +378,14 @@ pub fn check_settings(s: &Settings) -> Result<Settings, (String, String)> {
         ));
     }
     check_filter(&s.filter)?;
+    if let Some(d) = s.dielectric_roulette
+        && d > 1024
+    {
+        return Err((
+            "settings.dielectric_roulette".into(),
+            format!("must be at most 1024, got {d}"),
+        ));
+    }
     if let Some(a) = s.adaptive {
         check_adaptive(&a, s.spp)?;
     }

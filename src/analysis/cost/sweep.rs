@@ -37,6 +37,10 @@ pub struct Sweep {
     pub adaptive: Vec<(f64, u32)>,
     /// First-pass samples of the adaptive rows.
     pub adaptive_spp: u32,
+    /// Depths from which dielectric hits play Russian roulette instead of splitting (rows only
+    /// when the scene has a transmissive material), against the exhaustive reference like the
+    /// min-weight rows: the roulette's noise beside the automatic cut's bounded error.
+    pub dielectric_roulette: Vec<u32>,
     /// Light samples of the light-samples axis's reference.
     pub reference_light_samples: u32,
     /// Glossy samples of the glossy-samples axis's reference.
@@ -78,6 +82,7 @@ impl Sweep {
             filter_spp: 4,
             adaptive: vec![(0.1, 16), (0.05, 32), (0.02, 64)],
             adaptive_spp: 2,
+            dielectric_roulette: vec![0, 2, 4],
             reference_depth: 32,
             reference_spp: 64,
             reference_light_samples: 1024,
@@ -97,6 +102,7 @@ impl Sweep {
             glossy_samples: vec![1, 4],
             filters: vec!["box".into(), "gaussian:0.5".into()],
             adaptive: vec![(0.1, 16)],
+            dielectric_roulette: vec![2],
             reference_spp: 16,
             reference_light_samples: 256,
             reference_glossy_samples: 64,
@@ -171,6 +177,14 @@ impl Sweep {
                 ..*base
             };
             push("glossy_samples", n.to_string(), s);
+        }
+        let glass = scene.materials.iter().any(|m| m.is_transmissive());
+        for &d in self.dielectric_roulette.iter().filter(|_| glass) {
+            let s = Settings {
+                dielectric_roulette: Some(d),
+                ..*base
+            };
+            push("dielectric_roulette", format!("from depth {d}"), s);
         }
         for &(threshold, max_spp) in &self.adaptive {
             let s = Settings {

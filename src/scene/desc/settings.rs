@@ -260,6 +260,12 @@ pub struct Settings {
     /// (absent: every pixel takes `spp` samples).
     #[serde(skip_serializing_if = "Option::is_none")]
     pub adaptive: Option<AdaptiveDesc>,
+    /// Whitted integrator: from this depth on (0 = the camera ray's hit), a smooth dielectric
+    /// hit follows one of reflection and refraction, chosen by Russian roulette with
+    /// probability proportional to their weights, instead of both ([`crate::trace::roulette`]);
+    /// absent: always both.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub dielectric_roulette: Option<u32>,
 }
 
 /// Adaptive antialiasing (`settings.adaptive`, after Whitted 1980 and Mitchell 1987): a pixel's
@@ -327,6 +333,7 @@ impl Default for Settings {
             rr_depth: DEFAULT_RR_DEPTH,
             glossy_samples: 1,
             adaptive: None,
+            dielectric_roulette: None,
         }
     }
 }
