@@ -371,16 +371,15 @@ fn render_recorded<R: Recorder + Default, I: Integrator, S: PixelSampler>(
             .map(|y| {
                 let mut counts = RayCounts::default();
                 let mut diag = Vec::new();
-                let mut taken = Vec::with_capacity(w as usize);
+                let taken = vec![scene.settings.spp.max(1); w as usize];
                 let mut rec = R::default();
                 let mut sampler = sampler.clone();
                 let row = (0..w)
                     .map(|x| {
                         let before = counts;
                         let (rec, n) = (&mut rec, &mut counts);
-                        let (l, k) =
-                            render_pixel_counted(integrator, &mut sampler, x, y, rec, n, |_| {});
-                        taken.push(k);
+                        let l =
+                            render_pixel_sampled(integrator, &mut sampler, x, y, rec, n, |_| {});
                         if R::DIAGNOSE {
                             let self_hits = counts.self_hits - before.self_hits;
                             let leaks = counts.leaks - before.leaks;

@@ -56,9 +56,29 @@ pub fn render_pixel_counted<I: Integrator, S: PixelSampler, R: Recorder>(
     let scene = integrator.scene();
     let spp = scene.settings.spp.max(1);
     let Some(a) = scene.settings.adaptive else {
+        // The loop as it was before adaptive antialiasing, filter and film hoisted.
+        let filter = scene.settings.filter.filter();
+        let film = integrator.film();
         let mut sum = Rgb::ZERO;
         for s in 0..spp {
-            sum += one_sample(integrator, sampler, x, y, s, rec, counts, &mut on_sample);
+            let ((fx, fy), ray) = camera_sample(film, filter, sampler, x, y, s);
+            let (l, root) = integrator.camera_radiance(ray, sampler, rec, counts);
+            if l.is_finite() || integrator.kind() == IntegratorKind::Whitted {
+                sum += l;
+            } else {
+                // A path sample that is NaN or infinite is dropped (black), counted and named,
+                // so no NaN reaches the image and the sample can be traced (`raytree trace`).
+                counts.dropped_samples += 1;
+                counts.first_dropped.get_or_insert((x, y, s));
+            }
+            if let Some(root) = root {
+                on_sample(SampleRecord {
+                    index: s,
+                    film: [fx, fy],
+                    root,
+                    radiance: l,
+                });
+            }
         }
         return (sum / f64::from(spp), spp);
     };
