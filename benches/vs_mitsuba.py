@@ -3,12 +3,15 @@
 For each scene the script converts the raytree JSON to a Mitsuba 3 scene (`to_mitsuba`), renders
 a reference with Mitsuba's path tracer at high spp (cached beside the output), then renders the
 scene with both renderers at increasing spp and reports the relative RMSE against the reference
-and the time of each render: Mitsuba's `mi.render` (after `load_dict`, which builds its
-acceleration structure, and a warm-up render that compiles its kernels), raytree's own render
-time as it prints it (after loading the scene and building its BVH, before writing the image)
-and raytree's wall time (process start to exit). From the two error-vs-seconds curves it
-interpolates (log-log) the time each renderer needs to reach the same error, and prints the
-ratios raytree / Mitsuba of both raytree times.
+and the time of each render.
+
+Timing, made fair: Mitsuba's time is `mi.render` plus `dr.eval` of the image, on a scene loaded
+beforehand and with its kernels compiled by an untimed 1-spp render (so scene loading, BVH build,
+JIT compilation and writing are outside it). raytree's "render s" is the time `raytree render`
+prints, which likewise starts after the scene is loaded and its BVH built and stops before the
+image is encoded; its "wall s" (process start, JSON, BVH, render, EXR) is shown beside it. The
+ratios use the render times. From the two error-vs-seconds curves it interpolates (log-log)
+the time each renderer needs to reach the same error, and prints the ratio raytree / Mitsuba.
 
 Only light transport both renderers compute the same way can be compared: the scenes must use
 constant colours, `diffuse` (Lambert), `reflectivity` (a mirror without Fresnel: Mitsuba's
@@ -31,7 +34,9 @@ Not run by CI (it needs PyPI and Debian packages). Set-up and the tables in docs
 
 Options: `--integrator whitted|path` (raytree's), `--size WxH`, `--ref-spp N` (Mitsuba's
 reference, default 4096), `--raytree-spp 1,4,16,...`, `--mitsuba-spp 4,16,...`,
-`--max-depth D` (both), `--raytree ARGS` (extra raytree flags).
+`--max-depth D` (both), `--raytree ARGS` (extra raytree flags), `--raytree-configs "A;B;..."`
+(instead of `--raytree-spp`: one raytree render per semicolon-separated set of flags, e.g.
+`"--spp 4;--spp 2 --adaptive 0.1 --max-spp 16"`).
 """
 
 import argparse
@@ -199,20 +204,20 @@ def mitsuba_render(scene_dict, spp, seed=0):
     return arr, time.perf_counter() - t
 
 
-def raytree_render(path, spp, size, max_depth, integrator, extra, out):
+def raytree_render(path, flags, size, max_depth, integrator, extra, out):
+    """The image, raytree's own render time (the `time X s` it prints) and the wall time."""
     import mitsuba as mi
-    cmd = [RAYTREE, "render", path, "--spp", str(spp), "--max-depth", str(max_depth),
-           "--integrator", integrator, "-o", out] + extra
+    cmd = [RAYTREE, "render", path, "--max-depth", str(max_depth),
+           "--integrator", integrator, "-o", out] + flags + extra
     if size:
         cmd += ["--size", f"{size[0]}x{size[1]}"]
     t = time.perf_counter()
-    done = subprocess.run(cmd, check=True, stdout=subprocess.PIPE, text=True)
+    run = subprocess.run(cmd, check=True, stdout=subprocess.PIPE, text=True)
     wall = time.perf_counter() - t
-    # raytree's own render time ("time S s, ..."): without process start, scene load, BVH
-    # build and writing the EXR, as Mitsuba's time is without load_dict and kernel compiles.
-    m = re.search(r"^time ([0-9.]+) s", done.stdout, re.M)
-    secs = float(m.group(1)) if m else wall
-    return np.array(mi.Bitmap(out))[:, :, :3], secs, wall
+    m = re.search(r"^time ([0-9.]+) s", run.stdout, re.M)
+    if not m:
+        raise RuntimeError(f"no render time in raytree's output: {run.stdout!r}")
+    return np.array(mi.Bitmap(out))[:, :, :3], float(m.group(1)), wall
 
 
 def time_to_error(curve, target):
@@ -241,6 +246,9 @@ def main():
     ap.add_argument("--mitsuba-spp", default="4,16,64,256")
     ap.add_argument("--max-depth", type=int, default=32)
     ap.add_argument("--raytree", default="", help="extra raytree flags")
+    ap.add_argument("--raytree-configs", default=None,
+                    help="semicolon-separated raytree flag sets, one render each (replaces "
+                         "--raytree-spp)")
     a = ap.parse_args()
     import mitsuba as mi
     mi.set_variant("llvm_ad_rgb")
@@ -268,29 +276,34 @@ def main():
         mts, rt, walls = [], [], []
         out = os.path.join(a.out, f"{name}-raytree.exr")
         jobs = [("mitsuba", int(s)) for s in a.mitsuba_spp.split(",")]
-        jobs2 = [("raytree", int(s)) for s in a.raytree_spp.split(",")]
+        if a.raytree_configs:
+            jobs2 = [("raytree", c.strip()) for c in a.raytree_configs.split(";") if c.strip()]
+        else:
+            jobs2 = [("raytree", f"--spp {int(s)}") for s in a.raytree_spp.split(",")]
         order = [j for pair in zip(jobs, jobs2) for j in pair]
         order += jobs[len(jobs2):] + jobs2[len(jobs):]
-        for who, spp in order:
+        walls, labels = [], []
+        for who, job in order:
             if who == "mitsuba":
-                img, secs = mitsuba_render(d, spp)
-                curve = mts
+                img, secs = mitsuba_render(d, job)
+                mts.append((secs, rel_rmse(img, ref)))
+                print(f"{name}: mitsuba  {job:5d} spp {secs:8.3f} s rel-RMSE {mts[-1][1]:.4f}",
+                      flush=True)
             else:
-                img, secs, wall = raytree_render(path, spp, size, a.max_depth, a.integrator,
-                                                 a.raytree.split(), out)
-                curve = rt
+                img, secs, wall = raytree_render(path, job.split(), size, a.max_depth,
+                                                 a.integrator, a.raytree.split(), out)
+                rt.append((secs, rel_rmse(img, ref)))
                 walls.append(wall)
-            curve.append((secs, rel_rmse(img, ref)))
-            print(f"{name}: {who:8s} {spp:5d} spp {secs:8.3f} s rel-RMSE {curve[-1][1]:.4f}"
-                  f" load {os.getloadavg()[0]:.1f}")
-        # For each raytree render: the time Mitsuba needs for the same error, and the ratio,
-        # of raytree's render time and of its wall time (process start to exit).
-        print(f"{name}: rel-RMSE | raytree render s | raytree wall s | mitsuba s (interpolated)"
-              " | render / mitsuba | wall / mitsuba")
-        for (secs, err), wall in zip(rt, walls):
+                labels.append(job)
+                print(f"{name}: raytree  {job}: render {secs:8.3f} s, wall {wall:8.3f} s, "
+                      f"rel-RMSE {rt[-1][1]:.4f} load {os.getloadavg()[0]:.1f}", flush=True)
+        # For each raytree render: the time Mitsuba needs for the same error, and the ratio.
+        print(f"{name}: raytree flags | rel-RMSE | raytree render s | wall s | "
+              "mitsuba s (interpolated) | render / mitsuba | wall / mitsuba")
+        for (secs, err), wall, label in zip(rt, walls, labels):
             tm, extrapolated = time_to_error(mts, err)
             cell = f"{tm:9.3f}{'~' if extrapolated else ' '} | {secs / tm:5.2f} | {wall / tm:5.2f}"
-            print(f"{name}: {err:8.4f} | {secs:9.3f} | {wall:9.3f} | {cell}")
+            print(f"{name}: {label} | {err:8.4f} | {secs:9.3f} | {wall:7.3f} | {cell}")
 
 if __name__ == "__main__":
     sys.exit(main())

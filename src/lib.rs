@@ -34,7 +34,7 @@ pub mod tree;
 
 pub use render::{
     DiagnosticMap, Image, RenderStats, render, render_diagnosed, render_pixel, render_pixel_with,
-    render_with, trace_pixel,
+    render_sample_map, render_with, trace_pixel,
 };
 pub use scene::{Scene, SceneError, Settings};
 pub use trace::{

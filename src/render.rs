@@ -10,7 +10,7 @@ use crate::bvh::wide::PACKET;
 use crate::geometry::Shape;
 use crate::math::{Ray, Rgb};
 use crate::sampling::{PixelFilter, PixelSampler, SceneSampler, StratifiedJitter};
-use crate::scene::{Film, IntegratorKind, Scene};
+use crate::scene::{Film, Scene};
 use crate::trace::{
     DiagnosticRecorder, Integrator, NoopRecorder, RayCounts, Recorder, SceneIntegrator,
     TreeRecorder,
@@ -60,6 +60,10 @@ pub struct RenderStats {
     pub self_hit_pixels: u64,
     /// Pixels with at least one leaking ray (diagnosed renders only).
     pub leak_pixels: u64,
+    /// Camera samples taken (`width * height * spp` without adaptive antialiasing).
+    pub samples: u64,
+    /// Pixels adaptive antialiasing refined (took more than `spp` samples).
+    pub refined_pixels: u64,
 }
 
 /// Per-pixel diagnostic counts of a diagnosed render, row-major like [`Image`].
@@ -73,6 +77,8 @@ pub struct DiagnosticMap {
     pub self_hits: Vec<u32>,
     /// Leaking rays per pixel.
     pub leaks: Vec<u32>,
+    /// Camera samples per pixel (`spp`, or more where adaptive antialiasing refined).
+    pub samples: Vec<u32>,
 }
 
 /// Film position of sample `s` of pixel (x, y) at seed 0: [`StratifiedJitter`]'s film offset
@@ -168,34 +174,9 @@ pub fn render_pixel_sampled<I: Integrator, S: PixelSampler, R: Recorder>(
     y: u32,
     rec: &mut R,
     counts: &mut RayCounts,
-    mut on_sample: impl FnMut(SampleRecord),
+    on_sample: impl FnMut(SampleRecord),
 ) -> Rgb {
-    let scene = integrator.scene();
-    let spp = scene.settings.spp.max(1);
-    let filter = scene.settings.filter.filter();
-    let film = integrator.film();
-    let mut sum = Rgb::ZERO;
-    for s in 0..spp {
-        let ((fx, fy), ray) = camera_sample(film, filter, sampler, x, y, s);
-        let (l, root) = integrator.camera_radiance(ray, sampler, rec, counts);
-        if l.is_finite() || integrator.kind() == IntegratorKind::Whitted {
-            sum += l;
-        } else {
-            // A path sample that is NaN or infinite is dropped (black), counted and named, so
-            // no NaN reaches the image and the sample can be traced (`raytree trace`).
-            counts.dropped_samples += 1;
-            counts.first_dropped.get_or_insert((x, y, s));
-        }
-        if let Some(root) = root {
-            on_sample(SampleRecord {
-                index: s,
-                film: [fx, fy],
-                root,
-                radiance: l,
-            });
-        }
-    }
-    sum / f64::from(spp)
+    render_pixel_counted(integrator, sampler, x, y, rec, counts, on_sample).0
 }
 
 /// Re-trace pixel (x, y) and record its full tree. `None` if the pixel is outside the image.
@@ -250,6 +231,17 @@ pub fn render_sampled<I: Integrator, S: PixelSampler>(
 ) -> (Image, RenderStats) {
     let (image, stats, _) = render_recorded::<NoopRecorder, _, _>(integrator, sampler, progress);
     (image, stats)
+}
+
+/// [`render`] that also returns the samples each pixel took ([`DiagnosticMap::samples`]; its
+/// self-hit and leak counts stay empty): the same image.
+pub fn render_sample_map(
+    scene: &Scene,
+    progress: &(dyn Fn(u32) + Sync),
+) -> (Image, RenderStats, DiagnosticMap) {
+    let integrator = SceneIntegrator::new(scene);
+    let sampler = SceneSampler::for_settings(&scene.settings);
+    render_recorded::<NoopRecorder, _, _>(&integrator, &sampler, progress)
 }
 
 /// [`render`] with the self-hit and leak diagnostics on: the same image, plus the counts in
@@ -335,6 +327,7 @@ fn uses_packets<R: Recorder, I: Integrator>(integrator: &I) -> bool {
     !R::RECORDS
         && !R::DIAGNOSE
         && integrator.traces_packets()
+        && scene.settings.adaptive.is_none()
         && scene.camera.width > 0
         && scene
             .objects
@@ -342,7 +335,7 @@ fn uses_packets<R: Recorder, I: Integrator>(integrator: &I) -> bool {
             .any(|o| matches!(o.shape, Shape::Mesh(_)))
 }
 
-type Row = (Vec<Rgb>, Vec<(u32, u32)>, RayCounts);
+type Row = (Vec<Rgb>, Vec<(u32, u32)>, Vec<u32>, RayCounts);
 
 fn render_recorded<R: Recorder + Default, I: Integrator, S: PixelSampler>(
     integrator: &I,
@@ -362,18 +355,23 @@ fn render_recorded<R: Recorder + Default, I: Integrator, S: PixelSampler>(
                     .enumerate()
                     .map(|(i, row)| {
                         let counts = if i == 0 { counts } else { RayCounts::default() };
-                        (row.to_vec(), Vec::new(), counts)
+                        let spp = scene.settings.spp.max(1);
+                        (row.to_vec(), Vec::new(), vec![spp; row.len()], counts)
                     })
                     .collect();
                 rows
             })
             .collect()
+    } else if let Some(a) = scene.settings.adaptive {
+        let on_row = || progress(done.fetch_add(1, std::sync::atomic::Ordering::Relaxed) + 1);
+        adaptive::rows::<R, I, S>(integrator, sampler, a, &on_row)
     } else {
         (0..h)
             .into_par_iter()
             .map(|y| {
                 let mut counts = RayCounts::default();
                 let mut diag = Vec::new();
+                let taken = vec![scene.settings.spp.max(1); w as usize];
                 let mut rec = R::default();
                 let mut sampler = sampler.clone();
                 let row = (0..w)
@@ -391,7 +389,7 @@ fn render_recorded<R: Recorder + Default, I: Integrator, S: PixelSampler>(
                     })
                     .collect();
                 progress(done.fetch_add(1, std::sync::atomic::Ordering::Relaxed) + 1);
-                (row, diag, counts)
+                (row, diag, taken, counts)
             })
             .collect()
     };
@@ -402,8 +400,14 @@ fn render_recorded<R: Recorder + Default, I: Integrator, S: PixelSampler>(
         height: h,
         ..DiagnosticMap::default()
     };
-    for (y, (row, diag, counts)) in rows.into_iter().enumerate() {
+    let spp = scene.settings.spp.max(1);
+    for (y, (row, diag, taken, counts)) in rows.into_iter().enumerate() {
         stats.rays += counts;
+        for &k in &taken {
+            stats.samples += u64::from(k);
+            stats.refined_pixels += u64::from(k > spp);
+        }
+        map.samples.extend(taken);
         for (x, p) in row.into_iter().enumerate() {
             if p.is_finite() {
                 pixels.push(p);
@@ -482,6 +486,10 @@ fn render_band<R: Recorder + Default, I: Integrator, S: PixelSampler>(
     }
     (band, counts)
 }
+
+#[path = "render_adaptive.rs"]
+mod adaptive;
+pub use adaptive::render_pixel_counted;
 
 #[cfg(test)]
 #[path = "render_tests.rs"]

@@ -321,8 +321,18 @@ fn effects_cost_and_compare() {
     );
     assert!(o.status.success(), "{}", stderr(&o));
     let csv = std::fs::read_to_string(d.join("rep/cost.csv")).unwrap();
-    // Header, depth, Fresnel, spp, offset, min weight, filter (no area light, no rough material).
-    assert_eq!(csv.lines().count(), 1 + 4 + 3 + 2 + 4 + 3 + 2, "{csv}");
+    // Header, depth, Fresnel, spp, offset, min weight, dielectric roulette, adaptive, filter
+    // (no area light, no rough material).
+    assert_eq!(
+        csv.lines().count(),
+        1 + 4 + 3 + 2 + 4 + 3 + 1 + 1 + 2,
+        "{csv}"
+    );
+    assert!(
+        csv.lines()
+            .any(|l| l.starts_with("adaptive,0.1 to 16 spp,")),
+        "{csv}"
+    );
     assert!(
         csv.lines().any(|l| l.starts_with("min_weight,auto (")),
         "the automatic cut has a row: {csv}"

@@ -168,6 +168,8 @@ pub fn run(scene: &Scene, sweep: &Sweep, progress: &dyn Fn(usize, usize)) -> Cos
         fresnel: FresnelModel::Exact,
         spp: 1,
         min_weight: None,
+        adaptive: None,
+        dielectric_roulette: None,
         ..scene.settings
     };
     base.offset.strategy = OffsetStrategy::Robust;

@@ -42,13 +42,20 @@ fn parse(a: &RenderArgs) -> Result<(Vec<raytree::aov::Aov>, Vec<McView>)> {
 
 /// Render with AOVs and debug views.
 pub fn run(a: &RenderArgs) -> Result<()> {
-    if a.diagnose {
-        bail!("--diagnose does not combine with --aov or --debug-view (render them separately)");
+    if a.diagnose || a.spp_map.is_some() {
+        bail!(
+            "--diagnose and --spp-map do not combine with --aov or --debug-view (render them separately)"
+        );
     }
     let format = image_format(&a.output)?;
     let (aovs, views) = parse(a)?;
     let loaded = load(a.scene.as_deref(), &a.overrides)?;
     let scene = &loaded.scene;
+    if scene.settings.adaptive.is_some() {
+        bail!(
+            "--aov and --debug-view do not combine with adaptive antialiasing (settings.adaptive or --adaptive) yet"
+        );
+    }
     let whitted = scene.settings.integrator == IntegratorKind::Whitted;
     if whitted && !aovs.is_empty() {
         bail!("--aov: {}", raytree::aov::AovError::Whitted);

@@ -118,6 +118,18 @@ pub struct Overrides {
         allow_hyphen_values = true
     )]
     pub filter: Option<String>,
+    /// Adaptive antialiasing: pixels whose first --spp samples differ by more than this
+    /// contrast ((max - min) / (max + min + 0.01) in a channel, e.g. 0.05) take --max-spp
+    /// samples in all; needs --spp 2 or more.
+    #[arg(long, value_name = "THRESHOLD", allow_hyphen_values = true)]
+    pub adaptive: Option<f64>,
+    /// Adaptive antialiasing: samples of a refined pixel in all (default 16 x --spp).
+    #[arg(long, value_name = "N")]
+    pub max_spp: Option<u32>,
+    /// From this depth on (0 = the camera ray's hit), a glass hit follows reflection or
+    /// refraction chosen by Russian roulette instead of both (exact in expectation, noisy).
+    #[arg(long, value_name = "DEPTH")]
+    pub dielectric_roulette: Option<u32>,
 }
 
 /// `raytree render`.
@@ -147,6 +159,10 @@ pub struct RenderArgs {
     /// path-length, roulette, dropped or share:AOV; repeatable.
     #[arg(long = "debug-view", value_name = "VIEW")]
     pub debug_view: Vec<String>,
+    /// Also write the samples each pixel took as a grey PNG (white = the most; with
+    /// --adaptive, the refined pixels).
+    #[arg(long, value_name = "PNG")]
+    pub spp_map: Option<PathBuf>,
     /// Settings overrides.
     #[command(flatten)]
     pub overrides: Overrides,

@@ -189,7 +189,29 @@ pub fn apply(scene: &mut Scene, o: &Overrides) -> Result<()> {
         s.filter =
             raytree::scene::FilterDesc::parse(v).map_err(|msg| anyhow!("--filter: {msg}"))?;
     }
+    if let Some(v) = o.dielectric_roulette {
+        s.dielectric_roulette = Some(v);
+    }
+    if let Some(t) = o.adaptive {
+        s.adaptive = Some(raytree::scene::AdaptiveDesc {
+            threshold: t,
+            max_spp: s.adaptive.and_then(|a| a.max_spp),
+        });
+    }
+    if let Some(m) = o.max_spp {
+        let Some(a) = &mut s.adaptive else {
+            bail!("--max-spp: needs adaptive antialiasing (--adaptive THRESHOLD)");
+        };
+        a.max_spp = Some(m);
+    }
     raytree::scene::check_settings(s).map_err(|(path, msg)| {
+        match path.as_str() {
+            "settings.adaptive" | "settings.adaptive.threshold" => {
+                return anyhow!("--adaptive: {msg}");
+            }
+            "settings.adaptive.max_spp" => return anyhow!("--max-spp: {msg}"),
+            _ => {}
+        }
         let flag = path.rsplit('.').next().unwrap_or(&path).replace('_', "-");
         if path.starts_with("settings.filter.") {
             return anyhow!("--filter: {flag} {msg}");

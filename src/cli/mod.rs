@@ -23,6 +23,7 @@ mod output;
 mod plot;
 mod render_cmd;
 mod say;
+mod spp_map;
 mod trace_cmd;
 mod versus_cmd;
 #[cfg(feature = "gui")]

@@ -19,16 +19,35 @@ pub fn run(a: &RenderArgs) -> Result<()> {
         return super::aov_cmd::run(a);
     }
     let format = image_format(&a.output)?;
+    if let Some(p) = &a.spp_map
+        && image_format(p)? != ImageFormat::Png
+    {
+        anyhow::bail!("--spp-map: {} must be a .png", p.display());
+    }
     let loaded = load(a.scene.as_deref(), &a.overrides)?;
     let scene = &loaded.scene;
     let mib = super::budget::mib(a.overrides.max_memory);
     super::budget::check_image(scene, mib)?;
     if a.denoise || a.features {
         super::budget::check_image_with(scene, mib, super::denoise_out::PIXEL_BYTES)?;
+        if a.spp_map.is_some() {
+            anyhow::bail!(
+                "--spp-map does not combine with --denoise or --features: render them in two runs"
+            );
+        }
+        if scene.settings.adaptive.is_some() {
+            anyhow::bail!(
+                "--denoise and --features do not combine with adaptive antialiasing (settings.adaptive or --adaptive) yet"
+            );
+        }
     }
     let inputs = Inputs::new(loaded.inputs.iter().map(|p| p.as_path()));
     let pending = Pending::create(&a.output, &inputs)?;
     let guides = super::denoise_out::Guides::create(a, &inputs)?;
+    let map_pending = match &a.spp_map {
+        Some(p) => Some(Pending::create(p, &inputs)?),
+        None => None,
+    };
     let (w, h) = (scene.camera.width, scene.camera.height);
     let bar = ProgressBar::new(u64::from(h)).with_style(
         ProgressStyle::with_template("{msg} [{bar:40}] {pos}/{len} rows {elapsed_precise}")
@@ -38,17 +57,23 @@ pub fn run(a: &RenderArgs) -> Result<()> {
     bar.set_message(format!("rendering {} {w}x{h}", loaded.label));
     let start = Instant::now();
     let progress = |rows| bar.set_position(u64::from(rows));
-    let (image, stats) = if let Some(g) = &guides {
-        g.render(scene, &progress)
+    let (image, stats, map) = if let Some(g) = &guides {
+        let (image, stats) = g.render(scene, &progress);
+        (image, stats, raytree::DiagnosticMap::default())
     } else if a.diagnose {
-        let (image, stats, _) = raytree::render_diagnosed(scene, &progress);
-        (image, stats)
+        raytree::render_diagnosed(scene, &progress)
+    } else if a.spp_map.is_some() {
+        raytree::render_sample_map(scene, &progress)
     } else {
-        raytree::render(scene, &progress)
+        let (image, stats) = raytree::render(scene, &progress);
+        (image, stats, raytree::DiagnosticMap::default())
     };
     let secs = start.elapsed().as_secs_f64();
     bar.finish_and_clear();
     let (bytes, clamped) = encode_counting(&image, format)?;
+    if let Some(p) = map_pending {
+        p.commit(&super::spp_map::png(&map)?)?;
+    }
     pending.commit(&bytes)?;
     if let Some(g) = guides {
         g.commit(format)?;
@@ -75,6 +100,23 @@ pub fn run(a: &RenderArgs) -> Result<()> {
         r.refracted,
         r.shadow
     )?;
+    if let Some(ad) = scene.settings.adaptive {
+        let pixels = u64::from(w) * u64::from(h);
+        sayln!(
+            "adaptive: {} of {pixels} pixels refined to {} spp (contrast > {}), {} samples ({:.2} per pixel)",
+            stats.refined_pixels,
+            ad.max_spp(scene.settings.spp),
+            ad.threshold,
+            stats.samples,
+            stats.samples as f64 / pixels.max(1) as f64
+        )?;
+    }
+    if let Some(p) = &a.spp_map {
+        sayln!(
+            "wrote {} (samples per pixel, white = the most)",
+            p.display()
+        )?;
+    }
     if scene.settings.integrator == raytree::scene::IntegratorKind::Path {
         let samples = u64::from(w) * u64::from(h) * u64::from(scene.settings.spp);
         sayln!(

@@ -3,6 +3,7 @@
 //! between them ([`SceneSampler`]), warps from the unit square
 //! with their pdfs, and importance-sampled pixel filters. See `docs/monte-carlo.md`.
 
+mod adaptive;
 #[cfg(test)]
 pub(crate) mod chi2;
 mod filter;
@@ -13,6 +14,7 @@ mod stratified;
 mod tests;
 pub mod warp;
 
+pub use adaptive::{CONTRAST_FLOOR, Spread, contrast};
 pub use filter::PixelFilter;
 pub use scene_sampler::SceneSampler;
 pub use sobol::{SobolSampler, SplitMix64, mix64, nested_uniform_scramble, pixel_key, sample_2d};

@@ -66,6 +66,16 @@ impl PixelSampler for SceneSampler {
             Self::Sobol(s) => PixelSampler::next_2d(s),
         }
     }
+
+    /// Stratified: the second pass on its own complete grid; Sobol: the sequence continues
+    /// (its first `2^m` points of a pixel are a net, so a pass of the next indices fills the
+    /// gaps of the first).
+    fn refine(&mut self, first: u32, count: u32) {
+        match self {
+            Self::Stratified(s) => s.refine(first, count),
+            Self::Sobol(s) => PixelSampler::refine(s, first, count),
+        }
+    }
 }
 
 #[cfg(test)]

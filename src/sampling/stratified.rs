@@ -21,6 +21,13 @@ pub trait PixelSampler: Clone + Send + Sync {
     fn next_1d(&mut self) -> f64;
     /// The next two dimensions, in `[0, 1)^2`.
     fn next_2d(&mut self) -> (f64, f64);
+    /// Turn this (a copy of the pixel's sampler) into the sampler of adaptive antialiasing's
+    /// second pass: samples `first..first + count` of the same pixels. The default continues
+    /// the sequence (indices from `first` on); a stratified sampler puts the pass on its own
+    /// complete grid of `count` strata, so that no stratum is left empty.
+    fn refine(&mut self, first: u32, count: u32) {
+        let _ = (first, count);
+    }
 }
 
 /// SplitMix64 (Steele, Lea, Flood 2014): a tiny, well-mixed hash for per-pixel seeds.
@@ -47,7 +54,11 @@ pub fn unit(h: u64) -> f64 {
 /// seed 0 gives exactly the positions raytree has always used.
 #[derive(Clone, Copy, Debug)]
 pub struct StratifiedJitter {
+    /// Samples of the current pass (`spp`, or the second pass's count after
+    /// [`PixelSampler::refine`]).
     spp: u32,
+    /// The index of the pass's first sample (0; `spp` for adaptive antialiasing's second pass).
+    base: u32,
     /// The strata grid's columns and rows ([`grid`]; `(1, 1)` for one sample).
     cols: u32,
     rows: u32,
@@ -72,6 +83,7 @@ impl StratifiedJitter {
         let (cols, rows) = if spp > 1 { grid(spp) } else { (1, 1) };
         Self {
             spp,
+            base: 0,
             cols,
             rows,
             // Branch-free would hash twice per construction, and `render_pixel_with` builds one
@@ -136,9 +148,18 @@ impl PixelSampler for StratifiedJitter {
             if self.spp <= 1 {
                 return (0.5, 0.5);
             }
-            return jittered(self.key, self.sample, self.cols, self.rows);
+            let s = self.sample.wrapping_sub(self.base);
+            return jittered(self.key, s, self.cols, self.rows);
         }
         (self.hashed(), self.hashed())
+    }
+
+    /// Samples `first..first + count` on their own `grid(count)` (the pixel centre for one),
+    /// jittered by the same hash of (pixel, index, seed) as the first pass.
+    fn refine(&mut self, first: u32, count: u32) {
+        self.spp = count.max(1);
+        self.base = first;
+        (self.cols, self.rows) = if self.spp > 1 { grid(self.spp) } else { (1, 1) };
     }
 }
 
@@ -299,6 +320,30 @@ mod tests {
                 let v = draw(4096, 5, (x, 3), s);
                 assert!(seen.insert(v[2].to_bits()), "repeat at ({x}, 3) sample {s}");
             }
+        }
+    }
+
+    /// Adaptive antialiasing's second pass fills its own grid: every stratum of `grid(count)`
+    /// holds exactly one of samples `first..first + count`, for pass sizes the default factor
+    /// gives and odd ones.
+    #[test]
+    fn a_refined_pass_fills_its_own_grid() {
+        for (spp, max) in [(4, 64), (2, 32), (4, 5), (9, 144), (16, 256), (3, 10)] {
+            let count = max - spp;
+            let mut sm = StratifiedJitter::new(spp, 7);
+            sm.refine(spp, count);
+            let (cols, rows) = if count > 1 { grid(count) } else { (1, 1) };
+            let mut seen = vec![false; count as usize];
+            for s in spp..max {
+                sm.start_sample((5, 9), s);
+                let (u, v) = sm.next_2d();
+                assert!((0.0..1.0).contains(&u) && (0.0..1.0).contains(&v));
+                let (i, j) = ((u * f64::from(cols)) as u32, (v * f64::from(rows)) as u32);
+                let k = (j * cols + i) as usize;
+                assert!(!seen[k], "{spp}..{max}: stratum {i},{j} twice");
+                seen[k] = true;
+            }
+            assert!(seen.iter().all(|&b| b), "{spp}..{max}");
         }
     }
 

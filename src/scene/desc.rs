@@ -297,6 +297,7 @@ pub enum LightDesc {
 
 mod settings;
 pub use settings::{
-    DEFAULT_MAX_RAYS, DEFAULT_RR_DEPTH, DEFAULT_TOLERANCE, FilterDesc, GAUSSIAN_RADIUS_SIGMAS,
-    IntegratorKind, OffsetDesc, OffsetStrategy, SamplerKind, Settings, ShadowMode,
+    ADAPTIVE_FACTOR, AdaptiveDesc, DEFAULT_MAX_RAYS, DEFAULT_RR_DEPTH, DEFAULT_TOLERANCE,
+    FilterDesc, GAUSSIAN_RADIUS_SIGMAS, IntegratorKind, OffsetDesc, OffsetStrategy, SamplerKind,
+    Settings, ShadowMode,
 };

@@ -23,8 +23,8 @@ use std::borrow::Cow;
 
 pub use accel::{Accel, traversal_cost_image};
 pub use desc::{
-    FilterDesc, IntegratorKind, OffsetDesc, OffsetStrategy, SamplerKind, SceneDesc, Settings,
-    ShadowMode,
+    AdaptiveDesc, FilterDesc, IntegratorKind, OffsetDesc, OffsetStrategy, SamplerKind, SceneDesc,
+    Settings, ShadowMode,
 };
 pub use error::SceneError;
 pub use generated::icosphere_scene;

@@ -378,7 +378,44 @@ pub fn check_settings(s: &Settings) -> Result<Settings, (String, String)> {
         ));
     }
     check_filter(&s.filter)?;
+    if let Some(d) = s.dielectric_roulette
+        && d > 1024
+    {
+        return Err((
+            "settings.dielectric_roulette".into(),
+            format!("must be at most 1024, got {d}"),
+        ));
+    }
+    if let Some(a) = s.adaptive {
+        check_adaptive(&a, s.spp)?;
+    }
     Ok(*s)
+}
+
+/// `settings.adaptive`: a finite threshold >= 0, a first pass of at least 2 samples (one
+/// sample has no spread), and `max_spp` in `spp..=65536`.
+fn check_adaptive(a: &super::desc::AdaptiveDesc, spp: u32) -> Result<(), (String, String)> {
+    if !(a.threshold.is_finite() && a.threshold >= 0.0) {
+        return Err((
+            "settings.adaptive.threshold".into(),
+            format!("must be a finite number >= 0, got {}", a.threshold),
+        ));
+    }
+    if spp < 2 {
+        return Err((
+            "settings.adaptive".into(),
+            format!("needs spp >= 2 (the first pass; one sample has no spread), got spp {spp}"),
+        ));
+    }
+    if let Some(m) = a.max_spp
+        && !(spp..=65_536).contains(&m)
+    {
+        return Err((
+            "settings.adaptive.max_spp".into(),
+            format!("must be in spp..=65536 ({spp}..=65536), got {m}"),
+        ));
+    }
+    Ok(())
 }
 
 /// Largest accepted `settings.glossy_samples`.

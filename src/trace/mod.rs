@@ -13,6 +13,7 @@ pub mod offset;
 mod path;
 mod recorder;
 mod recursive;
+pub mod roulette;
 mod shadow;
 
 pub use crate::interaction::SurfaceInteraction;

@@ -175,6 +175,14 @@ impl Tracer<'_> {
                 refraction = Some((dir, m.transmissivity * f.t));
             }
             rec.update(id, |node| node.interface = Some(event));
+            if let (Some(from), Some((dir, t))) = (scene.settings.dielectric_roulette, refraction)
+                && state.depth >= from
+            {
+                let u = super::roulette::choice(scene.settings.seed, p, d);
+                let (r, t) = super::roulette::play(reflect_w, t, u);
+                reflect_w = r;
+                refraction = Some((dir, t));
+            }
         }
         let at = Spawn {
             kind: RayKind::Reflected,

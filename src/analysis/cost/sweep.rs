@@ -4,7 +4,7 @@
 use super::with_settings;
 use crate::effects::EffectPlan;
 use crate::math::FresnelModel;
-use crate::scene::{FilterDesc, OffsetStrategy, Scene, Settings};
+use crate::scene::{AdaptiveDesc, FilterDesc, OffsetStrategy, Scene, Settings};
 use crate::trace::bound::auto_min_weight;
 
 /// The sweep: which values each axis takes.
@@ -31,6 +31,16 @@ pub struct Sweep {
     /// Samples per pixel of the filter rows (one sample sits at the pixel centre whatever the
     /// filter).
     pub filter_spp: u32,
+    /// Adaptive antialiasing as `(threshold, max_spp)`, with a first pass of
+    /// [`Sweep::adaptive_spp`] samples, against the spp axis's reference: beside the spp rows
+    /// (the camera ray count is the samples taken).
+    pub adaptive: Vec<(f64, u32)>,
+    /// First-pass samples of the adaptive rows.
+    pub adaptive_spp: u32,
+    /// Depths from which dielectric hits play Russian roulette instead of splitting (rows only
+    /// when the scene has a transmissive material), against the exhaustive reference like the
+    /// min-weight rows: the roulette's noise beside the automatic cut's bounded error.
+    pub dielectric_roulette: Vec<u32>,
     /// Light samples of the light-samples axis's reference.
     pub reference_light_samples: u32,
     /// Glossy samples of the glossy-samples axis's reference.
@@ -70,6 +80,9 @@ impl Sweep {
             glossy_samples: vec![1, 4, 16],
             filters: vec!["box".into(), "tent:1".into(), "gaussian:0.5".into()],
             filter_spp: 4,
+            adaptive: vec![(0.1, 16), (0.05, 32), (0.02, 64)],
+            adaptive_spp: 2,
+            dielectric_roulette: vec![0, 2, 4],
             reference_depth: 32,
             reference_spp: 64,
             reference_light_samples: 1024,
@@ -88,6 +101,8 @@ impl Sweep {
             light_samples: vec![1, 4],
             glossy_samples: vec![1, 4],
             filters: vec!["box".into(), "gaussian:0.5".into()],
+            adaptive: vec![(0.1, 16)],
+            dielectric_roulette: vec![2],
             reference_spp: 16,
             reference_light_samples: 256,
             reference_glossy_samples: 64,
@@ -163,6 +178,25 @@ impl Sweep {
             };
             push("glossy_samples", n.to_string(), s);
         }
+        let glass = scene.materials.iter().any(|m| m.is_transmissive());
+        for &d in self.dielectric_roulette.iter().filter(|_| glass) {
+            let s = Settings {
+                dielectric_roulette: Some(d),
+                ..*base
+            };
+            push("dielectric_roulette", format!("from depth {d}"), s);
+        }
+        for &(threshold, max_spp) in &self.adaptive {
+            let s = Settings {
+                spp: self.adaptive_spp.max(2),
+                adaptive: Some(AdaptiveDesc {
+                    threshold,
+                    max_spp: Some(max_spp.max(self.adaptive_spp)),
+                }),
+                ..*base
+            };
+            push("adaptive", format!("{threshold} to {max_spp} spp"), s);
+        }
         for f in &self.filters {
             // The sweep's own strings; a bad one is a programming error, skipped.
             if let Ok(filter) = FilterDesc::parse(f) {
@@ -181,12 +215,12 @@ impl Sweep {
     /// (one sample at each pixel centre), except for the stochastic axes: `spp` against
     /// `reference_spp` samples, `light_samples` against `reference_light_samples` light
     /// samples, `glossy_samples` against `reference_glossy_samples` glossy samples, and
-    /// `filter` against the same filter at `reference_spp` samples.
+    /// `filter` against the same filter at `reference_spp` samples; `adaptive` like `spp`.
     #[must_use]
     pub fn reference_for(&self, axis: &str, settings: &Settings, reference: &Settings) -> Settings {
         let r = *reference;
         match axis {
-            "spp" => Settings {
+            "spp" | "adaptive" => Settings {
                 spp: self.reference_spp,
                 ..r
             },

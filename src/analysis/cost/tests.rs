@@ -31,6 +31,8 @@ fn the_sweep_has_an_auto_min_weight_row_and_an_exhaustive_reference() {
         spps: vec![],
         offsets: vec![],
         filters: vec![],
+        adaptive: vec![],
+        dielectric_roulette: vec![],
         repeats: 1,
         reference_spp: 1,
         ..Sweep::quick()
@@ -85,6 +87,8 @@ fn stochastic_axes_are_measured_against_their_references() {
         glossy_samples: vec![1, 16],
         filters: vec!["box".into(), "tent:1".into()],
         filter_spp: 4,
+        adaptive: vec![],
+        dielectric_roulette: vec![],
         reference_spp: 16,
         reference_light_samples: 256,
         reference_glossy_samples: 256,
@@ -132,4 +136,50 @@ fn stochastic_axes_are_measured_against_their_references() {
     assert_eq!(glossy[4].settings.spp, 4);
     let classic = rows(include_str!("../../../fixtures/classic.json"));
     assert_eq!(labels(&classic), ["filter box", "filter tent:1"]);
+}
+
+/// The adaptive rows: a first pass of `adaptive_spp` samples, more where pixels disagree,
+/// measured against the spp axis's reference; at threshold 0 the classic scene's edges are
+/// refined, so the row takes more samples than the uniform row of the same first pass and has
+/// less error.
+#[test]
+fn adaptive_rows_take_more_samples_at_edges_and_have_less_error() {
+    let mut scene = Scene::default_scene();
+    scene.camera = scene.camera.with_size(48, 27);
+    let sweep = Sweep {
+        depths: vec![],
+        fresnels: vec![],
+        spps: vec![2],
+        offsets: vec![],
+        min_weights: vec![],
+        filters: vec![],
+        adaptive: vec![(0.0, 16)],
+        adaptive_spp: 2,
+        dielectric_roulette: vec![],
+        reference_spp: 64,
+        repeats: 1,
+        ..Sweep::quick()
+    };
+    let r = run(&scene, &sweep, &|_, _| {});
+    let [uniform, adaptive] = &r.rows[..] else {
+        panic!("{:?}", r.rows)
+    };
+    assert_eq!(
+        (uniform.axis.as_str(), adaptive.axis.as_str()),
+        ("spp", "adaptive")
+    );
+    assert_eq!(adaptive.value, "0 to 16 spp");
+    let pixels = 48 * 27;
+    assert_eq!(uniform.rays.camera, 2 * pixels);
+    assert!(
+        adaptive.rays.camera > 2 * pixels && adaptive.rays.camera < 16 * pixels,
+        "{}",
+        adaptive.rays.camera
+    );
+    assert!(
+        adaptive.error.rmse < 0.7 * uniform.error.rmse,
+        "{} against {}",
+        adaptive.error.rmse,
+        uniform.error.rmse
+    );
 }
