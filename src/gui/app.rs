@@ -187,10 +187,12 @@ impl InspectorApp {
                     });
             });
         let cache = &mut self.diagram;
+        // Tall enough by default that the figure is not squeezed under its three rows of
+        // controls (at 330 px a glass ball was 20-80 px across).
         egui::Panel::bottom("diagram")
             .resizable(true)
-            .default_size(330.0)
-            .size_range(200.0..=520.0)
+            .default_size(430.0)
+            .size_range(200.0..=640.0)
             .show(ui, |ui| diagram_ui(ui, doc, cache, &mut cmds));
         let tex = self.texture.as_ref().map(TextureHandle::id);
         let mut placement = None;
