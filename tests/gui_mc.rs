@@ -97,3 +97,58 @@ fn the_noise_view_is_picked_from_the_menu_and_shows_a_legend() {
         "share: caustics (CS*[DG]S+[LB])"
     );
 }
+
+/// The "denoised image" toggle (issue 16): once the render has finished the image panel shows
+/// the denoised image, computed on its own thread; the document's image (what exports and
+/// hovering read) and the selected pixel's tree stay the raw samples; off shows the raw image.
+#[test]
+fn the_denoise_toggle_shows_the_denoised_image_and_keeps_the_raw_samples() {
+    let adjust = Box::new(|s: &mut raytree::Scene| {
+        s.settings.spp = 8;
+        s.camera = s.camera.with_size(96, 72);
+        Ok(())
+    });
+    let session = Session::new(
+        Some("caustic.json".into()),
+        Box::new(OneScene),
+        adjust,
+        Arc::new(|| {}),
+    );
+    let mut h = Harness::builder()
+        .with_size([1500.0, 950.0])
+        .with_max_steps(16)
+        .build_ui_state(
+            |ui, app: &mut InspectorApp| app.show(ui),
+            InspectorApp::new(session),
+        );
+    h.run();
+    h.state_mut().session.wait_render();
+    h.run();
+    assert!(h.state().denoise_state().is_none());
+    assert!(!h.state().shows_denoised());
+    h.get_by_label("denoised image").click();
+    let mut frames = 0;
+    while !h.state().shows_denoised() && frames < 600 {
+        h.run();
+        std::thread::sleep(std::time::Duration::from_millis(10));
+        frames += 1;
+    }
+    assert!(
+        h.state().shows_denoised(),
+        "no denoised image after {frames} frames"
+    );
+    assert!(matches!(
+        h.state().denoise_state(),
+        Some(raytree::gui::denoise_view::DenoiseState::Ready(_))
+    ));
+    let _ = h.get_by_label_contains("denoised in");
+    // The raw render is untouched: the document's image is `render`'s, bit for bit.
+    let scene = h.state().session.doc.scene.clone();
+    let (raw, _) = raytree::render::render(&scene, &|_| {});
+    assert!(h.state().session.doc.image.pixels == raw.pixels);
+    h.get_by_label("denoised image").click();
+    h.run();
+    h.run();
+    assert!(!h.state().shows_denoised());
+    assert!(h.state().denoise_state().is_none());
+}

@@ -24,7 +24,9 @@ pub struct InspectorApp {
     /// The controller (document, worker, files).
     pub session: Session,
     texture: Option<TextureHandle>,
-    texture_version: Option<u64>,
+    texture_version: Option<(u64, bool)>,
+    denoise: super::denoise_view::DenoiseView,
+    denoise_state: Option<super::denoise_view::DenoiseState>,
     last_poll: f64,
     placement: Option<ImagePlacement>,
     diagram: DiagramCache,
@@ -43,6 +45,8 @@ impl InspectorApp {
             session,
             texture: None,
             texture_version: None,
+            denoise: super::denoise_view::DenoiseView::default(),
+            denoise_state: None,
             last_poll: 0.0,
             placement: None,
             diagram: DiagramCache::default(),
@@ -52,6 +56,18 @@ impl InspectorApp {
             compare: CompareView::default(),
             samples: Default::default(),
         }
+    }
+
+    /// The denoised image toggle's state (`None` while it is off or a debug view is shown).
+    #[must_use]
+    pub fn denoise_state(&self) -> Option<&super::denoise_view::DenoiseState> {
+        self.denoise_state.as_ref()
+    }
+
+    /// Whether the texture on screen is the denoised image.
+    #[must_use]
+    pub fn shows_denoised(&self) -> bool {
+        self.texture_version.is_some_and(|v| v.1)
     }
 
     /// Where the image was drawn last frame (for tests).
@@ -126,6 +142,7 @@ impl InspectorApp {
         }
         self.update_texture(&ctx);
         let doc = &self.session.doc;
+        let denoise_state = self.denoise_state.as_ref();
         let mut cmds = Vec::new();
         egui::Panel::top("title").show(ui, |ui| title_ui(ui, doc));
         // Fixed limits on every panel: content never widens them (long rows are cut or wrapped
@@ -140,7 +157,12 @@ impl InspectorApp {
                     section(ui, "Settings", |ui| {
                         settings::settings_ui(ui, doc, &mut cmds)
                     });
-                    section(ui, "View", |ui| settings::view_ui(ui, doc, &mut cmds));
+                    section(ui, "View", |ui| {
+                        settings::view_ui(ui, doc, &mut cmds);
+                        if let Some(state) = denoise_state {
+                            ui.small(denoise_words(state));
+                        }
+                    });
                     section(ui, "Export", |ui| settings::export_ui(ui, doc, &mut cmds));
                     egui::CollapsingHeader::new(RichText::new("Acne lab").strong())
                         .default_open(false)
@@ -210,11 +232,24 @@ impl InspectorApp {
 
     fn update_texture(&mut self, ctx: &egui::Context) {
         let doc = &self.session.doc;
-        if self.texture_version == Some(doc.image_version) {
+        let denoised = if doc.view.denoise && doc.view.debug == DebugView::Off {
+            let repaint = ctx.clone();
+            let (image, state) = self.denoise.image(doc, move || repaint.request_repaint());
+            self.denoise_state = Some(state);
+            image
+        } else {
+            self.denoise_state = None;
+            None
+        };
+        let version = (doc.image_version, denoised.is_some());
+        if self.texture_version == Some(version) {
             return;
         }
-        self.texture_version = Some(doc.image_version);
-        let image = texture_image(doc);
+        self.texture_version = Some(version);
+        let image = match denoised {
+            Some(d) => ColorImage::from_rgb([d.width as usize, d.height as usize], &d.to_srgb8()),
+            None => texture_image(doc),
+        };
         match &mut self.texture {
             Some(t) => t.set(image, TextureOptions::NEAREST),
             None => {
@@ -228,6 +263,17 @@ impl InspectorApp {
 impl eframe::App for InspectorApp {
     fn ui(&mut self, ui: &mut egui::Ui, _frame: &mut eframe::Frame) {
         self.show(ui);
+    }
+}
+
+/// The denoised image's state in words, under the View section's toggle.
+fn denoise_words(state: &super::denoise_view::DenoiseState) -> String {
+    use super::denoise_view::DenoiseState;
+    match state {
+        DenoiseState::Waiting => "denoise: after the render".into(),
+        DenoiseState::Running => "denoising...".into(),
+        DenoiseState::Ready(s) => format!("denoised in {s:.2} s (guide buffers and filter)"),
+        DenoiseState::Unavailable(why) => format!("denoise: {why}"),
     }
 }
 

@@ -42,6 +42,9 @@ pub struct ViewOptions {
     pub overlay: bool,
     /// The diagram panel's options (plane, filters, zoom and pan, export highlight).
     pub diagram: super::diagram_ui::DiagramView,
+    /// Show the image denoised ([`super::denoise_view`]; trees, overlay, diagram and exports
+    /// stay the raw samples).
+    pub denoise: bool,
 }
 
 impl Default for ViewOptions {
@@ -52,6 +55,7 @@ impl Default for ViewOptions {
             debug: DebugView::Off,
             overlay: true,
             diagram: super::diagram_ui::DiagramView::default(),
+            denoise: false,
         }
     }
 }

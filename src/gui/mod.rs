@@ -12,6 +12,7 @@ mod acne_ui;
 mod app;
 pub mod breakdown;
 pub mod compare_ui;
+pub mod denoise_view;
 mod details_ui;
 mod diagram_controls;
 pub mod diagram_ui;

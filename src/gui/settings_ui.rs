@@ -174,6 +174,9 @@ pub fn view_ui(ui: &mut egui::Ui, doc: &Document, cmds: &mut Vec<Command>) {
             }
         });
     ui.checkbox(&mut v.overlay, "ray path overlay");
+    ui.checkbox(&mut v.denoise, "denoised image").on_hover_text(
+        "the finished render through the a-trous denoiser (docs/denoise.md); the tree, overlay, diagram and exports stay the raw samples",
+    );
     ui.horizontal(|ui| {
         ui.label("zoom");
         if ui.button("fit").clicked() {
