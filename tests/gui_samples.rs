@@ -234,6 +234,9 @@ fn the_lpe_filter_on_a_whitted_tree_says_it_does_not_apply() {
     h.run();
     assert_eq!(h.state().session.doc.tree.as_ref(), Some(&full));
     let _ = h.get_by_label_contains("not applied: a Whitted tree");
+    // One sample per pixel: no histogram of one bar, no list of one row.
+    let _ = h.get_by_label_contains("one sample per pixel");
+    assert!(h.query_by_label_contains("sample 0 ").is_none());
 }
 
 #[test]

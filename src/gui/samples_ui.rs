@@ -107,6 +107,11 @@ pub fn samples_ui(
     let Some(tree) = &doc.tree else {
         return;
     };
+    if tree.samples.len() < 2 {
+        // One sample: no spread to show (a histogram of one bar, a list of one row).
+        ui.small("one sample per pixel: raise samples / pixel to compare samples");
+        return;
+    }
     let selected = doc
         .node
         .and_then(|id| super::diagram_controls::sample_of(doc, id));
