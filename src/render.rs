@@ -5,8 +5,6 @@
 //! recorder; the image uses [`NoopRecorder`], the tree [`TreeRecorder`], so a recorded pixel
 //! equals the rendered one bit for bit.
 
-use crate::bvh::TraversalCost;
-use crate::bvh::wide::PACKET;
 use crate::geometry::Shape;
 use crate::math::{Ray, Rgb};
 use crate::sampling::{PixelFilter, PixelSampler, SceneSampler, StratifiedJitter};
@@ -18,68 +16,6 @@ use crate::trace::{
 use crate::tree::{RayTree, SampleRecord, TREE_SCHEMA};
 use glam::DVec2;
 use rayon::prelude::*;
-
-/// A linear-radiance image, row-major, top row first.
-#[derive(Clone, Debug, PartialEq)]
-pub struct Image {
-    /// Width in pixels.
-    pub width: u32,
-    /// Height in pixels.
-    pub height: u32,
-    /// `width * height` pixels.
-    pub pixels: Vec<Rgb>,
-}
-
-impl Image {
-    /// The pixel at (x, y).
-    #[must_use]
-    pub fn get(&self, x: u32, y: u32) -> Rgb {
-        self.pixels[(y * self.width + x) as usize]
-    }
-
-    /// 8-bit sRGB bytes, RGB order, clamped.
-    #[must_use]
-    pub fn to_srgb8(&self) -> Vec<u8> {
-        self.pixels
-            .iter()
-            .flat_map(|p| p.to_array().map(crate::math::linear_to_srgb8))
-            .collect()
-    }
-}
-
-/// What a render did.
-#[derive(Clone, Copy, Debug, Default, PartialEq)]
-pub struct RenderStats {
-    /// Rays traced by kind.
-    pub rays: RayCounts,
-    /// Pixels whose value was not finite (replaced by black).
-    pub nonfinite_pixels: u64,
-    /// The first such pixel, in scan order.
-    pub first_nonfinite: Option<(u32, u32)>,
-    /// Pixels with at least one self-hit ray (diagnosed renders only; see `trace::diagnose`).
-    pub self_hit_pixels: u64,
-    /// Pixels with at least one leaking ray (diagnosed renders only).
-    pub leak_pixels: u64,
-    /// Camera samples taken (`width * height * spp` without adaptive antialiasing).
-    pub samples: u64,
-    /// Pixels adaptive antialiasing refined (took more than `spp` samples).
-    pub refined_pixels: u64,
-}
-
-/// Per-pixel diagnostic counts of a diagnosed render, row-major like [`Image`].
-#[derive(Clone, Debug, Default, PartialEq, Eq)]
-pub struct DiagnosticMap {
-    /// Width in pixels.
-    pub width: u32,
-    /// Height in pixels.
-    pub height: u32,
-    /// Self-hit rays per pixel.
-    pub self_hits: Vec<u32>,
-    /// Leaking rays per pixel.
-    pub leaks: Vec<u32>,
-    /// Camera samples per pixel (`spp`, or more where adaptive antialiasing refined).
-    pub samples: Vec<u32>,
-}
 
 /// Film position of sample `s` of pixel (x, y) at seed 0: [`StratifiedJitter`]'s film offset
 /// (the centre for one sample, otherwise jittered stratified) added to the pixel's corner.
@@ -300,26 +236,6 @@ pub fn render_rows<I: Integrator>(
     (pixels, counts)
 }
 
-/// Rows `rows` in bands of [`TILE`] rows from `rows.start`, in parallel, each traced by
-/// [`render_band`]; `on_band` is called with each band's row count as it finishes.
-fn packet_bands<R: Recorder + Default, I: Integrator, S: PixelSampler>(
-    integrator: &I,
-    sampler: &S,
-    rows: std::ops::Range<u32>,
-    on_band: &(dyn Fn(u32) + Sync),
-) -> Vec<(Vec<Rgb>, RayCounts)> {
-    let starts: Vec<u32> = rows.clone().step_by(TILE as usize).collect();
-    starts
-        .into_par_iter()
-        .map(|y0| {
-            let n = TILE.min(rows.end - y0);
-            let band = render_band::<R, I, S>(integrator, sampler.clone(), y0, n);
-            on_band(n);
-            band
-        })
-        .collect()
-}
-
 /// Whether a render with recorder `R` traces camera rays as packets: nothing is recorded, the
 /// integrator takes packets and the scene has a mesh.
 fn uses_packets<R: Recorder, I: Integrator>(integrator: &I) -> bool {
@@ -432,63 +348,14 @@ fn render_recorded<R: Recorder + Default, I: Integrator, S: PixelSampler>(
     (image, stats, map)
 }
 
-/// Rows per band and columns per tile of the packet path: a packet is the camera rays of one
-/// sample of an 8x8 tile.
-const TILE: u32 = 8;
-
-/// Rows `y0..y0 + rows` (at most [`TILE`]) without recording, a tile of camera rays at a time
-/// through [`Scene::intersect_packet`]: the pixels (row-major) and the ray counts. Each pixel
-/// sums its samples in the same order as [`render_pixel_with`], and each ray's hit is its single
-/// ray's, so the pixels are [`render_pixel_sampled`]'s bit for bit (the integrator takes
-/// packets only when it draws nothing from the sampler past the film offset).
-fn render_band<R: Recorder + Default, I: Integrator, S: PixelSampler>(
-    integrator: &I,
-    mut sampler: S,
-    y0: u32,
-    rows: u32,
-) -> (Vec<Rgb>, RayCounts) {
-    let scene = integrator.scene();
-    let w = scene.camera.width;
-    let spp = scene.settings.spp.max(1);
-    let mut counts = RayCounts::default();
-    let mut rec = R::default();
-    let mut band = vec![Rgb::ZERO; (w * rows) as usize];
-    let film = integrator.film();
-    let filter = scene.settings.filter.filter();
-    let mut rays = Vec::with_capacity(PACKET);
-    let mut hits = [None; PACKET];
-    let mut cost = [TraversalCost::default(); PACKET];
-    let mut radiance = [Rgb::ZERO; PACKET];
-    for x0 in (0..w).step_by(TILE as usize) {
-        let cols = TILE.min(w - x0);
-        for s in 0..spp {
-            rays.clear();
-            for dy in 0..rows {
-                for dx in 0..cols {
-                    let (_, ray) = camera_sample(film, filter, &mut sampler, x0 + dx, y0 + dy, s);
-                    rays.push(ray);
-                }
-            }
-            cost.fill(TraversalCost::default());
-            scene.intersect_packet(&rays, &mut hits, &mut cost);
-            let n = rays.len();
-            let found = (&hits[..n], &cost[..n]);
-            let out = &mut radiance[..n];
-            integrator.camera_packet_radiance(&rays, found, out, &mut rec, &mut counts);
-            for (i, &l) in radiance[..n].iter().enumerate() {
-                let (dx, dy) = (i as u32 % cols, i as u32 / cols);
-                band[(dy * w + x0 + dx) as usize] += l;
-            }
-        }
-    }
-    for p in &mut band {
-        *p /= f64::from(spp);
-    }
-    (band, counts)
-}
-
 #[path = "render_adaptive.rs"]
 mod adaptive;
+#[path = "render_image.rs"]
+mod image;
+#[path = "render_packets.rs"]
+mod packets;
+pub use image::{DiagnosticMap, Image, RenderStats};
+use packets::packet_bands;
 pub use adaptive::render_pixel_counted;
 
 #[cfg(test)]
