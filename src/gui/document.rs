@@ -126,6 +126,8 @@ pub struct Document {
     pub stats: Vec<PixelStats>,
     /// Render progress.
     pub progress: Progress,
+    /// Progressive rendering: its options and the last pass's noise estimate.
+    pub progressive: super::progressive::State,
     /// Selected pixel.
     pub selection: Option<[u32; 2]>,
     /// The selected pixel's tree (re-traced synchronously on every change).
@@ -186,6 +188,7 @@ impl Document {
                 stats_seconds: None,
                 growth: None,
             },
+            progressive: Default::default(),
             path_field: source
                 .path
                 .as_ref()
@@ -256,4 +259,6 @@ pub enum Command {
     SetLab(super::acne_lab::LabParams),
     /// New text in the LPE filter field (applied when it parses; empty: no filter).
     SetLpe(String),
+    /// Progressive rendering's options (re-renders).
+    SetProgressive(super::progressive::Options),
 }
