@@ -25,7 +25,7 @@
 mod tests;
 mod ui;
 
-pub use ui::progressive_ui;
+pub use ui::{progressive_ui, title_ui};
 
 use super::worker::{Delivery, IMAGE_ROWS};
 use crate::bsdf::luminance;
@@ -189,14 +189,15 @@ impl Accumulator {
     }
 
     /// Trace samples `first..first + count` of rows `rows` (in parallel over rows) into the
-    /// pixels; `first` must be [`Self::samples`]. Returns the rays traced.
+    /// pixels; `first` must be [`Self::samples`]. Returns the rays traced. Rows stop early,
+    /// between pixels, once `cancelled` says so (the accumulator is then to be dropped).
     pub fn trace<I: Integrator>(
         &mut self,
         integrator: &I,
         sampler: &SceneSampler,
-        first: u32,
-        count: u32,
+        (first, count): (u32, u32),
         rows: std::ops::Range<u32>,
+        cancelled: &(dyn Fn() -> bool + Sync),
     ) -> RayCounts {
         let w = self.width as usize;
         let film = integrator.film();
@@ -212,6 +213,9 @@ impl Accumulator {
                 let mut sampler = pass;
                 let mut counts = RayCounts::default();
                 for (x, p) in row.iter_mut().enumerate() {
+                    if cancelled() {
+                        break;
+                    }
                     for s in first..first + count {
                         let (_, ray) = camera_sample(film, filter, &mut sampler, x as u32, y, s);
                         let rec = &mut NoopRecorder;
@@ -260,7 +264,7 @@ pub fn run<I: Integrator>(
     integrator: &I,
     options: &Options,
     generation: u64,
-    cancelled: &dyn Fn() -> bool,
+    cancelled: &(dyn Fn() -> bool + Sync),
     send: &dyn Fn(Delivery) -> bool,
 ) -> Option<RayCounts> {
     let scene = integrator.scene();
@@ -278,8 +282,11 @@ pub fn run<I: Integrator>(
             if cancelled() {
                 return None;
             }
-            let y1 = (y0 + IMAGE_ROWS).min(h);
-            rays += acc.trace(integrator, &sampler, first, count, y0..y1);
+            // Bands shrink as passes grow (32 rows at 4 samples, 8 from 16 on), so the image
+            // still refines every few seconds.
+            let rows = (IMAGE_ROWS * FIRST_PASS / count.max(1)).clamp(8, IMAGE_ROWS);
+            let y1 = (y0 + rows).min(h);
+            rays += acc.trace(integrator, &sampler, (first, count), y0..y1, cancelled);
             let pixels = acc.rows(y0, y1, first + count);
             if !send(Delivery::Band {
                 generation,

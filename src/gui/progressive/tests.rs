@@ -44,7 +44,7 @@ fn accumulate(scene: &Scene, totals: &[u32]) -> Vec<(u32, f64, Vec<Rgb>)> {
         .iter()
         .map(|&n| {
             let first = acc.samples();
-            acc.trace(&integrator, &sampler, first, n - first, 0..h);
+            acc.trace(&integrator, &sampler, (first, n - first), 0..h, &|| false);
             acc.finish_pass(n - first);
             (n, acc.error(), acc.rows(0, h, n))
         })

@@ -59,3 +59,20 @@ pub fn progressive_ui(ui: &mut egui::Ui, doc: &Document, cmds: &mut Vec<Command>
         cmds.push(Command::SetProgressive(o));
     }
 }
+
+/// In the title bar, while progressive rendering is on: the estimate and the samples so far.
+pub fn title_ui(ui: &mut egui::Ui, doc: &Document) {
+    if let Some(r) = &doc.progressive.report {
+        ui.separator();
+        let state = if r.stop.is_some() {
+            "stopped"
+        } else {
+            "refining"
+        };
+        ui.label(format!(
+            "progressive: {} spp, noise {:.2}%, {state}",
+            r.spp,
+            r.error * 100.0
+        ));
+    }
+}
