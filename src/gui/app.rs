@@ -338,6 +338,7 @@ fn title_ui(ui: &mut egui::Ui, doc: &Document) {
                 );
             }
         }
+        super::progressive::title_ui(ui, doc);
         if let Some(e) = doc.error.as_ref().or(doc.export_error.as_ref()) {
             // The whole message is in the left panel; here its first line, cut to fit.
             ui.separator();

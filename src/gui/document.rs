@@ -130,6 +130,8 @@ pub struct Document {
     pub stats: Vec<PixelStats>,
     /// Render progress.
     pub progress: Progress,
+    /// Progressive rendering: its options and the last pass's noise estimate.
+    pub progressive: super::progressive::State,
     /// Selected pixel.
     pub selection: Option<[u32; 2]>,
     /// The selected pixel's tree (re-traced synchronously on every change).
@@ -190,6 +192,7 @@ impl Document {
                 stats_seconds: None,
                 growth: None,
             },
+            progressive: Default::default(),
             path_field: source
                 .path
                 .as_ref()
@@ -260,4 +263,6 @@ pub enum Command {
     SetLab(super::acne_lab::LabParams),
     /// New text in the LPE filter field (applied when it parses; empty: no filter).
     SetLpe(String),
+    /// Progressive rendering's options (re-renders).
+    SetProgressive(super::progressive::Options),
 }

@@ -21,6 +21,7 @@ pub mod explain_ui;
 pub mod export;
 mod image_ui;
 pub mod lpe_filter;
+pub mod progressive;
 pub mod project;
 pub mod samples_ui;
 mod session;

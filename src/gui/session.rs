@@ -152,7 +152,14 @@ impl Session {
         // With a debug view on screen its statistics matter most: gather them in the one pass
         // that also gives the image; otherwise show the image first.
         let image_first = self.doc.view.debug == super::stats::DebugView::Off;
-        self.doc.progress.generation = self.worker.start(Arc::clone(&self.doc.scene), image_first);
+        let scene = Arc::clone(&self.doc.scene);
+        let options = self.doc.progressive.options;
+        self.doc.progress.generation = if options.on {
+            self.worker.start_progressive(scene, options)
+        } else {
+            self.worker.start(scene, image_first)
+        };
+        self.doc.progressive.report = None;
         self.doc.progress.rows = 0;
         self.doc.progress.seconds = None;
         self.doc.progress.stats_rows = 0;
@@ -211,6 +218,10 @@ impl Session {
                 if let Some(p) = self.doc.selection {
                     self.select(p);
                 }
+            }
+            Command::SetProgressive(o) => {
+                self.doc.progressive.options = o;
+                self.rerender();
             }
             Command::SetView(v) => {
                 if v.debug != self.doc.view.debug {
@@ -380,6 +391,7 @@ impl Session {
                 self.doc.progress.stats_seconds = Some(seconds);
             }
             Delivery::Growth { line, .. } => self.doc.progress.growth = Some(line),
+            Delivery::Pass { report, .. } => self.doc.progressive.report = Some(report),
         }
         true
     }

@@ -72,6 +72,13 @@ pub enum Delivery {
         /// One line for the statistics.
         line: String,
     },
+    /// A progressive pass is complete ([`super::progressive`]).
+    Pass {
+        /// The job this belongs to.
+        generation: u64,
+        /// The samples so far, the noise estimate and whether the run stopped.
+        report: super::progressive::Report,
+    },
 }
 
 impl Delivery {
@@ -83,7 +90,8 @@ impl Delivery {
             | Delivery::Done { generation, .. }
             | Delivery::Stats { generation, .. }
             | Delivery::StatsDone { generation, .. }
-            | Delivery::Growth { generation, .. } => *generation,
+            | Delivery::Growth { generation, .. }
+            | Delivery::Pass { generation, .. } => *generation,
         }
     }
 }
@@ -92,6 +100,7 @@ struct Job {
     generation: u64,
     scene: Arc<Scene>,
     image_first: bool,
+    progressive: Option<super::progressive::Options>,
 }
 
 /// A handle on the render thread. Dropping it cancels the current job and joins the thread.
@@ -136,6 +145,25 @@ impl Worker {
     /// after it; without, one pass records every ray and delivers both (sooner statistics, for
     /// a debug view on screen, later image).
     pub fn start(&self, scene: Arc<Scene>, image_first: bool) -> u64 {
+        self.start_job(scene, image_first, None)
+    }
+
+    /// Render `scene` progressively ([`super::progressive`]) as a new generation, then gather
+    /// its statistics at the scene's settings; returns the generation.
+    pub fn start_progressive(
+        &self,
+        scene: Arc<Scene>,
+        options: super::progressive::Options,
+    ) -> u64 {
+        self.start_job(scene, true, Some(options))
+    }
+
+    fn start_job(
+        &self,
+        scene: Arc<Scene>,
+        image_first: bool,
+        progressive: Option<super::progressive::Options>,
+    ) -> u64 {
         let generation = self.generation.fetch_add(1, Ordering::SeqCst) + 1;
         if let Some(jobs) = &self.jobs {
             // The thread only ends when we drop the sender, so this cannot fail.
@@ -143,6 +171,7 @@ impl Worker {
                 generation,
                 scene,
                 image_first,
+                progressive,
             });
         }
         generation
@@ -190,7 +219,17 @@ fn run_job(job: &Job, current: &AtomicU64, tx: &Sender<Delivery>, repaint: &Repa
     // 1. The image, on the plain render's path.
     let start = Instant::now();
     let mut rays = RayCounts::default();
-    let mut y0 = if job.image_first { 0 } else { h };
+    if let Some(options) = &job.progressive {
+        match super::progressive::run(&tracer, options, job.generation, &cancelled, &send) {
+            Some(r) => rays = r,
+            None => return,
+        }
+    }
+    let mut y0 = if job.image_first && job.progressive.is_none() {
+        0
+    } else {
+        h
+    };
     while y0 < h {
         if cancelled() {
             return;
@@ -386,6 +425,7 @@ mod tests {
                         break;
                     }
                     Delivery::Growth { .. } => unreachable!("comes after the statistics"),
+                    Delivery::Pass { .. } => unreachable!("not a progressive job"),
                 }
             }
             (pixels, stats, rays.expect("the image is reported done"))

@@ -1,0 +1,318 @@
+//! Progressive rendering in the inspector (issue 16): the image is rendered in passes of
+//! growing sample counts, each pixel accumulating a running sum (the image) and a Welford
+//! running mean and variance of its samples' luminance (the noise estimate), delivered after
+//! every band so the window refines live, until the estimate falls below a target or the
+//! samples reach a cap.
+//!
+//! Passes draw samples `first..first + count` of each pixel through the sampler seam
+//! ([`PixelSampler::refine`] on the scene's [`SceneSampler`]): the first pass is
+//! [`FIRST_PASS`] samples, every later pass doubles the total (4, 8, 16, ...). Under the Sobol
+//! sampler (the path integrator's default) the sequence just continues, and the sum is added
+//! sample by sample in index order as `render` adds it, so the image after `N` samples equals
+//! `render` at `spp = N` bit for bit (a test checks it). Under the stratified sampler each pass
+//! lies on its own complete stratified grid (as adaptive antialiasing's second pass does): the
+//! first pass equals `render` at 4 spp, later totals are unbiased but not `render`'s grid.
+//! Adaptive antialiasing (`settings.adaptive`) is not applied to progressive passes, and mesh
+//! scenes are traced pixel by pixel (no packets; the same pixels, a little slower).
+//!
+//! The noise estimate: for pixel `i` with `n` samples of luminance mean `m_i` and Welford sum
+//! of squared deviations `M2_i`, the variance of its mean is `M2_i / (n (n - 1))`, its relative
+//! standard error `r_i = sqrt(M2_i / (n (n - 1))) / (m_i + 0.01)`, and the image's estimate the
+//! RMS of `r_i` over the pixels. It assumes independent samples, so under Sobol (whose error
+//! falls faster than `1/sqrt(n)`) it overstates the error: a conservative stop.
+
+#[cfg(test)]
+mod tests;
+mod ui;
+
+pub use ui::{progressive_ui, title_ui};
+
+use super::worker::{Delivery, IMAGE_ROWS};
+use crate::bsdf::luminance;
+use crate::math::Rgb;
+use crate::render::camera_sample;
+use crate::sampling::{PixelSampler, SceneSampler};
+use crate::scene::IntegratorKind;
+use crate::trace::{Integrator, NoopRecorder, RayCounts};
+use rayon::prelude::*;
+use std::time::Instant;
+
+/// Samples per pixel of the first pass.
+pub const FIRST_PASS: u32 = 4;
+/// Added to a pixel's mean luminance before dividing, so black pixels do not dominate.
+pub const OFFSET: f64 = 0.01;
+
+/// The mode as the user set it.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Options {
+    /// Progressive rendering on (off: the one render at the scene's spp).
+    pub on: bool,
+    /// Stop when the estimate ([`Accumulator::error`]) is at or below this (0.01 = 1%).
+    pub target: f64,
+    /// Stop at this many samples per pixel at most.
+    pub cap: u32,
+}
+
+impl Default for Options {
+    fn default() -> Self {
+        Self {
+            on: false,
+            target: 0.01,
+            cap: 1024,
+        }
+    }
+}
+
+/// Why a progressive run stopped.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Stop {
+    /// The estimate fell to the target.
+    Target,
+    /// The samples reached the cap.
+    Cap,
+}
+
+/// Where a progressive run stands after a pass.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Report {
+    /// Samples per pixel accumulated so far.
+    pub spp: u32,
+    /// The image's mean relative standard error (module documentation).
+    pub error: f64,
+    /// Wall-clock seconds since the run started.
+    pub seconds: f64,
+    /// Set on the last pass: why the run stopped.
+    pub stop: Option<Stop>,
+}
+
+/// The document's side: the options and the last report of the current render.
+#[derive(Clone, Debug, Default)]
+pub struct State {
+    /// The options.
+    pub options: Options,
+    /// The last pass of the current render (`None` before the first or when off).
+    pub report: Option<Report>,
+}
+
+/// One pixel's running sum (of radiance) and Welford state (of luminance).
+#[derive(Clone, Copy, Debug, Default)]
+pub struct PixelAcc {
+    sum: Rgb,
+    mean: f64,
+    m2: f64,
+}
+
+impl PixelAcc {
+    /// Add the pixel's sample number `k` (0-based: `k` samples came before).
+    #[inline]
+    pub fn add(&mut self, k: u32, l: Rgb) {
+        self.sum += l;
+        let y = luminance(l);
+        let y = if y.is_finite() { y } else { 0.0 };
+        let delta = y - self.mean;
+        self.mean += delta / f64::from(k + 1);
+        self.m2 += delta * (y - self.mean);
+    }
+
+    /// The luminance mean and the variance of that mean after `n` samples.
+    #[must_use]
+    pub fn mean_and_variance(&self, n: u32) -> (f64, f64) {
+        let var = if n > 1 {
+            self.m2 / (f64::from(n) * f64::from(n - 1))
+        } else {
+            f64::INFINITY
+        };
+        (self.mean, var)
+    }
+}
+
+/// The progressive image: one [`PixelAcc`] per pixel, all with the same sample count.
+#[derive(Clone, Debug)]
+pub struct Accumulator {
+    width: u32,
+    pixels: Vec<PixelAcc>,
+    samples: u32,
+}
+
+impl Accumulator {
+    /// An empty accumulator for a `width x height` image.
+    #[must_use]
+    pub fn new(width: u32, height: u32) -> Self {
+        Self {
+            width,
+            pixels: vec![PixelAcc::default(); (width * height) as usize],
+            samples: 0,
+        }
+    }
+
+    /// Samples per pixel of the finished passes.
+    #[must_use]
+    pub fn samples(&self) -> u32 {
+        self.samples
+    }
+
+    /// Pixel `i` (row-major).
+    #[must_use]
+    pub fn pixel(&self, i: usize) -> &PixelAcc {
+        &self.pixels[i]
+    }
+
+    /// Rows `y0..y1` of the image after `n` samples (non-finite pixels black).
+    #[must_use]
+    pub fn rows(&self, y0: u32, y1: u32, n: u32) -> Vec<Rgb> {
+        let w = self.width as usize;
+        self.pixels[y0 as usize * w..y1 as usize * w]
+            .iter()
+            .map(|p| {
+                let l = p.sum / f64::from(n.max(1));
+                if l.is_finite() { l } else { Rgb::ZERO }
+            })
+            .collect()
+    }
+
+    /// The image's mean relative standard error: the RMS over pixels of
+    /// `sqrt(var of mean) / (mean luminance + OFFSET)` (infinite below two samples).
+    #[must_use]
+    pub fn error(&self) -> f64 {
+        if self.samples < 2 || self.pixels.is_empty() {
+            return f64::INFINITY;
+        }
+        let sum: f64 = self
+            .pixels
+            .iter()
+            .map(|p| {
+                let (m, v) = p.mean_and_variance(self.samples);
+                v / (m.abs() + OFFSET).powi(2)
+            })
+            .sum();
+        (sum / self.pixels.len() as f64).sqrt()
+    }
+
+    /// Trace samples `first..first + count` of rows `rows` (in parallel over rows) into the
+    /// pixels; `first` must be [`Self::samples`]. Returns the rays traced. Rows stop early,
+    /// between pixels, once `cancelled` says so (the accumulator is then to be dropped).
+    pub fn trace<I: Integrator>(
+        &mut self,
+        integrator: &I,
+        sampler: &SceneSampler,
+        (first, count): (u32, u32),
+        rows: std::ops::Range<u32>,
+        cancelled: &(dyn Fn() -> bool + Sync),
+    ) -> RayCounts {
+        let w = self.width as usize;
+        let film = integrator.film();
+        let filter = integrator.scene().settings.filter.filter();
+        let whitted = integrator.kind() == IntegratorKind::Whitted;
+        let mut pass = *sampler;
+        pass.refine(first, count);
+        self.pixels[rows.start as usize * w..rows.end as usize * w]
+            .par_chunks_mut(w)
+            .enumerate()
+            .map(|(i, row)| {
+                let y = rows.start + i as u32;
+                let mut sampler = pass;
+                let mut counts = RayCounts::default();
+                for (x, p) in row.iter_mut().enumerate() {
+                    if cancelled() {
+                        break;
+                    }
+                    for s in first..first + count {
+                        let (_, ray) = camera_sample(film, filter, &mut sampler, x as u32, y, s);
+                        let rec = &mut NoopRecorder;
+                        let (l, _) =
+                            integrator.camera_radiance(ray, &mut sampler, rec, &mut counts);
+                        // As the render: a non-finite path sample is dropped (black, counted).
+                        let l = if l.is_finite() || whitted {
+                            l
+                        } else {
+                            counts.dropped_samples += 1;
+                            Rgb::ZERO
+                        };
+                        p.add(s, l);
+                    }
+                }
+                counts
+            })
+            .reduce(RayCounts::default, |mut a, b| {
+                a += b;
+                a
+            })
+    }
+
+    /// Declare a pass of `count` samples finished.
+    pub fn finish_pass(&mut self, count: u32) {
+        self.samples += count;
+    }
+}
+
+/// Why a run ends after a pass with `error` at `spp` samples, if it does.
+#[must_use]
+pub fn stop_rule(options: &Options, spp: u32, error: f64) -> Option<Stop> {
+    if error <= options.target {
+        Some(Stop::Target)
+    } else if spp >= options.cap.max(1) {
+        Some(Stop::Cap)
+    } else {
+        None
+    }
+}
+
+/// Run a progressive render of `integrator`'s scene for the worker: bands of every pass as
+/// [`Delivery::Band`], a [`Delivery::Pass`] after each pass. Returns the rays traced, or
+/// `None` when cancelled or the receiver is gone.
+pub fn run<I: Integrator>(
+    integrator: &I,
+    options: &Options,
+    generation: u64,
+    cancelled: &(dyn Fn() -> bool + Sync),
+    send: &dyn Fn(Delivery) -> bool,
+) -> Option<RayCounts> {
+    let scene = integrator.scene();
+    let (w, h) = (scene.camera.width, scene.camera.height);
+    let start = Instant::now();
+    let sampler = SceneSampler::for_settings(&scene.settings);
+    let mut acc = Accumulator::new(w, h);
+    let mut rays = RayCounts::default();
+    let cap = options.cap.max(1);
+    let mut count = FIRST_PASS.min(cap);
+    loop {
+        let first = acc.samples();
+        let mut y0 = 0;
+        while y0 < h {
+            if cancelled() {
+                return None;
+            }
+            // Bands shrink as passes grow (32 rows at 4 samples, 8 from 16 on), so the image
+            // still refines every few seconds.
+            let rows = (IMAGE_ROWS * FIRST_PASS / count.max(1)).clamp(8, IMAGE_ROWS);
+            let y1 = (y0 + rows).min(h);
+            rays += acc.trace(integrator, &sampler, (first, count), y0..y1, cancelled);
+            let pixels = acc.rows(y0, y1, first + count);
+            if !send(Delivery::Band {
+                generation,
+                y0,
+                pixels,
+            }) {
+                return None;
+            }
+            y0 = y1;
+        }
+        acc.finish_pass(count);
+        let spp = acc.samples();
+        let error = acc.error();
+        let stop = stop_rule(options, spp, error);
+        let report = Report {
+            spp,
+            error,
+            seconds: start.elapsed().as_secs_f64(),
+            stop,
+        };
+        if !send(Delivery::Pass { generation, report }) {
+            return None;
+        }
+        if stop.is_some() {
+            return Some(rays);
+        }
+        count = spp.min(cap - spp);
+    }
+}

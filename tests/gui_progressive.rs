@@ -1,0 +1,90 @@
+//! Progressive rendering in the inspector (issue 16) through egui_kittest: ticking
+//! "progressive" starts passes whose noise estimate, samples and time appear under the
+//! checkbox, and a run that reaches its cap says so.
+
+use egui_kittest::Harness;
+use egui_kittest::kittest::Queryable;
+use raytree::gui::progressive::{Options, Stop};
+use raytree::gui::{Command, Files, InspectorApp, Session};
+use std::path::Path;
+use std::sync::Arc;
+use std::time::SystemTime;
+
+const CORNELL: &str = include_str!("../fixtures/cornell-box.json");
+
+/// The Cornell box, read-only.
+struct OneScene;
+
+impl Files for OneScene {
+    fn read(&self, _: &Path) -> std::io::Result<String> {
+        Ok(CORNELL.to_owned())
+    }
+    fn modified(&self, _: &Path) -> Option<SystemTime> {
+        Some(SystemTime::UNIX_EPOCH)
+    }
+    fn write(&self, _: &Path, _: &[u8]) -> std::io::Result<()> {
+        Err(std::io::Error::other("read-only"))
+    }
+}
+
+fn has(h: &Harness<'_, InspectorApp>, text: &str) -> bool {
+    h.query_all_by_label_contains(text).next().is_some()
+}
+
+#[test]
+fn ticking_progressive_shows_the_noise_estimate_and_the_stop() {
+    let adjust = Box::new(|s: &mut raytree::Scene| {
+        s.camera = s.camera.with_size(48, 48);
+        Ok(())
+    });
+    let session = Session::new(
+        Some("cornell-box.json".into()),
+        Box::new(OneScene),
+        adjust,
+        Arc::new(|| {}),
+    );
+    let mut h = Harness::builder()
+        .with_size([1500.0, 950.0])
+        .with_max_steps(16)
+        .build_ui_state(
+            |ui, app: &mut InspectorApp| app.show(ui),
+            InspectorApp::new(session),
+        );
+    h.run();
+    h.state_mut().session.wait_render();
+    h.run();
+    assert!(!h.state().session.doc.progressive.options.on);
+    assert!(!has(&h, "stop at error"));
+    assert!(!has(&h, "noise "));
+    h.get_by_label("progressive").click();
+    h.run();
+    assert!(h.state().session.doc.progressive.options.on);
+    assert!(has(&h, "stop at error"));
+    // Wait for the first pass's report (delivered by the worker; no time limit).
+    while h.state().session.doc.progressive.report.is_none() {
+        h.state_mut().session.pump();
+        std::thread::yield_now();
+    }
+    h.run();
+    assert!(has(&h, "noise "), "the estimate is shown");
+    assert!(has(&h, "at 4 spp") || has(&h, "at 8 spp") || has(&h, " spp, "));
+    // A run capped at 16 samples with an unreachable target says that it stopped at the cap.
+    let capped = Options {
+        on: true,
+        target: 0.0,
+        cap: 16,
+    };
+    h.state_mut().session.apply(Command::SetProgressive(capped));
+    h.state_mut().session.wait_image();
+    h.run();
+    let report = h.state().session.doc.progressive.report.unwrap();
+    assert_eq!((report.spp, report.stop), (16, Some(Stop::Cap)));
+    assert!(has(&h, "stopped: cap of 16 spp reached"));
+    // Unticking returns to the one render at the scene's samples per pixel.
+    h.get_by_label("progressive").click();
+    h.run();
+    h.state_mut().session.wait_render();
+    h.run();
+    assert!(h.state().session.doc.progressive.report.is_none());
+    assert!(!has(&h, "noise "));
+}
