@@ -354,9 +354,9 @@ mod adaptive;
 mod image;
 #[path = "render_packets.rs"]
 mod packets;
+pub use adaptive::render_pixel_counted;
 pub use image::{DiagnosticMap, Image, RenderStats};
 use packets::packet_bands;
-pub use adaptive::render_pixel_counted;
 
 #[cfg(test)]
 #[path = "render_tests.rs"]
