@@ -152,3 +152,57 @@ fn the_denoise_toggle_shows_the_denoised_image_and_keeps_the_raw_samples() {
     assert!(!h.state().shows_denoised());
     assert!(h.state().denoise_state().is_none());
 }
+
+/// Whitted vs path in the inspector (issue 16): the section renders both integrators on its
+/// own thread and shows the breakdown `raytree versus` prints; on the caustic fixture the
+/// caustics are what Whitted misses most.
+#[test]
+fn whitted_vs_path_in_the_inspector_names_what_whitted_misses() {
+    let adjust = Box::new(|s: &mut raytree::Scene| {
+        s.settings.spp = 16;
+        s.camera = s.camera.with_size(96, 72);
+        Ok(())
+    });
+    let session = Session::new(
+        Some("caustic.json".into()),
+        Box::new(OneScene),
+        adjust,
+        Arc::new(|| {}),
+    );
+    let mut h = Harness::builder()
+        .with_size([1500.0, 950.0])
+        .with_max_steps(16)
+        .build_ui_state(
+            |ui, app: &mut InspectorApp| app.show(ui),
+            InspectorApp::new(session),
+        );
+    h.run();
+    h.state_mut().session.wait_render();
+    h.run();
+    assert_eq!(h.state().versus(), (None, false));
+    h.get_by_label("Whitted vs path").click();
+    h.run();
+    h.get_by_label("compare Whitted and path").click();
+    let mut frames = 0;
+    while h.state().versus().0.is_none() && frames < 1000 {
+        h.step(); // the spinner repaints every frame: step, do not wait to settle
+        std::thread::sleep(std::time::Duration::from_millis(10));
+        frames += 1;
+    }
+    h.run();
+    let (summary, running) = h.state().versus();
+    let summary = summary.expect("a breakdown").to_owned();
+    assert!(!running);
+    // The same words and figures as the library's comparison of the same scene.
+    let scene = h.state().session.doc.scene.clone();
+    let v = raytree::aov::versus(&scene, None, &|_| {}).unwrap();
+    assert_eq!(summary, v.summary());
+    let top = v
+        .breakdown()
+        .into_iter()
+        .max_by(|a, b| a.2.total_cmp(&b.2))
+        .unwrap();
+    assert_eq!(top.0, "caustics", "{summary}");
+    let _ = h.get_by_label_contains("what Whitted misses here");
+    let _ = h.get_by_label("path - Whitted");
+}

@@ -80,6 +80,76 @@ impl Versus {
     }
 }
 
+impl Versus {
+    /// The breakdown in words: the region's luminances, what Whitted misses by class, what
+    /// differs in what both render, then one line per class.
+    #[must_use]
+    pub fn summary(&self) -> String {
+        use std::fmt::Write;
+        let [x0, y0, x1, y1] = self.region;
+        let mut s = format!(
+            "region {x0},{y0}..{x1},{y1}: Whitted luminance {:.4}, path {:.4} (sums over pixels)\n",
+            self.whitted_luminance, self.path_luminance
+        );
+        let terms = self.breakdown();
+        let parts: Vec<String> = terms
+            .iter()
+            .filter(|t| t.0 != "shared")
+            .map(|(n, _, share)| format!("{:.0}% {n}", 100.0 * share))
+            .collect();
+        let _ = write!(s, "what Whitted misses here: {}", parts.join(", "));
+        if let Some((_, d, share)) = terms.iter().find(|t| t.0 == "shared") {
+            let _ = write!(
+                s,
+                "; {:.0}% differs in what both render (path - Whitted = {d:+.4}: ambient, Phong highlights, translucent shadows, noise)",
+                100.0 * share
+            );
+        }
+        s.push_str("\nclass        expression            luminance  Whitted renders it\n");
+        for c in &self.classes {
+            let _ = writeln!(
+                s,
+                "{:<12} {:<21} {:>10.4}  {}",
+                c.name,
+                c.lpe,
+                c.luminance,
+                if c.whitted { "yes" } else { "no" }
+            );
+        }
+        s.trim_end().to_owned()
+    }
+
+    /// The signed luminance difference path - Whitted in false colour (8-bit RGB), row-major:
+    /// red where the path tracer is brighter (light Whitted misses), blue where Whitted is;
+    /// full colour at the 99th percentile of the magnitude, which is returned with it.
+    #[must_use]
+    pub fn difference_rgb8(&self) -> (Vec<[u8; 3]>, f64) {
+        let d: Vec<f64> = self
+            .whitted
+            .pixels
+            .iter()
+            .zip(&self.path.beauty.pixels)
+            .map(|(a, b)| luminance(*b) - luminance(*a))
+            .collect();
+        let mut mags: Vec<f64> = d.iter().map(|x| x.abs()).collect();
+        let scale = if mags.is_empty() {
+            1.0
+        } else {
+            let k = (mags.len() - 1) * 99 / 100;
+            let m = *mags.select_nth_unstable_by(k, f64::total_cmp).1;
+            if m > 0.0 { m } else { 1.0 }
+        };
+        let pixels = d
+            .iter()
+            .map(|x| {
+                let t = ((x.abs() / scale).min(1.0) * 255.0).round() as u8;
+                if *x >= 0.0 { [t, 0, 0] } else { [0, t / 3, t] }
+            })
+            .collect();
+        (pixels, scale)
+    }
+}
+
 /// Sum of `f(pixel)` over `region` of `image`.
 fn region_sum(image: &Image, [x0, y0, x1, y1]: [u32; 4]) -> f64 {
     (y0..y1)

@@ -99,36 +99,7 @@ pub fn run(a: &VersusArgs) -> Result<()> {
 
 /// The breakdown in words.
 fn breakdown_text(v: &Versus) -> String {
-    let [x0, y0, x1, y1] = v.region;
-    let mut s = format!(
-        "region {x0},{y0}..{x1},{y1}: Whitted luminance {:.4}, path {:.4} (sums over pixels)\n",
-        v.whitted_luminance, v.path_luminance
-    );
-    let terms = v.breakdown();
-    let parts: Vec<String> = terms
-        .iter()
-        .filter(|t| t.0 != "shared")
-        .map(|(n, _, share)| format!("{:.0}% {n}", 100.0 * share))
-        .collect();
-    let shared = terms.iter().find(|t| t.0 == "shared");
-    s.push_str(&format!("what Whitted misses here: {}", parts.join(", ")));
-    if let Some((_, d, share)) = shared {
-        s.push_str(&format!(
-            "; {:.0}% differs in what both render (path - Whitted = {d:+.4}: ambient, Phong highlights, translucent shadows, noise)",
-            100.0 * share
-        ));
-    }
-    s.push_str("\nclass        expression            luminance  Whitted renders it\n");
-    for c in &v.classes {
-        s.push_str(&format!(
-            "{:<12} {:<21} {:>10.4}  {}\n",
-            c.name,
-            c.lpe,
-            c.luminance,
-            if c.whitted { "yes" } else { "no" }
-        ));
-    }
-    s.trim_end().to_owned()
+    v.summary()
 }
 
 fn breakdown_json(v: &Versus, scene: &str) -> serde_json::Value {
@@ -184,32 +155,14 @@ fn side_by_side(v: &Versus) -> Result<Vec<u8>> {
     c.png()
 }
 
-/// The signed luminance difference path - Whitted: red where the path tracer is brighter
-/// (light Whitted misses), blue where Whitted is; full colour at the 99th percentile of the
-/// magnitude.
+/// The signed luminance difference path - Whitted ([`Versus::difference_rgb8`]) with its
+/// scale as a caption.
 fn difference(v: &Versus) -> Result<Vec<u8>> {
     let (w, h) = (v.whitted.width, v.whitted.height);
-    let lum = raytree::bsdf::luminance;
-    let d: Vec<f64> = v
-        .whitted
-        .pixels
-        .iter()
-        .zip(&v.path.beauty.pixels)
-        .map(|(a, b)| lum(*b) - lum(*a))
-        .collect();
-    let mut mags: Vec<f64> = d.iter().map(|x| x.abs()).collect();
-    let scale = if mags.is_empty() {
-        1.0
-    } else {
-        let k = (mags.len() - 1) * 99 / 100;
-        let m = *mags.select_nth_unstable_by(k, f64::total_cmp).1;
-        if m > 0.0 { m } else { 1.0 }
-    };
+    let (pixels, scale) = v.difference_rgb8();
     let mut c = Canvas::new(w.max(200), h + 20, [24, 24, 24])?;
-    for (i, x) in d.iter().enumerate() {
-        let t = ((x.abs() / scale).min(1.0) * 255.0).round() as u8;
-        let col = if *x >= 0.0 { [t, 0, 0] } else { [0, t / 3, t] };
-        c.pixel(i as u32 % w, i as u32 / w, col);
+    for (i, col) in pixels.iter().enumerate() {
+        c.pixel(i as u32 % w, i as u32 / w, *col);
     }
     let caption = format!("path-Whitted: red +, blue -, full {scale:.2}");
     c.text(4.0, (h + 15) as f32, 11.0, &caption, [230, 230, 230]);

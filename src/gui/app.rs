@@ -35,6 +35,7 @@ pub struct InspectorApp {
     explain: ExplainCache,
     compare: CompareView,
     samples: super::samples_ui::SamplesView,
+    versus: super::versus_ui::VersusPanel,
 }
 
 impl InspectorApp {
@@ -55,6 +56,7 @@ impl InspectorApp {
             explain: ExplainCache::default(),
             compare: CompareView::default(),
             samples: Default::default(),
+            versus: Default::default(),
         }
     }
 
@@ -62,6 +64,12 @@ impl InspectorApp {
     #[must_use]
     pub fn denoise_state(&self) -> Option<&super::denoise_view::DenoiseState> {
         self.denoise_state.as_ref()
+    }
+
+    /// The Whitted-vs-path section's last breakdown, and whether a comparison is running.
+    #[must_use]
+    pub fn versus(&self) -> (Option<&str>, bool) {
+        (self.versus.summary(), self.versus.running())
     }
 
     /// Whether the texture on screen is the denoised image.
@@ -172,6 +180,7 @@ impl InspectorApp {
         let tree_view = &mut self.tree_view;
         let explain = &mut self.explain;
         let samples = &mut self.samples;
+        let versus = &mut self.versus;
         egui::Panel::right("tree")
             .resizable(true)
             .default_size(470.0)
@@ -206,6 +215,9 @@ impl InspectorApp {
                             .show(ui, |ui| {
                                 details_ui::breakdown_ui(ui, doc, tree_view, &mut cmds);
                             });
+                        egui::CollapsingHeader::new("Whitted vs path")
+                            .default_open(false)
+                            .show(ui, |ui| versus.ui(ui, doc));
                     });
             });
         let cache = &mut self.diagram;

@@ -30,6 +30,7 @@ pub mod stats;
 pub mod step_ui;
 mod style;
 mod tree_ui;
+pub mod versus_ui;
 pub mod worker;
 
 pub use app::InspectorApp;
