@@ -27,11 +27,14 @@ impl Files for OneScene {
     }
 }
 
-#[test]
-fn the_noise_view_is_picked_from_the_menu_and_shows_a_legend() {
-    // The caustic fixture at its size, 8 samples per pixel.
-    let adjust = Box::new(|s: &mut raytree::Scene| {
-        s.settings.spp = 8;
+/// The caustic fixture with `spp` samples per pixel (and `size`, else the fixture's), in a
+/// 1500x950 window, its render finished.
+fn caustic(spp: u32, size: Option<(u32, u32)>) -> Harness<'static, InspectorApp> {
+    let adjust = Box::new(move |s: &mut raytree::Scene| {
+        s.settings.spp = spp;
+        if let Some((w, h)) = size {
+            s.camera = s.camera.with_size(w, h);
+        }
         Ok(())
     });
     let session = Session::new(
@@ -50,6 +53,13 @@ fn the_noise_view_is_picked_from_the_menu_and_shows_a_legend() {
     h.run();
     h.state_mut().session.wait_render();
     h.run();
+    h
+}
+
+#[test]
+fn the_noise_view_is_picked_from_the_menu_and_shows_a_legend() {
+    // The caustic fixture at its size, 8 samples per pixel.
+    let mut h = caustic(8, None);
     assert!(h.state().placement().unwrap().legend.is_none());
     h.get_by_label("show").click();
     h.run();
@@ -103,27 +113,7 @@ fn the_noise_view_is_picked_from_the_menu_and_shows_a_legend() {
 /// hovering read) and the selected pixel's tree stay the raw samples; off shows the raw image.
 #[test]
 fn the_denoise_toggle_shows_the_denoised_image_and_keeps_the_raw_samples() {
-    let adjust = Box::new(|s: &mut raytree::Scene| {
-        s.settings.spp = 8;
-        s.camera = s.camera.with_size(96, 72);
-        Ok(())
-    });
-    let session = Session::new(
-        Some("caustic.json".into()),
-        Box::new(OneScene),
-        adjust,
-        Arc::new(|| {}),
-    );
-    let mut h = Harness::builder()
-        .with_size([1500.0, 950.0])
-        .with_max_steps(16)
-        .build_ui_state(
-            |ui, app: &mut InspectorApp| app.show(ui),
-            InspectorApp::new(session),
-        );
-    h.run();
-    h.state_mut().session.wait_render();
-    h.run();
+    let mut h = caustic(8, Some((96, 72)));
     assert!(h.state().denoise_state().is_none());
     assert!(!h.state().shows_denoised());
     h.get_by_label("denoised image").click();
@@ -158,27 +148,7 @@ fn the_denoise_toggle_shows_the_denoised_image_and_keeps_the_raw_samples() {
 /// caustics are what Whitted misses most.
 #[test]
 fn whitted_vs_path_in_the_inspector_names_what_whitted_misses() {
-    let adjust = Box::new(|s: &mut raytree::Scene| {
-        s.settings.spp = 16;
-        s.camera = s.camera.with_size(96, 72);
-        Ok(())
-    });
-    let session = Session::new(
-        Some("caustic.json".into()),
-        Box::new(OneScene),
-        adjust,
-        Arc::new(|| {}),
-    );
-    let mut h = Harness::builder()
-        .with_size([1500.0, 950.0])
-        .with_max_steps(16)
-        .build_ui_state(
-            |ui, app: &mut InspectorApp| app.show(ui),
-            InspectorApp::new(session),
-        );
-    h.run();
-    h.state_mut().session.wait_render();
-    h.run();
+    let mut h = caustic(16, Some((96, 72)));
     assert_eq!(h.state().versus(), (None, false));
     h.get_by_label("Whitted vs path").click();
     h.run();
