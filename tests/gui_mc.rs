@@ -141,6 +141,32 @@ fn the_denoise_toggle_shows_the_denoised_image_and_keeps_the_raw_samples() {
     h.run();
     assert!(!h.state().shows_denoised());
     assert!(h.state().denoise_state().is_none());
+    // Under progressive rendering the guide pass (the scene's spp) is not the image shown.
+    let options = raytree::gui::progressive::Options {
+        on: true,
+        target: 0.0,
+        cap: 8,
+    };
+    h.state_mut()
+        .session
+        .apply(raytree::gui::document::Command::SetProgressive(options));
+    // The View section moves while the progressive status line changes: set the view directly.
+    let view = raytree::gui::document::ViewOptions {
+        denoise: true,
+        ..h.state().session.doc.view
+    };
+    h.state_mut()
+        .session
+        .apply(raytree::gui::document::Command::SetView(view));
+    h.step();
+    h.step();
+    assert_eq!(
+        h.state().denoise_state(),
+        Some(&raytree::gui::denoise_view::DenoiseState::Unavailable(
+            "not with progressive rendering"
+        ))
+    );
+    assert!(!h.state().shows_denoised());
 }
 
 /// Whitted vs path in the inspector (issue 16): the section renders both integrators on its

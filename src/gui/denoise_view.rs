@@ -51,6 +51,13 @@ impl DenoiseView {
         doc: &Document,
         repaint: impl Fn() + Send + 'static,
     ) -> (Option<&Image>, DenoiseState) {
+        if doc.progressive.options.on {
+            // The guide pass renders the scene's spp, not the progressive accumulation shown.
+            return (
+                None,
+                DenoiseState::Unavailable("not with progressive rendering"),
+            );
+        }
         if doc.scene.settings.adaptive.is_some() {
             return (
                 None,
