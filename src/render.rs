@@ -325,13 +325,7 @@ fn render_recorded<R: Recorder + Default, I: Integrator, S: PixelSampler>(
         }
         map.samples.extend(taken);
         for (x, p) in row.into_iter().enumerate() {
-            if p.is_finite() {
-                pixels.push(p);
-            } else {
-                stats.nonfinite_pixels += 1;
-                stats.first_nonfinite.get_or_insert((x as u32, y as u32));
-                pixels.push(Rgb::ZERO);
-            }
+            pixels.push(stats.admit_pixel(p, x, y));
         }
         for (s, l) in diag {
             stats.self_hit_pixels += u64::from(s > 0);

@@ -63,13 +63,8 @@ pub fn render_pixel_counted<I: Integrator, S: PixelSampler, R: Recorder>(
         for s in 0..spp {
             let ((fx, fy), ray) = camera_sample(film, filter, sampler, x, y, s);
             let (l, root) = integrator.camera_radiance(ray, sampler, rec, counts);
-            if l.is_finite() || integrator.kind() == IntegratorKind::Whitted {
+            if counts.keep_sample(l, integrator.kind() == IntegratorKind::Whitted, (x, y, s)) {
                 sum += l;
-            } else {
-                // A path sample that is NaN or infinite is dropped (black), counted and named,
-                // so no NaN reaches the image and the sample can be traced (`raytree trace`).
-                counts.dropped_samples += 1;
-                counts.first_dropped.get_or_insert((x, y, s));
             }
             if let Some(root) = root {
                 on_sample(SampleRecord {
@@ -193,13 +188,10 @@ fn one_sample<I: Integrator, S: PixelSampler, R: Recorder>(
     let filter = integrator.scene().settings.filter.filter();
     let ((fx, fy), ray) = camera_sample(integrator.film(), filter, sampler, x, y, s);
     let (l, root) = integrator.camera_radiance(ray, sampler, rec, counts);
-    let kept = if l.is_finite() || integrator.kind() == IntegratorKind::Whitted {
+    let whitted = integrator.kind() == IntegratorKind::Whitted;
+    let kept = if counts.keep_sample(l, whitted, (x, y, s)) {
         l
     } else {
-        // A path sample that is NaN or infinite is dropped (black), counted and named, so
-        // no NaN reaches the image and the sample can be traced (`raytree trace`).
-        counts.dropped_samples += 1;
-        counts.first_dropped.get_or_insert((x, y, s));
         Rgb::ZERO
     };
     if let Some(root) = root {

@@ -50,6 +50,21 @@ pub struct RenderStats {
     pub refined_pixels: u64,
 }
 
+impl RenderStats {
+    /// Pixel (x, y) as it enters the image: itself when finite; otherwise black, counted in
+    /// [`RenderStats::nonfinite_pixels`] and the first named in
+    /// [`RenderStats::first_nonfinite`], so no NaN reaches an image.
+    #[inline]
+    pub fn admit_pixel(&mut self, p: Rgb, x: usize, y: usize) -> Rgb {
+        if p.is_finite() {
+            return p;
+        }
+        self.nonfinite_pixels += 1;
+        self.first_nonfinite.get_or_insert((x as u32, y as u32));
+        Rgb::ZERO
+    }
+}
+
 /// Per-pixel diagnostic counts of a diagnosed render, row-major like [`Image`].
 #[derive(Clone, Debug, Default, PartialEq, Eq)]
 pub struct DiagnosticMap {

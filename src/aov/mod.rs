@@ -127,13 +127,7 @@ pub fn render_aovs<I: Integrator>(
     for (y, (row, aov, st, counts)) in rows.into_iter().enumerate() {
         stats.rays += counts;
         for (x, p) in row.into_iter().enumerate() {
-            if p.is_finite() {
-                beauty.push(p);
-            } else {
-                stats.nonfinite_pixels += 1;
-                stats.first_nonfinite.get_or_insert((x as u32, y as u32));
-                beauty.push(Rgb::ZERO);
-            }
+            beauty.push(stats.admit_pixel(p, x, y));
         }
         for (i, a) in aov.into_iter().enumerate() {
             aovs[i % k].push(if a.is_finite() { a } else { Rgb::ZERO });
@@ -183,7 +177,7 @@ fn pixel<I: Integrator, S: PixelSampler>(
         let (l, _) = integrator.camera_radiance(ray, sampler, rec, counts);
         segments += u64::from(rec.segments);
         px.roulette += u32::from(rec.roulette);
-        if l.is_finite() || whitted {
+        if counts.keep_sample(l, whitted, (x, y, s)) {
             sum += l;
             for (a, c) in aov.iter_mut().zip(&rec.sample) {
                 *a += *c;
@@ -196,8 +190,6 @@ fn pixel<I: Integrator, S: PixelSampler>(
             });
         } else {
             // Dropped as the render drops it: black, counted.
-            counts.dropped_samples += 1;
-            counts.first_dropped.get_or_insert((x, y, s));
             px.dropped += 1;
             lums.push(0.0);
         }

@@ -66,11 +66,8 @@ pub fn gather_sampled<I: Integrator, S: PixelSampler>(
                             &mut NoopRecorder,
                             &mut counts,
                         );
-                        if l.is_finite() || whitted {
+                        if counts.keep_sample(l, whitted, (x, y, s)) {
                             sum += l;
-                        } else {
-                            counts.dropped_samples += 1;
-                            counts.first_dropped.get_or_insert((x, y, s));
                         }
                         if l.is_finite() {
                             let y = luminance(l);
@@ -117,13 +114,7 @@ pub fn gather_sampled<I: Integrator, S: PixelSampler>(
     for (y, (row, counts)) in rows.into_iter().enumerate() {
         stats.rays += counts;
         for (x, p) in row.into_iter().enumerate() {
-            if p.color.is_finite() {
-                pixels.push(p.color);
-            } else {
-                stats.nonfinite_pixels += 1;
-                stats.first_nonfinite.get_or_insert((x as u32, y as u32));
-                pixels.push(Rgb::ZERO);
-            }
+            pixels.push(stats.admit_pixel(p.color, x, y));
             let finite = |v: Rgb| if v.is_finite() { v } else { Rgb::ZERO };
             features.albedo.push(finite(p.albedo));
             features.normal.push(finite(p.normal));

@@ -67,6 +67,21 @@ pub struct RayCounts {
 }
 
 impl RayCounts {
+    /// Whether camera sample `l` of pixel (x, y), index `s` (`at`), enters its pixel's sum:
+    /// always under Whitted (a non-finite value makes the pixel non-finite, counted by the
+    /// render); under the path integrator only when finite. A dropped sample (NaN or infinite)
+    /// counts as black, is counted and the first one named, so no NaN reaches the image and
+    /// the sample can be traced (`raytree trace`).
+    #[inline]
+    pub fn keep_sample(&mut self, l: Rgb, whitted: bool, at: (u32, u32, u32)) -> bool {
+        if l.is_finite() || whitted {
+            return true;
+        }
+        self.dropped_samples += 1;
+        self.first_dropped.get_or_insert(at);
+        false
+    }
+
     /// All rays.
     #[must_use]
     pub fn total(&self) -> u64 {

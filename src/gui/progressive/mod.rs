@@ -224,10 +224,10 @@ impl Accumulator {
                         let (l, _) =
                             integrator.camera_radiance(ray, &mut sampler, rec, &mut counts);
                         // As the render: a non-finite path sample is dropped (black, counted).
-                        let l = if l.is_finite() || whitted {
+                        let at = (x as u32, y, s);
+                        let l = if counts.keep_sample(l, whitted, at) {
                             l
                         } else {
-                            counts.dropped_samples += 1;
                             Rgb::ZERO
                         };
                         p.add(s, l);
