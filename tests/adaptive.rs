@@ -239,6 +239,20 @@ fn flags_and_errors() {
         ],
         "--spp-map",
     );
+    // The map would overwrite the image it describes.
+    fails(
+        &[
+            "render",
+            "s.json",
+            "--spp",
+            "2",
+            "--spp-map",
+            "a.png",
+            "-o",
+            "a.png",
+        ],
+        "--spp-map a.png is the output image",
+    );
     let bad = src.replace(
         r#""max_depth": 32"#,
         r#""max_depth": 32, "spp": 4, "adaptive": {"threshold": 0.1, "max_spp": 2}"#,

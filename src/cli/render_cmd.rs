@@ -24,6 +24,14 @@ pub fn run(a: &RenderArgs) -> Result<()> {
     {
         anyhow::bail!("--spp-map: {} must be a .png", p.display());
     }
+    if let Some(p) = &a.spp_map
+        && std::path::absolute(p).ok() == std::path::absolute(&a.output).ok()
+    {
+        anyhow::bail!(
+            "--spp-map {} is the output image: give the map a file of its own",
+            p.display()
+        );
+    }
     let loaded = load(a.scene.as_deref(), &a.overrides)?;
     let scene = &loaded.scene;
     let mib = super::budget::mib(a.overrides.max_memory);
