@@ -6,63 +6,15 @@ use egui_kittest::Harness;
 use egui_kittest::kittest::{NodeT, Queryable};
 use raytree::gui::export::ExportKind;
 use raytree::gui::stats::DebugView;
-use raytree::gui::{Files, InspectorApp, Session};
+use raytree::gui::{InspectorApp, Session};
 use raytree::math::Rgb;
-use std::collections::HashMap;
-use std::path::{Path, PathBuf};
-use std::sync::{Arc, Mutex};
-use std::time::{Duration, SystemTime};
+use std::path::Path;
+use std::sync::Arc;
+
+mod gui_support;
+use gui_support::*;
 
 const CLASSIC: &str = include_str!("../fixtures/classic.json");
-
-/// Files in memory; each write bumps the file's modification time. Writes can be made to fail
-/// as the binary's hook does, with a message that names the file.
-#[derive(Clone, Default)]
-struct MemFiles(
-    Arc<Mutex<HashMap<PathBuf, (String, u64)>>>,
-    Arc<Mutex<Option<String>>>,
-);
-
-impl MemFiles {
-    fn fail_writes(&self, why: &str) {
-        *self.1.lock().unwrap() = Some(why.to_string());
-    }
-    fn put(&self, path: &str, text: &str) {
-        let mut m = self.0.lock().unwrap();
-        let version = m.get(Path::new(path)).map_or(1, |(_, v)| v + 1);
-        m.insert(path.into(), (text.to_string(), version));
-    }
-    fn get(&self, path: &str) -> Option<String> {
-        self.0
-            .lock()
-            .unwrap()
-            .get(Path::new(path))
-            .map(|(t, _)| t.clone())
-    }
-}
-
-impl Files for MemFiles {
-    fn read(&self, path: &Path) -> std::io::Result<String> {
-        self.0
-            .lock()
-            .unwrap()
-            .get(path)
-            .map(|(t, _)| t.clone())
-            .ok_or_else(|| std::io::Error::new(std::io::ErrorKind::NotFound, "no such file"))
-    }
-    fn modified(&self, path: &Path) -> Option<SystemTime> {
-        let v = self.0.lock().unwrap().get(path)?.1;
-        Some(SystemTime::UNIX_EPOCH + Duration::from_secs(v))
-    }
-    fn write(&self, path: &Path, bytes: &[u8]) -> std::io::Result<()> {
-        if let Some(why) = self.1.lock().unwrap().as_ref() {
-            let msg = format!("cannot write {}: {why}", path.display());
-            return Err(std::io::Error::other(msg));
-        }
-        self.put(&path.display().to_string(), &String::from_utf8_lossy(bytes));
-        Ok(())
-    }
-}
 
 /// The classic scene at 320x180 (pixel (150, 100) hits the mirror ball).
 fn harness(files: &MemFiles) -> Harness<'static, InspectorApp> {
@@ -93,27 +45,6 @@ fn inspector(session: Session) -> Harness<'static, InspectorApp> {
             |ui, app: &mut InspectorApp| app.show(ui),
             InspectorApp::new(session),
         )
-}
-
-/// Wait for the worker, then let the UI settle.
-fn settle(h: &mut Harness<'static, InspectorApp>) {
-    h.run();
-    h.state_mut().session.wait_render();
-    h.run();
-}
-
-fn click_pixel(h: &mut Harness<'static, InspectorApp>, x: u32, y: u32) {
-    let pos = h.state().screen_of_pixel(x, y).expect("image drawn");
-    h.hover_at(pos);
-    for pressed in [true, false] {
-        h.event(egui::Event::PointerButton {
-            pos,
-            button: egui::PointerButton::Primary,
-            pressed,
-            modifiers: egui::Modifiers::NONE,
-        });
-    }
-    h.run();
 }
 
 fn has(h: &Harness<'static, InspectorApp>, text: &str) -> bool {

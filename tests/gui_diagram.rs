@@ -9,43 +9,13 @@ use raytree::RayKind;
 use raytree::diagram::{Diagram, PlaneSpec};
 use raytree::gui::diagram_ui::{diagram_options, export_options};
 use raytree::gui::export::ExportKind;
-use raytree::gui::{Files, InspectorApp, Session};
-use std::collections::HashMap;
-use std::path::{Path, PathBuf};
-use std::sync::{Arc, Mutex};
-use std::time::{Duration, SystemTime};
+use raytree::gui::{InspectorApp, Session};
+use std::sync::Arc;
+
+mod gui_support;
+use gui_support::*;
 
 const CLASSIC: &str = include_str!("../fixtures/classic.json");
-
-#[derive(Clone, Default)]
-struct MemFiles(Arc<Mutex<HashMap<PathBuf, (String, u64)>>>);
-
-impl MemFiles {
-    fn put(&self, path: &str, text: &str) {
-        let mut m = self.0.lock().unwrap();
-        let version = m.get(Path::new(path)).map_or(1, |(_, v)| v + 1);
-        m.insert(path.into(), (text.to_string(), version));
-    }
-    fn get(&self, path: &str) -> Option<String> {
-        let m = self.0.lock().unwrap();
-        m.get(Path::new(path)).map(|(t, _)| t.clone())
-    }
-}
-
-impl Files for MemFiles {
-    fn read(&self, path: &Path) -> std::io::Result<String> {
-        self.get(&path.display().to_string())
-            .ok_or_else(|| std::io::Error::new(std::io::ErrorKind::NotFound, "no such file"))
-    }
-    fn modified(&self, path: &Path) -> Option<SystemTime> {
-        let v = self.0.lock().unwrap().get(path)?.1;
-        Some(SystemTime::UNIX_EPOCH + Duration::from_secs(v))
-    }
-    fn write(&self, path: &Path, bytes: &[u8]) -> std::io::Result<()> {
-        self.put(&path.display().to_string(), &String::from_utf8_lossy(bytes));
-        Ok(())
-    }
-}
 
 /// The classic scene at 320x180 with `spp` samples; (200, 100) is on the glass ball.
 fn harness(files: &MemFiles, spp: u32) -> Harness<'static, InspectorApp> {
@@ -71,27 +41,6 @@ fn harness(files: &MemFiles, spp: u32) -> Harness<'static, InspectorApp> {
     settle(&mut h);
     click_pixel(&mut h, 200, 100);
     h
-}
-
-/// Click image pixel (x, y) and let the UI take it.
-fn click_pixel(h: &mut Harness<'static, InspectorApp>, x: u32, y: u32) {
-    let pos = h.state().screen_of_pixel(x, y).expect("image drawn");
-    h.hover_at(pos);
-    for pressed in [true, false] {
-        h.event(egui::Event::PointerButton {
-            pos,
-            button: egui::PointerButton::Primary,
-            pressed,
-            modifiers: egui::Modifiers::NONE,
-        });
-    }
-    h.run();
-}
-
-fn settle(h: &mut Harness<'static, InspectorApp>) {
-    h.run();
-    h.state_mut().session.wait_render();
-    h.run();
 }
 
 /// The panel shows what a fresh build of its options gives, and that build.

@@ -7,45 +7,15 @@ use egui_kittest::kittest::Queryable;
 use raytree::analysis::samples::{histogram, sample_rows};
 use raytree::gui::diagram_ui::{build_display_list, diagram_options};
 use raytree::gui::document::Command;
-use raytree::gui::{Files, InspectorApp, Session};
+use raytree::gui::{InspectorApp, Session};
 use raytree::lpe::{Lpe, filter_tree_all_samples};
-use std::collections::HashMap;
-use std::path::{Path, PathBuf};
-use std::sync::{Arc, Mutex};
-use std::time::{Duration, SystemTime};
+use std::sync::Arc;
+
+mod gui_support;
+use gui_support::*;
 
 const CAUSTIC: &str = include_str!("../fixtures/caustic.json");
 const CLASSIC: &str = include_str!("../fixtures/classic.json");
-
-#[derive(Clone, Default)]
-struct MemFiles(Arc<Mutex<HashMap<PathBuf, (String, u64)>>>);
-
-impl MemFiles {
-    fn put(&self, path: &str, text: &str) {
-        let mut m = self.0.lock().unwrap();
-        let version = m.get(Path::new(path)).map_or(1, |(_, v)| v + 1);
-        m.insert(path.into(), (text.to_string(), version));
-    }
-    fn get(&self, path: &str) -> Option<String> {
-        let m = self.0.lock().unwrap();
-        m.get(Path::new(path)).map(|(t, _)| t.clone())
-    }
-}
-
-impl Files for MemFiles {
-    fn read(&self, path: &Path) -> std::io::Result<String> {
-        self.get(&path.display().to_string())
-            .ok_or_else(|| std::io::Error::new(std::io::ErrorKind::NotFound, "no such file"))
-    }
-    fn modified(&self, path: &Path) -> Option<SystemTime> {
-        let v = self.0.lock().unwrap().get(path)?.1;
-        Some(SystemTime::UNIX_EPOCH + Duration::from_secs(v))
-    }
-    fn write(&self, path: &Path, bytes: &[u8]) -> std::io::Result<()> {
-        self.put(&path.display().to_string(), &String::from_utf8_lossy(bytes));
-        Ok(())
-    }
-}
 
 /// `text` at `path` with `spp` samples, pixel (x, y) selected; the render finished.
 fn harness(path: &str, text: &str, spp: u32, [x, y]: [u32; 2]) -> Harness<'static, InspectorApp> {

@@ -5,43 +5,14 @@
 use egui::accesskit::Role;
 use egui_kittest::Harness;
 use egui_kittest::kittest::{NodeT, Queryable};
-use raytree::gui::{Command, Files, InspectorApp, Session};
+use raytree::gui::{Command, InspectorApp, Session};
 use raytree::tree::{NodeId, RayKind};
-use std::collections::HashMap;
-use std::path::{Path, PathBuf};
-use std::sync::{Arc, Mutex};
-use std::time::{Duration, SystemTime};
+use std::sync::Arc;
+
+mod gui_support;
+use gui_support::*;
 
 const CLASSIC: &str = include_str!("../fixtures/classic.json");
-
-/// Files in memory (read only here).
-#[derive(Clone, Default)]
-struct MemFiles(Arc<Mutex<HashMap<PathBuf, String>>>);
-
-impl MemFiles {
-    fn put(&self, path: &str, text: &str) {
-        self.0.lock().unwrap().insert(path.into(), text.to_string());
-    }
-}
-
-impl Files for MemFiles {
-    fn read(&self, path: &Path) -> std::io::Result<String> {
-        self.0
-            .lock()
-            .unwrap()
-            .get(path)
-            .cloned()
-            .ok_or_else(|| std::io::Error::new(std::io::ErrorKind::NotFound, "no such file"))
-    }
-    fn modified(&self, path: &Path) -> Option<SystemTime> {
-        self.0.lock().unwrap().get(path)?;
-        Some(SystemTime::UNIX_EPOCH + Duration::from_secs(1))
-    }
-    fn write(&self, path: &Path, bytes: &[u8]) -> std::io::Result<()> {
-        self.put(&path.display().to_string(), &String::from_utf8_lossy(bytes));
-        Ok(())
-    }
-}
 
 /// `scene` (JSON text) at 320x180 in the inspector, rendered.
 fn harness_on(scene: &str) -> Harness<'static, InspectorApp> {
@@ -65,12 +36,6 @@ fn harness_on(scene: &str) -> Harness<'static, InspectorApp> {
         );
     settle(&mut h);
     h
-}
-
-fn settle(h: &mut Harness<'static, InspectorApp>) {
-    h.run();
-    h.state_mut().session.wait_render();
-    h.run();
 }
 
 fn select_pixel(h: &mut Harness<'static, InspectorApp>, x: u32, y: u32) {
