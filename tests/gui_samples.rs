@@ -194,6 +194,56 @@ fn the_lpe_filter_keeps_the_matching_paths_and_shows_a_bad_expression_in_red() {
     assert_eq!(h.state().session.doc.tree.as_ref(), Some(&full));
 }
 
+/// The filter renumbers nodes; the selection follows the ray, not the number.
+#[test]
+fn the_selection_follows_its_ray_through_lpe_filters() {
+    let mut h = caustic();
+    let full = h.state().session.doc.tree.clone().unwrap();
+    let caustic_lpe = "C<RD><TS><TS>L";
+    let end = full
+        .nodes
+        .iter()
+        .rev()
+        .find(|n| n.path.as_ref().is_some_and(|p| p.lpe == caustic_lpe))
+        .expect("a caustic path")
+        .id;
+    let same_ray = |a: &raytree::tree::RayNode, b: &raytree::tree::RayNode| {
+        a.origin == b.origin && a.direction == b.direction && a.kind == b.kind
+    };
+    h.state_mut().session.apply(Command::SelectNode(Some(end)));
+    h.state_mut()
+        .session
+        .apply(Command::SetLpe(caustic_lpe.into()));
+    h.run();
+    let doc = &h.state().session.doc;
+    let shown = doc.node.expect("a selection");
+    assert_ne!(
+        shown, end,
+        "the filter renumbers (else this test proves nothing)"
+    );
+    assert!(same_ray(
+        doc.tree.as_ref().unwrap().node(shown),
+        full.node(end)
+    ));
+    // A filter without that path: its nearest kept ancestor (a strict one).
+    h.state_mut()
+        .session
+        .apply(Command::SetLpe("C<RD>L".into()));
+    h.run();
+    let doc = &h.state().session.doc;
+    let shown = doc.node.expect("a selection");
+    let ancestor = doc.lpe.to_original(shown);
+    let mut chain = std::iter::successors(full.node(end).parent, |&p| full.node(p).parent);
+    assert!(
+        chain.any(|p| p == ancestor),
+        "{ancestor:?} is not above {end:?}"
+    );
+    // No filter: the same ray in the whole tree.
+    h.state_mut().session.apply(Command::SetLpe(String::new()));
+    h.run();
+    assert_eq!(h.state().session.doc.node, Some(ancestor));
+}
+
 #[test]
 fn the_lpe_filter_on_a_whitted_tree_says_it_does_not_apply() {
     let mut h = harness("scenes/classic.json", CLASSIC, 1, [400, 200]);

@@ -6,7 +6,7 @@
 //! its camera ray, so the sample count (the divisor of every per-sample mean) is the pixel's.
 
 use crate::lpe::{Lpe, LpeError, filter_tree_all_samples};
-use crate::tree::RayTree;
+use crate::tree::{NodeId, RayTree};
 
 /// The filter's state (in [`super::Document::lpe`]).
 #[derive(Clone, Debug, Default)]
@@ -23,6 +23,8 @@ pub struct LpeState {
     pub summary: Option<String>,
     /// Whether `summary` says why the filter cannot apply (a Whitted tree).
     pub inapplicable: bool,
+    /// While a filter is applied: each shown node's id in `full` (the filter renumbers).
+    pub original: Vec<NodeId>,
 }
 
 impl LpeState {
@@ -54,6 +56,7 @@ impl LpeState {
         self.summary = None;
         self.inapplicable = false;
         self.full = None;
+        self.original.clear();
         let tree = tree?;
         let Some(lpe) = &self.active else {
             return Some(tree);
@@ -71,9 +74,33 @@ impl LpeState {
             Some(f) => {
                 self.summary = Some(f.summary());
                 self.full = Some(full);
+                self.original = f.original;
                 Some(f.tree)
             }
         }
+    }
+
+    /// The unfiltered id of node `shown` of the tree shown (itself when nothing is filtered).
+    #[must_use]
+    pub fn to_original(&self, shown: NodeId) -> NodeId {
+        self.original.get(shown.index()).copied().unwrap_or(shown)
+    }
+
+    /// The shown node for unfiltered node `id` of `full` (the unfiltered tree): the node itself
+    /// if the filter kept it, else its nearest kept ancestor; `None` if none is shown.
+    #[must_use]
+    pub fn from_original(&self, full: &RayTree, id: NodeId) -> Option<NodeId> {
+        if self.full.is_none() {
+            return (id.index() < full.nodes.len()).then_some(id);
+        }
+        let mut at = Some(id).filter(|i| i.index() < full.nodes.len());
+        while let Some(i) = at {
+            if let Some(k) = self.original.iter().position(|&o| o == i) {
+                return Some(NodeId(k as u32));
+            }
+            at = full.node(i).parent;
+        }
+        None
     }
 
     /// The unfiltered tree of the selected pixel, given the tree shown.

@@ -260,9 +260,16 @@ impl Session {
             Command::SetStep(step) => self.doc.step = step,
             Command::SetLpe(text) => {
                 if self.doc.lpe.set_text(text) {
+                    // The filter renumbers nodes: keep the same ray selected (or its nearest
+                    // ancestor the new filter keeps), else the first root.
+                    let original = self.doc.node.map(|id| self.doc.lpe.to_original(id));
                     self.refilter();
                     let n = self.doc.tree.as_ref().map_or(0, |t| t.nodes.len());
-                    self.doc.node = Some(crate::NodeId(0)).filter(|_| n > 0);
+                    let lpe = &self.doc.lpe;
+                    let kept = original.and_then(|id| {
+                        lpe.from_original(lpe.unfiltered(self.doc.tree.as_ref())?, id)
+                    });
+                    self.doc.node = kept.or(Some(crate::NodeId(0)).filter(|_| n > 0));
                 }
             }
             Command::SetLab(params) => {

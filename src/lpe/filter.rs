@@ -17,6 +17,8 @@ pub struct LpeFilter {
     pub radiance: Rgb,
     /// `radiance` over the pixel's radiance, by luminance (`None` for a black pixel).
     pub share: Option<f64>,
+    /// For each node of `tree`, its id in the unfiltered tree (the filter renumbers).
+    pub original: Vec<NodeId>,
 }
 
 impl LpeFilter {
@@ -97,6 +99,7 @@ fn filter(tree: &RayTree, lpes: &[Lpe], all_samples: bool) -> Option<LpeFilter> 
     out.nodes.clear();
     out.samples.clear();
     let mut new_id = vec![None; n];
+    let mut original = Vec::new();
     for s in &tree.samples {
         if !keep[s.root.index()] {
             continue;
@@ -110,6 +113,7 @@ fn filter(tree: &RayTree, lpes: &[Lpe], all_samples: bool) -> Option<LpeFilter> 
             let new = NodeId(u32::try_from(out.nodes.len()).ok()?);
             new_id[id.index()] = Some(new);
             node.id = new;
+            original.push(id);
             node.parent = node.parent.and_then(|p| new_id[p.index()]);
             node.children.retain(|c| keep[c.index()]);
             out.nodes.push(node);
@@ -130,5 +134,6 @@ fn filter(tree: &RayTree, lpes: &[Lpe], all_samples: bool) -> Option<LpeFilter> 
         paths,
         radiance: sum / spp,
         share,
+        original,
     })
 }
