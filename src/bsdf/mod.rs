@@ -107,26 +107,45 @@ impl Bsdf {
     #[must_use]
     pub fn new(frame: Frame, lobes: &[Lobe]) -> Self {
         assert!(lobes.len() <= MAX_LOBES, "at most {MAX_LOBES} lobes");
-        let mut out = Self {
+        let mut out = Self::empty(frame);
+        let mut total = 0.0;
+        for lobe in lobes {
+            out.push(*lobe, &mut total);
+        }
+        out.normalise(total);
+        out
+    }
+
+    /// No lobe yet, in `frame`.
+    #[inline(always)]
+    fn empty(frame: Frame) -> Self {
+        Self {
             frame,
             lobes: [Lobe::Lambert { albedo: Rgb::ZERO }; MAX_LOBES],
             probs: [0.0; MAX_LOBES],
             len: 0,
-        };
-        let mut total = 0.0;
-        for lobe in lobes {
-            let w = luminance(lobe.weight());
-            if w > 0.0 && w.is_finite() {
-                out.lobes[out.len] = *lobe;
-                out.probs[out.len] = w;
-                out.len += 1;
-                total += w;
-            }
         }
-        for p in &mut out.probs[..out.len] {
+    }
+
+    /// Adds `lobe` with its luminance as selection weight (added to `total`), unless that
+    /// weight is not positive and finite.
+    #[inline(always)]
+    fn push(&mut self, lobe: Lobe, total: &mut f64) {
+        let w = luminance(lobe.weight());
+        if w > 0.0 && w.is_finite() {
+            self.lobes[self.len] = lobe;
+            self.probs[self.len] = w;
+            self.len += 1;
+            *total += w;
+        }
+    }
+
+    /// Divides the selection weights by their sum `total`.
+    #[inline(always)]
+    fn normalise(&mut self, total: f64) {
+        for p in &mut self.probs[..self.len] {
             *p /= total;
         }
-        out
     }
 
     /// The BSDF of `m` at `p` as the Whitted tracer reads the material: Lambert (diffuse),
@@ -134,44 +153,51 @@ impl Bsdf {
     /// last two GGX-rough when `roughness >= SMOOTH_ALPHA`. Index-matched transmission
     /// (`eta = 1`) stays a smooth pass-through whatever the roughness (every microfacet sends
     /// light straight on). The Blinn-Phong `specular` term has no lobe here.
+    /// (Built from a surface interaction: its material, point, outward shading frame and eta;
+    /// eta, which reads the media stack, only for a transmissive material, the only lobe that
+    /// uses it.)
     #[must_use]
-    /// (Built from a surface interaction: its material, point, outward shading frame and eta.)
+    #[inline(always)]
     pub fn at(si: &crate::interaction::SurfaceInteraction, roughness: f64) -> Self {
-        Self::from_material(si.material, si.p, si.frame(), roughness, si.eta())
+        let m = si.material;
+        let eta = if m.is_transmissive() { si.eta() } else { 1.0 };
+        Self::from_material(m, si.p, si.frame(), roughness, eta)
     }
 
     /// The BSDF of material `m` at `p` in `frame` for GGX `roughness` and relative index `eta`.
+    /// Built in place (a `Bsdf` is 300 bytes: assembling the lobes apart and copying them in
+    /// was a `memcpy` per hit, 2% of a path-traced render).
     #[must_use]
+    #[inline(always)]
     pub fn from_material(m: &Material, p: DVec3, frame: Frame, roughness: f64, eta: f64) -> Self {
         let rough = roughness >= SMOOTH_ALPHA;
         let ggx = Ggx::new(roughness);
-        let mut lobes = [Lobe::Lambert { albedo: Rgb::ZERO }; 3];
-        let mut n = 0;
+        let mut out = Self::empty(frame);
+        let mut total = 0.0;
         if !m.diffuse.is_black() {
-            lobes[n] = Lobe::Lambert {
-                albedo: m.diffuse.at(p),
-            };
-            n += 1;
+            let albedo = m.diffuse.at(p);
+            out.push(Lobe::Lambert { albedo }, &mut total);
         }
         if m.reflectivity != Rgb::ZERO {
             let weight = m.reflectivity;
-            lobes[n] = if rough {
+            let lobe = if rough {
                 Lobe::RoughMirror { weight, ggx }
             } else {
                 Lobe::Mirror { weight }
             };
-            n += 1;
+            out.push(lobe, &mut total);
         }
         if m.is_transmissive() {
             let weight = m.transmissivity;
-            lobes[n] = if rough && (eta - 1.0).abs() > 1e-9 {
+            let lobe = if rough && (eta - 1.0).abs() > 1e-9 {
                 Lobe::RoughDielectric { weight, eta, ggx }
             } else {
                 Lobe::Dielectric { weight, eta }
             };
-            n += 1;
+            out.push(lobe, &mut total);
         }
-        Self::new(frame, &lobes[..n])
+        out.normalise(total);
+        out
     }
 
     /// The shading frame.

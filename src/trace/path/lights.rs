@@ -106,12 +106,12 @@ impl<'a> LightTable<'a> {
     /// first index whose cumulative probability exceeds `u`, so a light of probability 0 is
     /// never chosen.
     #[inline]
-    pub(crate) fn choose(&self, u: f64) -> (usize, Source<'a>, f64) {
+    pub(crate) fn choose(&self, u: f64) -> (usize, &Source<'a>, f64) {
         let k = self
             .cdf
             .partition_point(|&c| c <= u)
             .min(self.cdf.len() - 1);
-        (k, self.sources[k], self.pmf[k])
+        (k, &self.sources[k], self.pmf[k])
     }
 
     /// The area light of `object` and the probability of choosing it (`None` when the object

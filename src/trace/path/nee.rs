@@ -74,11 +74,11 @@ impl PathTracer<'_> {
         let uc = sampler.next_1d();
         let u = sampler.next_2d();
         let (_, source, select) = self.lights.choose(uc);
-        let (ls, area, light) = match source {
+        let (ls, area, light) = match *source {
             Source::Delta(k) => (Some(scene.lights[k].sample(si.p, u)), None, k),
             Source::Area {
                 object,
-                emitter,
+                ref emitter,
                 emission,
             } => {
                 // A surface does not light itself (spheres, quads and triangles are convex; a
