@@ -12,6 +12,7 @@
 //! A light of zero power is never chosen (it adds nothing); a scene whose lights all have
 //! zero (or non-finite) power falls back to choosing uniformly.
 
+use crate::lights::PreparedEmitter;
 use crate::math::Rgb;
 use crate::scene::{AreaEmitter, LightKind, Scene};
 use std::f64::consts::PI;
@@ -28,6 +29,8 @@ pub(crate) enum Source<'a> {
         object: usize,
         /// Sampling geometry.
         emitter: AreaEmitter<'a>,
+        /// The same, with what does not depend on the shading point computed once.
+        prepared: PreparedEmitter<'a>,
         /// Emitted radiance (outer side).
         emission: Rgb,
     },
@@ -55,6 +58,7 @@ impl<'a> LightTable<'a> {
                 sources.push(Source::Area {
                     object,
                     emitter,
+                    prepared: PreparedEmitter::new(emitter),
                     emission,
                 });
             }
@@ -118,10 +122,10 @@ impl<'a> LightTable<'a> {
     /// is no area light): the selection part of the light-sampling pdf that MIS weighs
     /// emission found by BSDF sampling with.
     #[inline]
-    pub(crate) fn area(&self, object: usize) -> Option<(AreaEmitter<'a>, f64)> {
+    pub(crate) fn area(&self, object: usize) -> Option<(&PreparedEmitter<'a>, f64)> {
         let i = *self.object_source.get(object)? as usize;
         match self.sources.get(i)? {
-            Source::Area { emitter, .. } => Some((*emitter, self.pmf[i])),
+            Source::Area { prepared, .. } => Some((prepared, self.pmf[i])),
             Source::Delta(_) => None,
         }
     }

@@ -78,13 +78,14 @@ impl PathTracer<'_> {
             Source::Delta(k) => (Some(scene.lights[k].sample(si.p, u)), None, k),
             Source::Area {
                 object,
-                ref emitter,
+                ref prepared,
                 emission,
+                ..
             } => {
                 // A surface does not light itself (spheres, quads and triangles are convex; a
                 // mesh does not light its own other triangles).
                 let ls = (object != si.object)
-                    .then(|| emitter.sample(si.p, emission, u))
+                    .then(|| prepared.sample(si.p, emission, u))
                     .flatten();
                 (ls, Some(object), scene.lights.len() + object)
             }
