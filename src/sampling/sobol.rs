@@ -359,10 +359,12 @@ impl super::PixelSampler for SobolSampler {
         }
     }
 
+    #[inline]
     fn next_1d(&mut self) -> f64 {
         SobolSampler::next_1d(self)
     }
 
+    #[inline]
     fn next_2d(&mut self) -> (f64, f64) {
         let u = SobolSampler::next_2d(self);
         (u.x, u.y)
