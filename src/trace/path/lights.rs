@@ -18,7 +18,9 @@ use crate::scene::{AreaEmitter, LightKind, Scene};
 use std::f64::consts::PI;
 
 /// One light: a point or directional light (index into [`Scene::lights`]) or an emissive
-/// object with its sampling geometry and emission.
+/// object with its sampling geometry and emission. (An area source is large, with its
+/// prepared emitter; the table holds a few and hands them out by reference.)
+#[allow(clippy::large_enum_variant)]
 #[derive(Clone, Copy, Debug)]
 pub(crate) enum Source<'a> {
     /// `scene.lights[k]`.
