@@ -63,7 +63,7 @@ impl SurfaceInteraction<'_> {
         let outside = if self.entering {
             self.media.ior()
         } else {
-            self.media.left(self.object).ior()
+            self.media.ior_outside(self.object)
         };
         self.material.ior.unwrap_or(outside) / outside
     }

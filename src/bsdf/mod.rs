@@ -13,6 +13,8 @@ mod microfacet;
 mod tests;
 #[cfg(test)]
 mod tests_chi2;
+#[cfg(test)]
+mod tests_reset;
 
 pub use frame::Frame;
 pub use lobe::{Lobe, fr_dielectric};
@@ -23,8 +25,10 @@ use crate::scene::Material;
 use glam::{DVec2, DVec3};
 use lobe::Draw;
 
-/// Most lobes a [`Bsdf`] holds.
-pub const MAX_LOBES: usize = 4;
+/// Most lobes a [`Bsdf`] holds: a material has at most three (diffuse, reflectivity,
+/// transmissivity). Three, not four, keeps a `Bsdf` small enough (248 bytes) to be cleared
+/// by inline stores.
+pub const MAX_LOBES: usize = 3;
 
 /// What kind of event a sample is.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, serde::Serialize, serde::Deserialize)]
@@ -91,12 +95,22 @@ pub fn luminance(c: Rgb) -> f64 {
 }
 
 /// A BSDF: up to [`MAX_LOBES`] lobes, their selection probabilities and the shading frame.
-#[derive(Clone, Copy, Debug, PartialEq)]
+#[derive(Clone, Copy, Debug)]
 pub struct Bsdf {
     frame: Frame,
     lobes: [Lobe; MAX_LOBES],
     probs: [f64; MAX_LOBES],
     len: usize,
+}
+
+/// Equal frames and equal lobes with equal probabilities (slots past the lobes, which
+/// [`Bsdf::reset_at`] leaves as they were, are not compared).
+impl PartialEq for Bsdf {
+    fn eq(&self, other: &Self) -> bool {
+        self.frame == other.frame
+            && self.lobes[..self.len] == other.lobes[..other.len]
+            && self.probs[..self.len] == other.probs[..other.len]
+    }
 }
 
 impl Bsdf {
@@ -107,26 +121,65 @@ impl Bsdf {
     #[must_use]
     pub fn new(frame: Frame, lobes: &[Lobe]) -> Self {
         assert!(lobes.len() <= MAX_LOBES, "at most {MAX_LOBES} lobes");
-        let mut out = Self {
+        let mut out = Self::empty(frame);
+        let mut total = 0.0;
+        for lobe in lobes {
+            out.push(*lobe, &mut total);
+        }
+        out.normalise(total);
+        out
+    }
+
+    /// No lobe and a zero frame: a value for a loop to [`Bsdf::reset_at`] at each hit, which
+    /// sets the frame (a constant of zero bytes, which the compiler clears in place rather than
+    /// copying it in).
+    pub const EMPTY: Self = Self {
+        frame: Frame {
+            s: DVec3::ZERO,
+            t: DVec3::ZERO,
+            n: DVec3::ZERO,
+        },
+        lobes: [Lobe::Lambert { albedo: Rgb::ZERO }; MAX_LOBES],
+        probs: [0.0; MAX_LOBES],
+        len: 0,
+    };
+
+    /// No lobe yet, in `frame`.
+    #[inline(always)]
+    fn empty(frame: Frame) -> Self {
+        Self {
             frame,
             lobes: [Lobe::Lambert { albedo: Rgb::ZERO }; MAX_LOBES],
             probs: [0.0; MAX_LOBES],
             len: 0,
-        };
-        let mut total = 0.0;
-        for lobe in lobes {
-            let w = luminance(lobe.weight());
-            if w > 0.0 && w.is_finite() {
-                out.lobes[out.len] = *lobe;
-                out.probs[out.len] = w;
-                out.len += 1;
-                total += w;
-            }
         }
-        for p in &mut out.probs[..out.len] {
+    }
+
+    /// Adds `lobe` with its luminance as selection weight (added to `total`), unless that
+    /// weight is not positive and finite.
+    #[inline(always)]
+    fn push(&mut self, lobe: Lobe, total: &mut f64) {
+        let w = luminance(lobe.weight());
+        if w > 0.0 && w.is_finite() {
+            self.lobes[self.len] = lobe;
+            self.probs[self.len] = w;
+            self.len += 1;
+            *total += w;
+        }
+    }
+
+    /// Divides the selection weights by their sum `total`.
+    #[inline(always)]
+    fn normalise(&mut self, total: f64) {
+        if self.len == 1 {
+            // w / w is exactly 1 for a positive finite w: no division for the common
+            // one-lobe material.
+            self.probs[0] = 1.0;
+            return;
+        }
+        for p in &mut self.probs[..self.len] {
             *p /= total;
         }
-        out
     }
 
     /// The BSDF of `m` at `p` as the Whitted tracer reads the material: Lambert (diffuse),
@@ -134,44 +187,66 @@ impl Bsdf {
     /// last two GGX-rough when `roughness >= SMOOTH_ALPHA`. Index-matched transmission
     /// (`eta = 1`) stays a smooth pass-through whatever the roughness (every microfacet sends
     /// light straight on). The Blinn-Phong `specular` term has no lobe here.
+    /// (Built from a surface interaction: its material, point, outward shading frame and eta;
+    /// eta, which reads the media stack, only for a transmissive material, the only lobe that
+    /// uses it.)
     #[must_use]
-    /// (Built from a surface interaction: its material, point, outward shading frame and eta.)
     pub fn at(si: &crate::interaction::SurfaceInteraction, roughness: f64) -> Self {
-        Self::from_material(si.material, si.p, si.frame(), roughness, si.eta())
+        let mut out = Self::empty(si.frame());
+        out.reset_at(si, roughness);
+        out
+    }
+
+    /// Makes this the BSDF [`Bsdf::at`] builds, in place: a loop that keeps one `Bsdf` and
+    /// resets it at every hit writes only the lobes the material has (building a 300-byte
+    /// `Bsdf` by value and moving it was a `memcpy` per hit, 2% of a path-traced render).
+    #[inline(always)]
+    pub fn reset_at(&mut self, si: &crate::interaction::SurfaceInteraction, roughness: f64) {
+        let m = si.material;
+        let eta = if m.is_transmissive() { si.eta() } else { 1.0 };
+        self.frame = si.frame();
+        self.len = 0;
+        self.add_material(m, si.p, roughness, eta);
     }
 
     /// The BSDF of material `m` at `p` in `frame` for GGX `roughness` and relative index `eta`.
     #[must_use]
     pub fn from_material(m: &Material, p: DVec3, frame: Frame, roughness: f64, eta: f64) -> Self {
+        let mut out = Self::empty(frame);
+        out.add_material(m, p, roughness, eta);
+        out
+    }
+
+    /// Adds the lobes of `m` at `p` (see [`Bsdf::from_material`]) to an empty BSDF and
+    /// normalises their probabilities.
+    #[inline(always)]
+    fn add_material(&mut self, m: &Material, p: DVec3, roughness: f64, eta: f64) {
         let rough = roughness >= SMOOTH_ALPHA;
         let ggx = Ggx::new(roughness);
-        let mut lobes = [Lobe::Lambert { albedo: Rgb::ZERO }; 3];
-        let mut n = 0;
+        let mut total = 0.0;
         if !m.diffuse.is_black() {
-            lobes[n] = Lobe::Lambert {
-                albedo: m.diffuse.at(p),
-            };
-            n += 1;
+            let albedo = m.diffuse.at(p);
+            self.push(Lobe::Lambert { albedo }, &mut total);
         }
         if m.reflectivity != Rgb::ZERO {
             let weight = m.reflectivity;
-            lobes[n] = if rough {
+            let lobe = if rough {
                 Lobe::RoughMirror { weight, ggx }
             } else {
                 Lobe::Mirror { weight }
             };
-            n += 1;
+            self.push(lobe, &mut total);
         }
         if m.is_transmissive() {
             let weight = m.transmissivity;
-            lobes[n] = if rough && (eta - 1.0).abs() > 1e-9 {
+            let lobe = if rough && (eta - 1.0).abs() > 1e-9 {
                 Lobe::RoughDielectric { weight, eta, ggx }
             } else {
                 Lobe::Dielectric { weight, eta }
             };
-            n += 1;
+            self.push(lobe, &mut total);
         }
-        Self::new(frame, &lobes[..n])
+        self.normalise(total);
     }
 
     /// The shading frame.

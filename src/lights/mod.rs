@@ -6,8 +6,11 @@
 //! uniformly by area, the area pdf converted to solid angle by `pdf_area dist^2 / |cos_light|`
 //! (pbrt-v4 `Shape::PDF(ctx, wi)` default; Veach's thesis eq. 8.10). See `docs/monte-carlo.md`.
 
+mod prepared;
 #[cfg(test)]
 mod tests;
+
+pub use prepared::{PreparedEmitter, PreparedPlanar};
 
 use crate::math::Rgb;
 use crate::sampling::warp::{
@@ -176,6 +179,20 @@ impl PlanarEmitter {
     #[must_use]
     pub fn sample(&self, p: DVec3, radiance: Rgb, u: DVec2) -> Option<LightSample> {
         let n = self.normal()?;
+        self.sample_given(n, || self.area(), p, radiance, u)
+    }
+
+    /// [`Self::sample`] with the unit normal `n` and the area (asked for only when a sample
+    /// is made) given, so that a light can compute them once ([`PreparedPlanar`]).
+    #[inline]
+    pub(crate) fn sample_given(
+        &self,
+        n: DVec3,
+        area: impl FnOnce() -> f64,
+        p: DVec3,
+        radiance: Rgb,
+        u: DVec2,
+    ) -> Option<LightSample> {
         if (p - self.corner).dot(n) <= 0.0 {
             return None;
         }
@@ -191,7 +208,7 @@ impl PlanarEmitter {
             direction,
             distance,
             radiance,
-            pdf: dist2 / (self.area() * cos_light),
+            pdf: dist2 / (area() * cos_light),
             delta: false,
         })
     }
@@ -203,6 +220,21 @@ impl PlanarEmitter {
         let Some(n) = self.normal() else {
             return 0.0;
         };
+        let c = self.edge_u.cross(self.edge_v);
+        self.pdf_given(n, (c, c.length_squared()), || self.area(), p, wi)
+    }
+
+    /// [`Self::pdf`] with the unit normal `n`, `edge_u x edge_v` and its squared length, and
+    /// the area given ([`PreparedPlanar`]).
+    #[inline]
+    pub(crate) fn pdf_given(
+        &self,
+        n: DVec3,
+        (c, c2): (DVec3, f64),
+        area: impl FnOnce() -> f64,
+        p: DVec3,
+        wi: DVec3,
+    ) -> f64 {
         let cos_light = -wi.dot(n);
         if cos_light <= 0.0 || (p - self.corner).dot(n) <= 0.0 {
             return 0.0;
@@ -213,8 +245,6 @@ impl PlanarEmitter {
         }
         // Coordinates of the hit in the (edge_u, edge_v) basis, by the dual basis.
         let q = p + t * wi - self.corner;
-        let c = self.edge_u.cross(self.edge_v);
-        let c2 = c.length_squared();
         let s = q.cross(self.edge_v).dot(c) / c2;
         let r = self.edge_u.cross(q).dot(c) / c2;
         let inside = s >= 0.0
@@ -225,7 +255,7 @@ impl PlanarEmitter {
                 s <= 1.0 && r <= 1.0
             };
         if inside {
-            t * t / (self.area() * cos_light)
+            t * t / (area() * cos_light)
         } else {
             0.0
         }

@@ -8,6 +8,11 @@ use crate::scene::{SamplerKind, Settings};
 /// [`StratifiedJitter`] or [`SobolSampler`], chosen at run time from the settings
 /// ([`Settings::sampler_kind`]: Sobol for the path integrator, stratified for Whitted unless
 /// the scene or `--sampler` says otherwise).
+///
+/// The Sobol variant is large (its per-pixel seed cache, about 400 bytes): a render holds one
+/// sampler per pixel loop and draws from it by reference, and boxing it would put an
+/// indirection on every draw.
+#[allow(clippy::large_enum_variant)]
 #[derive(Clone, Copy, Debug)]
 pub enum SceneSampler {
     /// Stratified film offsets, hashed independent values after them.

@@ -113,28 +113,46 @@ const fn dim1_tables() -> [[u32; 256]; 4] {
 /// A 64-bit finaliser (splitmix64 / Stafford's Mix13) to derive independent seeds.
 #[must_use]
 #[inline]
-pub fn mix64(mut z: u64) -> u64 {
+pub const fn mix64(mut z: u64) -> u64 {
     z = (z ^ (z >> 30)).wrapping_mul(0xbf58_476d_1ce4_e5b9);
     z = (z ^ (z >> 27)).wrapping_mul(0x94d0_49bb_1331_11eb);
     z ^ (z >> 31)
 }
 
+/// The hash of a dimension pair alone, `mix64(pair + 0x9e37...)`: the part of
+/// [`pair_seeds`] that does not depend on the pixel.
+#[must_use]
+#[inline]
+const fn pair_hash(pair: u32) -> u64 {
+    mix64((pair as u64).wrapping_add(0x9e37_79b9_7f4a_7c15))
+}
+
+/// Dimension pairs whose [`pair_hash`] is tabulated (a path of depth 16 with light samples and
+/// Russian roulette draws about 80 pairs).
+const HASHED_PAIRS: usize = 128;
+
+/// [`pair_hash`] of the first [`HASHED_PAIRS`] pairs, computed at compile time.
+static PAIR_HASH: [u64; HASHED_PAIRS] = {
+    let mut t = [0u64; HASHED_PAIRS];
+    let mut i = 0;
+    while i < HASHED_PAIRS {
+        t[i] = pair_hash(i as u32);
+        i += 1;
+    }
+    t
+};
+
 /// The per-(pixel, dimension pair) seeds: index shuffle, x scramble, y scramble.
 #[must_use]
 #[inline]
 fn pair_seeds(pixel_key: u64, pair: u32) -> (u32, u32, u32) {
-    let h = mix64(pixel_key ^ mix64(u64::from(pair).wrapping_add(0x9e37_79b9_7f4a_7c15)));
+    let ph = match PAIR_HASH.get(pair as usize) {
+        Some(&h) => h,
+        None => pair_hash(pair),
+    };
+    let h = mix64(pixel_key ^ ph);
     let h2 = mix64(h);
     (h as u32, (h >> 32) as u32, h2 as u32)
-}
-
-/// The shuffled index of a pair, reversed: `r = reverse(i)` for the shuffled index
-/// `i = nested_uniform_scramble(index, s_index)`, which is also its first Sobol dimension
-/// (`sobol_dim0(i) = reverse(i)`).
-#[must_use]
-#[inline]
-fn shuffled_reversed(index: u32, s_index: u32) -> u32 {
-    laine_karras(index.reverse_bits(), s_index)
 }
 
 /// The 2D point of dimension pair `pair` of sample `index` in the pixel keyed by `pixel_key`,
@@ -144,8 +162,17 @@ fn shuffled_reversed(index: u32, s_index: u32) -> u32 {
 #[must_use]
 #[inline]
 fn sobol_pair_bits(pixel_key: u64, index: u32, pair: u32) -> (u32, u32) {
-    let (s_index, s_x, s_y) = pair_seeds(pixel_key, pair);
-    let r = shuffled_reversed(index, s_index);
+    pair_bits(pair_seeds(pixel_key, pair), index.reverse_bits())
+}
+
+/// [`sobol_pair_bits`] from the pair's seeds and the sample index reversed, `index_rev`
+/// (a sampler reverses it once per sample, not once per draw). `r = laine_karras(index_rev,
+/// s_index)` is the shuffled index `i = nested_uniform_scramble(index, s_index)` reversed,
+/// which is also its first Sobol dimension (`sobol_dim0(i) = reverse(i)`).
+#[must_use]
+#[inline]
+fn pair_bits((s_index, s_x, s_y): (u32, u32, u32), index_rev: u32) -> (u32, u32) {
+    let r = laine_karras(index_rev, s_index);
     (
         laine_karras(r.reverse_bits(), s_x).reverse_bits(),
         laine_karras(dim1_reversed(r), s_y).reverse_bits(),
@@ -155,9 +182,17 @@ fn sobol_pair_bits(pixel_key: u64, index: u32, pair: u32) -> (u32, u32) {
 /// The first coordinate of [`sobol_pair_bits`] alone (a 1D draw), the same bits.
 #[must_use]
 #[inline]
+#[cfg(test)]
 fn sobol_first_bits(pixel_key: u64, index: u32, pair: u32) -> u32 {
     let (s_index, s_x, _) = pair_seeds(pixel_key, pair);
-    let r = shuffled_reversed(index, s_index);
+    first_bits(s_index, s_x, index.reverse_bits())
+}
+
+/// [`sobol_first_bits`] from the pair's index and x seeds.
+#[must_use]
+#[inline]
+fn first_bits(s_index: u32, s_x: u32, index_rev: u32) -> u32 {
+    let r = laine_karras(index_rev, s_index);
     laine_karras(r.reverse_bits(), s_x).reverse_bits()
 }
 
@@ -176,17 +211,41 @@ pub fn sample_2d(seed: u64, pixel: (u32, u32), index: u32, pair: u32) -> DVec2 {
     DVec2::new(f64::from(x) * TO_UNIT, f64::from(y) * TO_UNIT)
 }
 
+/// Dimension pairs whose seeds a [`SobolSampler`] keeps per pixel (bits of a `u32` mask).
+const CACHED_PAIRS: usize = 32;
+
 /// The sample stream of one (pixel, sample index): each draw takes the next dimension pair.
 ///
 /// `next_1d` also takes a whole pair (its first coordinate), so that the dimensions a draw uses
 /// depend only on how many draws came before it, not on whether they were 1D or 2D.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+///
+/// The seeds of a pair depend only on the pixel (not on the sample index), so the sampler
+/// keeps those of the first [`CACHED_PAIRS`] pairs while it stays on one pixel: the samples
+/// after a pixel's first draw each pair with three hashes fewer. The values are the same bits
+/// either way (a pure function of seed, pixel, index and pair).
+#[derive(Clone, Copy, Debug)]
 pub struct SobolSampler {
     seed: u64,
     key: u64,
+    pixel: (u32, u32),
     index: u32,
+    /// `index.reverse_bits()`.
+    index_rev: u32,
     pair: u32,
+    /// Bit `p` set: `seeds[p]` holds `pair_seeds(key, p)`.
+    cached: u32,
+    seeds: [[u32; 3]; CACHED_PAIRS],
 }
+
+/// Equal when they draw the same stream (the seed cache is not compared).
+impl PartialEq for SobolSampler {
+    fn eq(&self, other: &Self) -> bool {
+        (self.seed, self.key, self.pixel, self.index, self.pair)
+            == (other.seed, other.key, other.pixel, other.index, other.pair)
+    }
+}
+
+impl Eq for SobolSampler {}
 
 impl SobolSampler {
     /// The stream of sample `index` of `pixel` under `seed`, starting at dimension pair 0.
@@ -195,8 +254,12 @@ impl SobolSampler {
         Self {
             seed,
             key: pixel_key(seed, pixel),
+            pixel,
             index,
+            index_rev: index.reverse_bits(),
             pair: 0,
+            cached: 0,
+            seeds: [[0; 3]; CACHED_PAIRS],
         }
     }
 
@@ -213,10 +276,28 @@ impl SobolSampler {
         self.pair
     }
 
+    /// The seeds of dimension pair `pair` of this pixel, from the cache when they are there.
+    #[inline]
+    fn seeds(&mut self, pair: u32) -> (u32, u32, u32) {
+        let p = pair as usize;
+        if p >= CACHED_PAIRS {
+            return pair_seeds(self.key, pair);
+        }
+        let bit = 1u32 << p;
+        if self.cached & bit == 0 {
+            let (a, b, c) = pair_seeds(self.key, pair);
+            self.seeds[p] = [a, b, c];
+            self.cached |= bit;
+        }
+        let [a, b, c] = self.seeds[p];
+        (a, b, c)
+    }
+
     /// The next value in `[0, 1)`: the first coordinate of the next pair (the pair is used up).
     #[inline]
     pub fn next_1d(&mut self) -> f64 {
-        let x = sobol_first_bits(self.key, self.index, self.pair);
+        let (s_index, s_x, _) = self.seeds(self.pair);
+        let x = first_bits(s_index, s_x, self.index_rev);
         self.pair = self.pair.wrapping_add(1);
         f64::from(x) * TO_UNIT
     }
@@ -224,7 +305,8 @@ impl SobolSampler {
     /// The next point in `[0, 1)^2`.
     #[inline]
     pub fn next_2d(&mut self) -> DVec2 {
-        let (x, y) = sobol_pair_bits(self.key, self.index, self.pair);
+        let seeds = self.seeds(self.pair);
+        let (x, y) = pair_bits(seeds, self.index_rev);
         self.pair = self.pair.wrapping_add(1);
         DVec2::new(f64::from(x) * TO_UNIT, f64::from(y) * TO_UNIT)
     }
@@ -265,14 +347,24 @@ impl SplitMix64 {
 /// sample's stream at dimension pair 0, and a 1D draw takes a whole pair, as
 /// [`SobolSampler::next_1d`] does.
 impl super::PixelSampler for SobolSampler {
+    /// Keeps the pixel's key and cached pair seeds when the pixel stays the same.
+    #[inline]
     fn start_sample(&mut self, pixel: (u32, u32), index: u32) {
-        *self = Self::new(self.seed, pixel, index);
+        if pixel == self.pixel {
+            self.index = index;
+            self.index_rev = index.reverse_bits();
+            self.pair = 0;
+        } else {
+            *self = Self::new(self.seed, pixel, index);
+        }
     }
 
+    #[inline]
     fn next_1d(&mut self) -> f64 {
         SobolSampler::next_1d(self)
     }
 
+    #[inline]
     fn next_2d(&mut self) -> (f64, f64) {
         let u = SobolSampler::next_2d(self);
         (u.x, u.y)
@@ -280,119 +372,5 @@ impl super::PixelSampler for SobolSampler {
 }
 
 #[cfg(test)]
-mod tests {
-    use super::*;
-
-    /// Every elementary interval of area 1/n (n = 2^m; shapes 2^k x 2^(m-k)) holds exactly one
-    /// of the first n samples: the (0, m, 2)-net property of Sobol's first two dimensions,
-    /// preserved by Owen scrambling and the index shuffle.
-    fn assert_net(points: &[(u32, u32)], m: u32) {
-        for k in 0..=m {
-            let (bx, by) = (1u64 << k, 1u64 << (m - k));
-            let mut seen = vec![false; 1 << m];
-            for &(x, y) in points {
-                let cx = (u64::from(x) * bx) >> 32;
-                let cy = (u64::from(y) * by) >> 32;
-                let cell = (cy * bx + cx) as usize;
-                assert!(!seen[cell], "two points in cell {cell} of {bx}x{by}");
-                seen[cell] = true;
-            }
-        }
-    }
-
-    #[test]
-    fn first_2_pow_m_samples_of_each_pair_are_a_0_m_2_net() {
-        for seed in [0u64, 7, 1 << 40] {
-            for pixel in [(0, 0), (17, 3), (639, 359)] {
-                let key = pixel_key(seed, pixel);
-                for pair in [0, 1, 2, 9] {
-                    for m in [0, 2, 4, 6, 8] {
-                        let pts: Vec<_> = (0..1u32 << m)
-                            .map(|i| sobol_pair_bits(key, i, pair))
-                            .collect();
-                        assert_net(&pts, m);
-                    }
-                }
-            }
-        }
-    }
-
-    #[test]
-    fn an_unscrambled_wrong_generator_fails_the_net_check() {
-        // The test can fail: the same dimension twice is no net (diagonal).
-        let pts: Vec<_> = (0..16u32).map(|i| (sobol_dim0(i), sobol_dim0(i))).collect();
-        let r = std::panic::catch_unwind(|| assert_net(&pts, 4));
-        assert!(r.is_err());
-    }
-
-    /// The fast form equals the definition: Owen-scrambled dimensions 0 and 1 of the
-    /// Owen-shuffled index, with every reversal written out.
-    #[test]
-    fn pair_bits_equal_the_written_out_scramble() {
-        let mut rng = SplitMix64::new(5);
-        for _ in 0..20_000 {
-            let (key, index, pair) = (rng.next_u64(), rng.next_u64() as u32, rng.next_u64() as u32);
-            let (s_index, s_x, s_y) = pair_seeds(key, pair);
-            let i = nested_uniform_scramble(index, s_index);
-            let want = (
-                nested_uniform_scramble(sobol_dim0(i), s_x),
-                nested_uniform_scramble(sobol_dim1(i), s_y),
-            );
-            assert_eq!(sobol_pair_bits(key, index, pair), want);
-            assert_eq!(sobol_first_bits(key, index, pair), want.0);
-            let r = rng.next_u64() as u32;
-            assert_eq!(
-                dim1_reversed(r),
-                sobol_dim1(r.reverse_bits()).reverse_bits()
-            );
-        }
-    }
-
-    #[test]
-    fn sobol_dim1_matches_known_values() {
-        // 1/2, 3/4 1/4, 3/8 7/8 5/8 1/8: the classic second Sobol dimension for i = 1..7
-        // (Joe and Kuo's table), in Gray-code-free (direct) index order.
-        let want = [0.0, 0.5, 0.75, 0.25, 0.625, 0.125, 0.375, 0.875];
-        for (i, w) in want.iter().enumerate() {
-            assert_eq!(f64::from(sobol_dim1(i as u32)) * TO_UNIT, *w, "index {i}");
-        }
-    }
-
-    #[test]
-    fn sampler_is_deterministic_bit_for_bit_and_matches_the_stateless_form() {
-        let mut a = SobolSampler::new(42, (12, 34), 5);
-        let mut b = SobolSampler::new(42, (12, 34), 5);
-        for pair in 0..20 {
-            let (pa, pb) = (a.next_2d(), b.next_2d());
-            assert_eq!(pa.x.to_bits(), pb.x.to_bits());
-            assert_eq!(pa.y.to_bits(), pb.y.to_bits());
-            assert_eq!(pa, sample_2d(42, (12, 34), 5, pair));
-        }
-        assert_eq!(
-            SobolSampler::new(42, (12, 34), 5).at_pair(3).next_2d(),
-            sample_2d(42, (12, 34), 5, 3)
-        );
-    }
-
-    #[test]
-    fn pixels_seeds_and_pairs_decorrelate() {
-        let a = sample_2d(0, (1, 2), 0, 0);
-        assert_ne!(a, sample_2d(0, (2, 1), 0, 0));
-        assert_ne!(a, sample_2d(1, (1, 2), 0, 0));
-        assert_ne!(a, sample_2d(0, (1, 2), 0, 1));
-        // Across many pixels the first sample's mean is near 1/2 (no shared offset).
-        let n = 4096;
-        let mean: f64 = (0..n).map(|i| sample_2d(3, (i, 0), 0, 0).x).sum::<f64>() / f64::from(n);
-        // Uniform mean: sd of the mean = sqrt(1/12 / n) = 0.0045; 5 sd.
-        assert!((mean - 0.5).abs() < 0.023, "mean {mean}");
-    }
-
-    #[test]
-    fn values_lie_in_the_half_open_unit_square() {
-        let mut s = SobolSampler::new(u64::MAX, (u32::MAX, u32::MAX), u32::MAX);
-        for _ in 0..1000 {
-            let p = s.next_2d();
-            assert!((0.0..1.0).contains(&p.x) && (0.0..1.0).contains(&p.y));
-        }
-    }
-}
+#[path = "sobol_tests.rs"]
+mod tests;

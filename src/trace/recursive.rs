@@ -338,7 +338,7 @@ impl Tracer<'_> {
             let n1 = media.ior();
             (n1, m.ior.unwrap_or(n1))
         } else {
-            let n2 = media.left(object).ior();
+            let n2 = media.ior_outside(object);
             (m.ior.unwrap_or(n2), n2)
         };
         let model = self.scene.settings.fresnel;

@@ -12,12 +12,15 @@
 //! A light of zero power is never chosen (it adds nothing); a scene whose lights all have
 //! zero (or non-finite) power falls back to choosing uniformly.
 
+use crate::lights::PreparedEmitter;
 use crate::math::Rgb;
 use crate::scene::{AreaEmitter, LightKind, Scene};
 use std::f64::consts::PI;
 
 /// One light: a point or directional light (index into [`Scene::lights`]) or an emissive
-/// object with its sampling geometry and emission.
+/// object with its sampling geometry and emission. (An area source is large, with its
+/// prepared emitter; the table holds a few and hands them out by reference.)
+#[allow(clippy::large_enum_variant)]
 #[derive(Clone, Copy, Debug)]
 pub(crate) enum Source<'a> {
     /// `scene.lights[k]`.
@@ -28,6 +31,8 @@ pub(crate) enum Source<'a> {
         object: usize,
         /// Sampling geometry.
         emitter: AreaEmitter<'a>,
+        /// The same, with what does not depend on the shading point computed once.
+        prepared: PreparedEmitter<'a>,
         /// Emitted radiance (outer side).
         emission: Rgb,
     },
@@ -55,6 +60,7 @@ impl<'a> LightTable<'a> {
                 sources.push(Source::Area {
                     object,
                     emitter,
+                    prepared: PreparedEmitter::new(emitter),
                     emission,
                 });
             }
@@ -106,22 +112,22 @@ impl<'a> LightTable<'a> {
     /// first index whose cumulative probability exceeds `u`, so a light of probability 0 is
     /// never chosen.
     #[inline]
-    pub(crate) fn choose(&self, u: f64) -> (usize, Source<'a>, f64) {
+    pub(crate) fn choose(&self, u: f64) -> (usize, &Source<'a>, f64) {
         let k = self
             .cdf
             .partition_point(|&c| c <= u)
             .min(self.cdf.len() - 1);
-        (k, self.sources[k], self.pmf[k])
+        (k, &self.sources[k], self.pmf[k])
     }
 
     /// The area light of `object` and the probability of choosing it (`None` when the object
     /// is no area light): the selection part of the light-sampling pdf that MIS weighs
     /// emission found by BSDF sampling with.
     #[inline]
-    pub(crate) fn area(&self, object: usize) -> Option<(AreaEmitter<'a>, f64)> {
+    pub(crate) fn area(&self, object: usize) -> Option<(&PreparedEmitter<'a>, f64)> {
         let i = *self.object_source.get(object)? as usize;
         match self.sources.get(i)? {
-            Source::Area { emitter, .. } => Some((*emitter, self.pmf[i])),
+            Source::Area { prepared, .. } => Some((prepared, self.pmf[i])),
             Source::Delta(_) => None,
         }
     }

@@ -154,6 +154,8 @@ impl<'a> PathTracer<'a> {
         let mut lpe = String::new();
         let mut chain: Vec<Link> = Vec::new();
         let mut depth = 0u32;
+        // One BSDF for the whole path, reset in place at each hit (no 300-byte copy per hit).
+        let mut bsdf = Bsdf::EMPTY;
         loop {
             counts.add_kind(kind);
             if R::PATHS {
@@ -289,7 +291,7 @@ impl<'a> PathTracer<'a> {
                 }
                 break;
             }
-            let bsdf = Bsdf::at(&si, material_roughness(m));
+            bsdf.reset_at(&si, material_roughness(m));
             if bsdf.lobes().next().is_none() {
                 end(EndReason::Surface, rec, &link);
                 if R::RECORDS {

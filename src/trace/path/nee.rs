@@ -74,17 +74,18 @@ impl PathTracer<'_> {
         let uc = sampler.next_1d();
         let u = sampler.next_2d();
         let (_, source, select) = self.lights.choose(uc);
-        let (ls, area, light) = match source {
+        let (ls, area, light) = match *source {
             Source::Delta(k) => (Some(scene.lights[k].sample(si.p, u)), None, k),
             Source::Area {
                 object,
-                emitter,
+                ref prepared,
                 emission,
+                ..
             } => {
                 // A surface does not light itself (spheres, quads and triangles are convex; a
                 // mesh does not light its own other triangles).
                 let ls = (object != si.object)
-                    .then(|| emitter.sample(si.p, emission, u))
+                    .then(|| prepared.sample(si.p, emission, u))
                     .flatten();
                 (ls, Some(object), scene.lights.len() + object)
             }
