@@ -51,11 +51,6 @@ pub fn run(a: &RenderArgs) -> Result<()> {
     let (aovs, views) = parse(a)?;
     let loaded = load(a.scene.as_deref(), &a.overrides)?;
     let scene = &loaded.scene;
-    if scene.settings.adaptive.is_some() {
-        bail!(
-            "--aov and --debug-view do not combine with adaptive antialiasing (settings.adaptive or --adaptive) yet"
-        );
-    }
     let whitted = scene.settings.integrator == IntegratorKind::Whitted;
     if whitted && !aovs.is_empty() {
         bail!("--aov: {}", raytree::aov::AovError::Whitted);
@@ -143,9 +138,18 @@ fn report(
     sayln!(
         "wrote {} ({w}x{h}, {} spp) in {secs:.3} s, {} rays",
         a.output.display(),
-        r.mc.first().map_or(0, |p| p.samples),
+        r.mc.iter().map(|p| p.samples).min().unwrap_or(0),
         r.stats.rays.total()
     )?;
+    if r.stats.refined_pixels > 0 {
+        sayln!(
+            "adaptive: {} of {} pixels refined, {} samples ({:.2} per pixel)",
+            r.stats.refined_pixels,
+            r.mc.len(),
+            r.stats.samples,
+            r.stats.samples as f64 / r.mc.len().max(1) as f64
+        )?;
+    }
     for (k, img) in r.aovs.iter().enumerate() {
         let share = if total > 0.0 { lum(img) / total } else { 0.0 };
         sayln!(

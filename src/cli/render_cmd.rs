@@ -43,11 +43,6 @@ pub fn run(a: &RenderArgs) -> Result<()> {
                 "--spp-map does not combine with --denoise or --features: render them in two runs"
             );
         }
-        if scene.settings.adaptive.is_some() {
-            anyhow::bail!(
-                "--denoise and --features do not combine with adaptive antialiasing (settings.adaptive or --adaptive) yet"
-            );
-        }
     }
     let inputs = Inputs::new(loaded.inputs.iter().map(|p| p.as_path()));
     let pending = Pending::create(&a.output, &inputs)?;
