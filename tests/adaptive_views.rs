@@ -115,16 +115,19 @@ fn run_ok(d: &std::path::Path, extra: &[&str]) -> String {
     String::from_utf8_lossy(&o.stdout).into_owned()
 }
 
-/// `--denoise`, `--features`, `--aov` and `--debug-view` with `--adaptive` (refused with exit
-/// 2 before the pixel loop): exit 0, every file written; the AOV run's beauty EXR is the plain
+/// `--denoise`, `--features`, `--aov` and `--debug-view` with `--adaptive`, and `--spp-map`
+/// with them (refused with exit 2 before the pixel loop): exit 0, every file written; the AOV run's beauty EXR is the plain
 /// adaptive render's byte for byte, and `--features` leaves the image the plain render's.
 #[test]
 fn formerly_refused_adaptive_combinations_run() {
     let d = dir_with_scene();
     let p = d.path();
     run_ok(p, &["-o", "plain.exr"]);
-    run_ok(p, &["-o", "plain.png"]);
-    run_ok(p, &["-o", "den.png", "--denoise"]);
+    run_ok(p, &["-o", "plain.png", "--spp-map", "plain.map.png"]);
+    run_ok(
+        p,
+        &["-o", "den.png", "--denoise", "--spp-map", "den.map.png"],
+    );
     run_ok(p, &["-o", "feat.png", "--features"]);
     let out = run_ok(
         p,
@@ -139,6 +142,8 @@ fn formerly_refused_adaptive_combinations_run() {
             "spp",
             "--debug-view",
             "noise",
+            "--spp-map",
+            "aov.map.png",
         ],
     );
     assert!(out.contains("adaptive: "), "{out}");
@@ -158,6 +163,9 @@ fn formerly_refused_adaptive_combinations_run() {
     assert_eq!(read("aov.exr"), read("plain.exr"));
     assert_eq!(read("feat.png"), read("plain.png"));
     assert_ne!(read("den.png"), read("plain.png"));
+    // `--spp-map` beside them (refused with them before): the plain render's map.
+    assert_eq!(read("den.map.png"), read("plain.map.png"));
+    assert_eq!(read("aov.map.png"), read("plain.map.png"));
     // The spp view: black-to-red ramp of 2 and 8 samples, both present.
     let view = image::open(p.join("aov.view-spp.png")).unwrap().into_rgb8();
     let colours: std::collections::HashSet<[u8; 3]> = (0..36)

@@ -42,9 +42,9 @@ fn parse(a: &RenderArgs) -> Result<(Vec<raytree::aov::Aov>, Vec<McView>)> {
 
 /// Render with AOVs and debug views.
 pub fn run(a: &RenderArgs) -> Result<()> {
-    if a.diagnose || a.spp_map.is_some() {
+    if a.diagnose {
         bail!(
-            "--diagnose and --spp-map do not combine with --aov or --debug-view (render them separately)"
+            "--diagnose does not combine with --aov or --debug-view (they trace with different recorders): render them in two runs"
         );
     }
     let format = image_format(&a.output)?;
@@ -79,6 +79,7 @@ pub fn run(a: &RenderArgs) -> Result<()> {
             .iter()
             .map(|v| beside(&a.output, &format!("view-{}", v.file_name(&names)), "png")),
     );
+    paths.extend(a.spp_map.clone());
     if let Some(p) = paths
         .iter()
         .enumerate()
@@ -112,6 +113,17 @@ pub fn run(a: &RenderArgs) -> Result<()> {
     }
     for v in &views {
         files.push(false_colour(&r, v, &names)?);
+    }
+    if a.spp_map.is_some() {
+        let samples = r.mc.iter().map(|p| p.samples).collect();
+        let (width, height) = (r.beauty.width, r.beauty.height);
+        let map = raytree::DiagnosticMap {
+            width,
+            height,
+            samples,
+            ..raytree::DiagnosticMap::default()
+        };
+        files.push(super::spp_map::png(&map)?);
     }
     for (p, bytes) in pending.into_iter().zip(&files) {
         p.commit(bytes)?;
@@ -159,8 +171,15 @@ fn report(
             100.0 * share
         )?;
     }
-    for p in &paths[1 + names.len()..] {
+    let views = &paths[1 + names.len()..paths.len() - usize::from(a.spp_map.is_some())];
+    for p in views {
         sayln!("debug view: {}", p.display())?;
+    }
+    if let Some(p) = &a.spp_map {
+        sayln!(
+            "wrote {} (samples per pixel, white = the most)",
+            p.display()
+        )?;
     }
     if let Some((x, y, s)) = r.stats.rays.first_dropped {
         warnln!(

@@ -10,7 +10,7 @@ use super::features::first_non_delta;
 use crate::bsdf::luminance;
 use crate::math::Rgb;
 use crate::render::pixel_loop::{self, Sample, SampleSink};
-use crate::render::{Image, RenderStats};
+use crate::render::{DiagnosticMap, Image, RenderStats};
 use crate::sampling::{PixelSampler, SceneSampler};
 use crate::trace::{Integrator, NoopRecorder, Tracer};
 use glam::DVec3;
@@ -92,13 +92,25 @@ pub fn gather_sampled<I: Integrator, S: PixelSampler>(
     sampler: &S,
     progress: &(dyn Fn(u32) + Sync),
 ) -> (Image, RenderStats, Features) {
+    let (image, stats, features, _) = gather_counted(integrator, sampler, progress);
+    (image, stats, features)
+}
+
+/// [`gather_sampled`] that also returns the samples each pixel took
+/// ([`DiagnosticMap::samples`], as [`crate::render::render_sample_map`]'s; its self-hit and
+/// leak counts stay empty).
+pub fn gather_counted<I: Integrator, S: PixelSampler>(
+    integrator: &I,
+    sampler: &S,
+    progress: &(dyn Fn(u32) + Sync),
+) -> (Image, RenderStats, Features, DiagnosticMap) {
     let scene = integrator.scene();
     let (w, h) = (scene.camera.width, scene.camera.height);
     let spp = scene.settings.spp.max(1);
     let tracer = Tracer::new(scene);
     let make = || FeatureSink(&tracer, NoopRecorder);
     let rows = pixel_loop::rows(integrator, sampler, make, progress);
-    let (image, stats, _, outs) = pixel_loop::assemble((w, h), spp, false, rows);
+    let (image, stats, map, outs) = pixel_loop::assemble((w, h), spp, false, rows);
     let n = (w * h) as usize;
     let mut features = Features {
         width: w,
@@ -118,7 +130,7 @@ pub fn gather_sampled<I: Integrator, S: PixelSampler>(
         features.variance.push(finite_f(p.variance));
         features.albedo_variance.push(finite_f(p.albedo_variance));
     }
-    (image, stats, features)
+    (image, stats, features, map)
 }
 
 /// The variance of the mean of `n` values from their sum `s1` and sum of squares `s2` (the
