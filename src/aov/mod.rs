@@ -3,8 +3,10 @@
 //! [`render_aovs`] renders the beauty image and, for each expression, the image of the
 //! contributions whose recorded path (`C<RD><TS><TS>L`, see [`crate::lpe`]) matches it: the pixel
 //! mean over samples of the sum of those contributions. The beauty image is bit for bit
-//! [`crate::render()`]'s (same samples in the same order); expressions that partition the
-//! complete paths sum to it within float rounding. In the same pass it gathers per pixel the
+//! [`crate::render()`]'s: the same pixel loop ([`crate::render::pixel_loop`], with adaptive
+//! antialiasing's two passes when the scene has them) with the AOV sink, so the same samples
+//! in the same order; expressions that partition the complete paths sum to it within float
+//! rounding. In the same pass it gathers per pixel the
 //! samples' luminance spread, path lengths, Russian-roulette terminations and dropped samples
 //! ([`McPixel`]) for the debug views ([`McView`]). The recorder ([`AovRecorder`]) keeps no
 //! tree: only each contribution's path string, matched once per distinct string.

@@ -7,12 +7,13 @@ use crate::lpe::Lpe;
 use crate::math::Rgb;
 use crate::render::pixel_loop::{Sample, SampleSink};
 
-/// The sink: the recorder that splits each sample by expression.
-pub(super) struct AovSink<'a>(pub AovRecorder<'a>);
+/// The sink: the recorder that splits each sample by expression, and a spare luminance
+/// buffer (a finished pixel's, so a render without a second pass allocates none per pixel).
+pub(super) struct AovSink<'a>(pub AovRecorder<'a>, Vec<f64>);
 
 impl<'a> AovSink<'a> {
     pub(super) fn new(lpes: &'a [Lpe]) -> Self {
-        Self(AovRecorder::new(lpes))
+        Self(AovRecorder::new(lpes), Vec::new())
     }
 }
 
@@ -42,6 +43,9 @@ impl<'a> SampleSink for AovSink<'a> {
     }
 
     fn sample(&mut self, px: &mut AovPixel, s: &Sample) {
+        if px.lums.capacity() == 0 {
+            px.lums = std::mem::take(&mut self.1);
+        }
         let rec = &self.0;
         px.segments += u64::from(rec.segments);
         px.roulette += u32::from(rec.roulette);
@@ -81,6 +85,9 @@ impl<'a> SampleSink for AovSink<'a> {
             ..McPixel::default()
         };
         mc.set_spread(&px.lums);
+        let mut spare = px.lums;
+        spare.clear();
+        self.1 = spare;
         (aov, mc)
     }
 }
