@@ -1,9 +1,10 @@
 //! Pixels: samples from a [`PixelSampler`], the parallel render, and re-tracing one pixel into
 //! a tree.
 //!
-//! One code path: [`render_pixel`] is generic over the integrator, the sampler and the
-//! recorder; the image uses [`NoopRecorder`], the tree [`TreeRecorder`], so a recorded pixel
-//! equals the rendered one bit for bit.
+//! One code path: the pixel loop ([`pixel_loop`]) is generic over the integrator, the sampler
+//! and a per-sample sink holding the recorder; the image uses [`NoopRecorder`], the tree
+//! [`TreeRecorder`], so a recorded pixel equals the rendered one bit for bit, and the AOV
+//! render and the denoiser's gather are sinks of the same loop.
 
 use crate::geometry::Shape;
 use crate::math::{Ray, Rgb};
@@ -291,8 +292,8 @@ fn render_recorded<R: Recorder + Default, I: Integrator, S: PixelSampler>(
 
 /// Trace every sample of pixel (x, y) into `rec`; returns the pixel radiance (the mean of its
 /// samples) and how many samples it took: `spp`, or with `settings.adaptive` `max_spp` where
-/// the pixel is refined (see [`adaptive`]). The pixel loop ([`pixel_loop::pixel`]) with the
-/// sink that reports each recorded sample through `on_sample`.
+/// the pixel is refined (the two passes of `src/render_adaptive.rs`). The pixel loop
+/// ([`pixel_loop::pixel`]) with the sink that reports each recorded sample through `on_sample`.
 pub fn render_pixel_counted<I: Integrator, S: PixelSampler, R: Recorder>(
     integrator: &I,
     sampler: &mut S,

@@ -1,6 +1,6 @@
 //! The one pixel loop: for a pixel, choose its samples (the scene's `spp`, or with
-//! `settings.adaptive` the two passes of [`super::adaptive`]), draw each camera sample from the
-//! scene's sampler ([`camera_sample`]), trace it, apply the NaN rule
+//! `settings.adaptive` the two passes of `src/render_adaptive.rs`), draw each camera sample
+//! from the scene's sampler (`camera_sample`), trace it, apply the NaN rule
 //! ([`RayCounts::keep_sample`]) and hand it to a [`SampleSink`]. The render ([`Beauty`]), a
 //! pixel's tree (`render_pixel_counted`), the AOV render (`crate::aov::render_aovs`: the
 //! split by light path expression and the debug views' statistics) and the denoiser's feature
