@@ -1,9 +1,10 @@
 //! Pixels: samples from a [`PixelSampler`], the parallel render, and re-tracing one pixel into
 //! a tree.
 //!
-//! One code path: [`render_pixel`] is generic over the integrator, the sampler and the
-//! recorder; the image uses [`NoopRecorder`], the tree [`TreeRecorder`], so a recorded pixel
-//! equals the rendered one bit for bit.
+//! One code path: the pixel loop ([`pixel_loop`]) is generic over the integrator, the sampler
+//! and a per-sample sink holding the recorder; the image uses [`NoopRecorder`], the tree
+//! [`TreeRecorder`], so a recorded pixel equals the rendered one bit for bit, and the AOV
+//! render and the denoiser's gather are sinks of the same loop.
 
 use crate::geometry::Shape;
 use crate::math::{Ray, Rgb};
@@ -251,8 +252,6 @@ fn uses_packets<R: Recorder, I: Integrator>(integrator: &I) -> bool {
             .any(|o| matches!(o.shape, Shape::Mesh(_)))
 }
 
-type Row = (Vec<Rgb>, Vec<(u32, u32)>, Vec<u32>, RayCounts);
-
 fn render_recorded<R: Recorder + Default, I: Integrator, S: PixelSampler>(
     integrator: &I,
     sampler: &S,
@@ -260,86 +259,53 @@ fn render_recorded<R: Recorder + Default, I: Integrator, S: PixelSampler>(
 ) -> (Image, RenderStats, DiagnosticMap) {
     let scene = integrator.scene();
     let (w, h) = (scene.camera.width, scene.camera.height);
-    let done = std::sync::atomic::AtomicU32::new(0);
-    let rows: Vec<Row> = if uses_packets::<R, I>(integrator) {
+    let spp = scene.settings.spp.max(1);
+    let rows: Vec<SinkRow<()>> = if uses_packets::<R, I>(integrator) {
+        let done = std::sync::atomic::AtomicU32::new(0);
         let on_band = |n| progress(done.fetch_add(n, std::sync::atomic::Ordering::Relaxed) + n);
         packet_bands::<R, I, S>(integrator, sampler, 0..h, &on_band)
             .into_iter()
             .flat_map(|(band, counts)| {
-                let rows: Vec<Row> = band
+                let rows: Vec<SinkRow<()>> = band
                     .chunks(w as usize)
                     .enumerate()
                     .map(|(i, row)| {
                         let counts = if i == 0 { counts } else { RayCounts::default() };
-                        let spp = scene.settings.spp.max(1);
-                        (row.to_vec(), Vec::new(), vec![spp; row.len()], counts)
+                        let row = row.iter().map(|&value| PixelOut {
+                            value,
+                            taken: spp,
+                            diag: (0, 0),
+                            out: (),
+                        });
+                        (row.collect(), counts)
                     })
                     .collect();
                 rows
             })
             .collect()
-    } else if let Some(a) = scene.settings.adaptive {
-        let on_row = || progress(done.fetch_add(1, std::sync::atomic::Ordering::Relaxed) + 1);
-        adaptive::rows::<R, I, S>(integrator, sampler, a, &on_row)
     } else {
-        (0..h)
-            .into_par_iter()
-            .map(|y| {
-                let mut counts = RayCounts::default();
-                let mut diag = Vec::new();
-                let taken = vec![scene.settings.spp.max(1); w as usize];
-                let mut rec = R::default();
-                let mut sampler = sampler.clone();
-                let row = (0..w)
-                    .map(|x| {
-                        let before = counts;
-                        let (rec, n) = (&mut rec, &mut counts);
-                        let l =
-                            render_pixel_sampled(integrator, &mut sampler, x, y, rec, n, |_| {});
-                        if R::DIAGNOSE {
-                            let self_hits = counts.self_hits - before.self_hits;
-                            let leaks = counts.leaks - before.leaks;
-                            diag.push((self_hits as u32, leaks as u32));
-                        }
-                        l
-                    })
-                    .collect();
-                progress(done.fetch_add(1, std::sync::atomic::Ordering::Relaxed) + 1);
-                (row, diag, taken, counts)
-            })
-            .collect()
+        pixel_loop::rows(integrator, sampler, || Beauty(R::default()), progress)
     };
-    let mut stats = RenderStats::default();
-    let mut pixels = Vec::with_capacity((w * h) as usize);
-    let mut map = DiagnosticMap {
-        width: w,
-        height: h,
-        ..DiagnosticMap::default()
-    };
-    let spp = scene.settings.spp.max(1);
-    for (y, (row, diag, taken, counts)) in rows.into_iter().enumerate() {
-        stats.rays += counts;
-        for &k in &taken {
-            stats.samples += u64::from(k);
-            stats.refined_pixels += u64::from(k > spp);
-        }
-        map.samples.extend(taken);
-        for (x, p) in row.into_iter().enumerate() {
-            pixels.push(stats.admit_pixel(p, x, y));
-        }
-        for (s, l) in diag {
-            stats.self_hit_pixels += u64::from(s > 0);
-            stats.leak_pixels += u64::from(l > 0);
-            map.self_hits.push(s);
-            map.leaks.push(l);
-        }
-    }
-    let image = Image {
-        width: w,
-        height: h,
-        pixels,
-    };
+    let (image, stats, map, _) = pixel_loop::assemble((w, h), spp, R::DIAGNOSE, rows);
     (image, stats, map)
+}
+
+/// Trace every sample of pixel (x, y) into `rec`; returns the pixel radiance (the mean of its
+/// samples) and how many samples it took: `spp`, or with `settings.adaptive` `max_spp` where
+/// the pixel is refined (the two passes of `src/render_adaptive.rs`). The pixel loop
+/// ([`pixel_loop::pixel`]) with the sink that reports each recorded sample through `on_sample`.
+pub fn render_pixel_counted<I: Integrator, S: PixelSampler, R: Recorder>(
+    integrator: &I,
+    sampler: &mut S,
+    x: u32,
+    y: u32,
+    rec: &mut R,
+    counts: &mut RayCounts,
+    on_sample: impl FnMut(SampleRecord),
+) -> (Rgb, u32) {
+    let mut sink = pixel_loop::Traced { rec, on_sample };
+    let (l, n, ()) = pixel_loop::pixel(integrator, sampler, x, y, &mut sink, counts);
+    (l, n)
 }
 
 #[path = "render_adaptive.rs"]
@@ -348,9 +314,11 @@ mod adaptive;
 mod image;
 #[path = "render_packets.rs"]
 mod packets;
-pub use adaptive::render_pixel_counted;
+#[path = "render_loop.rs"]
+pub mod pixel_loop;
 pub use image::{DiagnosticMap, Image, RenderStats};
 use packets::packet_bands;
+use pixel_loop::{Beauty, PixelOut, SinkRow};
 
 #[cfg(test)]
 #[path = "render_tests.rs"]

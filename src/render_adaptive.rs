@@ -9,17 +9,18 @@
 //! without them, on `benches/mitsuba-scenes/glass-emitters.json` at 4 spp, 83% of the remaining
 //! error sat in unrefined pixels beside refined ones.
 //!
-//! The render computes every pixel's first pass, then decides and traces the second passes;
-//! [`render_pixel_counted`] (and so `raytree trace`) traces the neighbours' first passes
-//! without recording, so it makes the same decision from the same bits and records exactly the
-//! samples the render used.
+//! The render computes every pixel's first pass, then decides and traces the second passes
+//! ([`rows`]); one pixel alone ([`pixel`], and so `render_pixel_counted` and `raytree trace`)
+//! traces the neighbours' first passes without recording, so it makes the same decision from
+//! the same bits and records exactly the samples the render used. Both hand every sample of the
+//! pixel to the loop's [`SampleSink`] in the same order (first pass, then second pass), so the
+//! AOV render and the denoiser's gather take the render's samples.
 
-use super::{Row, camera_sample};
+use super::pixel_loop::{Beauty, Camera, PixelOut, SampleSink, SinkRow, diag, one_sample};
 use crate::math::Rgb;
 use crate::sampling::{PixelSampler, Spread};
-use crate::scene::{AdaptiveDesc, IntegratorKind};
+use crate::scene::AdaptiveDesc;
 use crate::trace::{Integrator, NoopRecorder, RayCounts, Recorder};
-use crate::tree::SampleRecord;
 use rayon::prelude::*;
 
 /// The neighbours whose first-pass means enter a pixel's decision.
@@ -41,82 +42,52 @@ struct First {
     spread: Spread,
 }
 
-/// Trace every sample of pixel (x, y) into `rec`; returns the pixel radiance (the mean of its
-/// samples) and how many samples it took: `spp`, or with `settings.adaptive` `max_spp` where
-/// the pixel is refined (see the module documentation).
-pub fn render_pixel_counted<I: Integrator, S: PixelSampler, R: Recorder>(
+/// Every sample of pixel (x, y) into `sink` under `settings.adaptive` (see the module
+/// documentation): the pixel radiance (the mean of its samples), how many samples it took and
+/// the sink's result.
+pub(super) fn pixel<I: Integrator, S: PixelSampler, K: SampleSink>(
     integrator: &I,
     sampler: &mut S,
-    x: u32,
-    y: u32,
-    rec: &mut R,
+    a: AdaptiveDesc,
+    (x, y): (u32, u32),
+    sink: &mut K,
     counts: &mut RayCounts,
-    mut on_sample: impl FnMut(SampleRecord),
-) -> (Rgb, u32) {
+) -> (Rgb, u32, K::Out) {
     let scene = integrator.scene();
     let spp = scene.settings.spp.max(1);
-    let Some(a) = scene.settings.adaptive else {
-        // The loop as it was before adaptive antialiasing, filter and film hoisted.
-        let filter = scene.settings.filter.filter();
-        let film = integrator.film();
-        let mut sum = Rgb::ZERO;
-        for s in 0..spp {
-            let ((fx, fy), ray) = camera_sample(film, filter, sampler, x, y, s);
-            let (l, root) = integrator.camera_radiance(ray, sampler, rec, counts);
-            if counts.keep_sample(l, integrator.kind() == IntegratorKind::Whitted, (x, y, s)) {
-                sum += l;
-            }
-            if let Some(root) = root {
-                on_sample(SampleRecord {
-                    index: s,
-                    film: [fx, fy],
-                    root,
-                    radiance: l,
-                });
-            }
-        }
-        return (sum / f64::from(spp), spp);
-    };
-    let first = first_pass(integrator, sampler, x, y, rec, counts, &mut on_sample);
+    let mut px = K::Pixel::default();
+    let first = first_pass(integrator, sampler, x, y, sink, &mut px, counts);
     let total = a.max_spp(spp);
+    let unrefined = |sink: &mut K, px| (first.sum / f64::from(spp), spp, sink.finish(px, spp));
     if total <= spp {
-        return (first.sum / f64::from(spp), spp);
+        return unrefined(sink, px);
     }
     let (w, h) = (scene.camera.width, scene.camera.height);
     let mut scratch = RayCounts::default();
     let mut other = sampler.clone();
+    let mut quiet = Beauty(NoopRecorder);
     let means = NEIGHBOURS.iter().filter_map(|&(dx, dy)| {
         let (nx, ny) = (i64::from(x) + dx, i64::from(y) + dy);
         let inside = (0..i64::from(w)).contains(&nx) && (0..i64::from(h)).contains(&ny);
         inside.then(|| {
             let (nx, ny) = (nx as u32, ny as u32);
-            let rec = &mut NoopRecorder;
             let f = first_pass(
                 integrator,
                 &mut other,
                 nx,
                 ny,
-                rec,
+                &mut quiet,
+                &mut (),
                 &mut scratch,
-                &mut |_| {},
             );
             f.sum / f64::from(spp)
         })
     });
     if !refines(&a, &first, means) {
-        return (first.sum / f64::from(spp), spp);
+        return unrefined(sink, px);
     }
-    let sum = second_pass(
-        integrator,
-        sampler,
-        x,
-        y,
-        first.sum,
-        rec,
-        counts,
-        &mut on_sample,
-    );
-    (sum / f64::from(total), total)
+    let sum = second_pass(integrator, sampler, x, y, first.sum, sink, &mut px, counts);
+    (sum / f64::from(total), total, sink.finish(px, total))
 }
 
 /// Whether a pixel with first pass `own` and neighbours' first-pass `means` is refined.
@@ -129,166 +100,160 @@ fn refines(a: &AdaptiveDesc, own: &First, means: impl Iterator<Item = Rgb>) -> b
 }
 
 /// Samples `0..spp` of pixel (x, y).
-fn first_pass<I: Integrator, S: PixelSampler, R: Recorder>(
+fn first_pass<I: Integrator, S: PixelSampler, K: SampleSink>(
     integrator: &I,
     sampler: &mut S,
     x: u32,
     y: u32,
-    rec: &mut R,
+    sink: &mut K,
+    px: &mut K::Pixel,
     counts: &mut RayCounts,
-    on_sample: &mut impl FnMut(SampleRecord),
 ) -> First {
+    let cam = Camera::new(integrator);
     let mut f = First::default();
     for s in 0..integrator.scene().settings.spp.max(1) {
-        let l = one_sample(integrator, sampler, x, y, s, rec, counts, on_sample);
+        let l = kept(one_sample(
+            integrator,
+            cam,
+            sampler,
+            (x, y, s),
+            sink,
+            px,
+            counts,
+        ));
         f.sum += l;
         f.spread.add(l);
     }
     f
 }
 
+/// A sample's radiance as it enters the pixel's sum: a dropped sample enters as black.
+#[inline(always)]
+fn kept((l, kept): (Rgb, bool)) -> Rgb {
+    if kept { l } else { Rgb::ZERO }
+}
+
 /// Samples `spp..max_spp` of pixel (x, y) added to `sum` (the first pass's) in order, from a
 /// copy of `sampler` refined for the pass.
 #[allow(clippy::too_many_arguments)]
-fn second_pass<I: Integrator, S: PixelSampler, R: Recorder>(
+fn second_pass<I: Integrator, S: PixelSampler, K: SampleSink>(
     integrator: &I,
     sampler: &S,
     x: u32,
     y: u32,
     mut sum: Rgb,
-    rec: &mut R,
+    sink: &mut K,
+    px: &mut K::Pixel,
     counts: &mut RayCounts,
-    on_sample: &mut impl FnMut(SampleRecord),
 ) -> Rgb {
     let settings = &integrator.scene().settings;
     let spp = settings.spp.max(1);
     let total = settings.adaptive.map_or(spp, |a| a.max_spp(spp));
+    let cam = Camera::new(integrator);
     let mut second = sampler.clone();
     second.refine(spp, total - spp);
     for s in spp..total {
-        sum += one_sample(integrator, &mut second, x, y, s, rec, counts, on_sample);
+        sum += kept(one_sample(
+            integrator,
+            cam,
+            &mut second,
+            (x, y, s),
+            sink,
+            px,
+            counts,
+        ));
     }
     sum
 }
 
-/// Sample `s` of pixel (x, y): its radiance as it enters the pixel's sum (a non-finite path
-/// sample is dropped, counted and enters as black), recorded through `on_sample`.
-#[inline(always)]
-#[allow(clippy::too_many_arguments)]
-fn one_sample<I: Integrator, S: PixelSampler, R: Recorder>(
-    integrator: &I,
-    sampler: &mut S,
-    x: u32,
-    y: u32,
-    s: u32,
-    rec: &mut R,
-    counts: &mut RayCounts,
-    on_sample: &mut impl FnMut(SampleRecord),
-) -> Rgb {
-    let filter = integrator.scene().settings.filter.filter();
-    let ((fx, fy), ray) = camera_sample(integrator.film(), filter, sampler, x, y, s);
-    let (l, root) = integrator.camera_radiance(ray, sampler, rec, counts);
-    let whitted = integrator.kind() == IntegratorKind::Whitted;
-    let kept = if counts.keep_sample(l, whitted, (x, y, s)) {
-        l
-    } else {
-        Rgb::ZERO
-    };
-    if let Some(root) = root {
-        on_sample(SampleRecord {
-            index: s,
-            film: [fx, fy],
-            root,
-            radiance: l,
-        });
-    }
-    kept
-}
-
-/// The rows of an adaptive render (recorder `R`, rows in parallel): every pixel's first pass,
-/// then each pixel's decision and second pass; `progress` is called as second-pass rows finish.
-pub(super) fn rows<R: Recorder + Default, I: Integrator, S: PixelSampler>(
+/// The rows of an adaptive render through sinks from `make` (rows in parallel): every pixel's
+/// first pass, then each pixel's decision and second pass; `progress` is called as
+/// second-pass rows finish.
+pub(super) fn rows<I, S, K, F>(
     integrator: &I,
     sampler: &S,
     a: AdaptiveDesc,
+    make: F,
     progress: &(dyn Fn() + Sync),
-) -> Vec<Row> {
+) -> Vec<SinkRow<K::Out>>
+where
+    I: Integrator,
+    S: PixelSampler,
+    K: SampleSink,
+    F: Fn() -> K + Sync + Send,
+{
     let scene = integrator.scene();
     let (w, h) = (scene.camera.width, scene.camera.height);
     let spp = scene.settings.spp.max(1);
     let total = a.max_spp(spp);
-    let diag = |before: &RayCounts, after: &RayCounts| {
-        (
-            (after.self_hits - before.self_hits) as u32,
-            (after.leaks - before.leaks) as u32,
-        )
-    };
+    let diagnose = K::Rec::DIAGNOSE;
     type FirstRow = (Vec<First>, Vec<(u32, u32)>, RayCounts);
-    let first: Vec<FirstRow> = (0..h)
+    let first: Vec<(FirstRow, Vec<K::Pixel>)> = (0..h)
         .into_par_iter()
-        .map(|y| {
-            let (mut counts, mut rec, mut sampler) =
-                (RayCounts::default(), R::default(), sampler.clone());
-            let mut d = Vec::new();
+        .map_init(&make, |sink, y| {
+            let (mut counts, mut sampler) = (RayCounts::default(), sampler.clone());
+            let (mut d, mut data) = (Vec::new(), Vec::with_capacity(w as usize));
             let row = (0..w)
                 .map(|x| {
                     let before = counts;
-                    let f = first_pass(
-                        integrator,
-                        &mut sampler,
-                        x,
-                        y,
-                        &mut rec,
-                        &mut counts,
-                        &mut |_| {},
-                    );
-                    if R::DIAGNOSE {
+                    let mut px = K::Pixel::default();
+                    let f = first_pass(integrator, &mut sampler, x, y, sink, &mut px, &mut counts);
+                    if diagnose {
                         d.push(diag(&before, &counts));
                     }
+                    data.push(px);
                     f
                 })
                 .collect();
-            (row, d, counts)
+            ((row, d, counts), data)
         })
         .collect();
+    let (first, data): (Vec<FirstRow>, Vec<Vec<K::Pixel>>) = first.into_iter().unzip();
     let mean = |x: i64, y: i64| -> Option<Rgb> {
         let row = &first.get(usize::try_from(y).ok()?)?.0;
         Some(row.get(usize::try_from(x).ok()?)?.sum / f64::from(spp))
     };
-    (0..h)
-        .into_par_iter()
-        .map(|y| {
-            let (frow, fdiag, mut counts) = first[y as usize].clone();
-            let mut rec = R::default();
-            let mut d = Vec::new();
-            let mut taken = Vec::with_capacity(w as usize);
-            let pixels = (0..w)
-                .map(|x| {
-                    let f = frow[x as usize];
-                    let (cx, cy) = (i64::from(x), i64::from(y));
+    data.into_par_iter()
+        .enumerate()
+        .map_init(&make, |sink, (y, data)| {
+            let (frow, fdiag, _) = &first[y];
+            let mut counts = first[y].2;
+            let y = y as u32;
+            let pixels = data
+                .into_iter()
+                .enumerate()
+                .map(|(x, mut px)| {
+                    let f = frow[x];
+                    let (cx, cy) = (x as i64, i64::from(y));
                     let means = NEIGHBOURS
                         .iter()
                         .filter_map(|&(dx, dy)| mean(cx + dx, cy + dy));
                     let before = counts;
-                    let (l, n) = if total > spp && refines(&a, &f, means) {
-                        let (rec, c) = (&mut rec, &mut counts);
-                        let sum =
-                            second_pass(integrator, sampler, x, y, f.sum, rec, c, &mut |_| {});
+                    let x = x as u32;
+                    let (value, taken) = if total > spp && refines(&a, &f, means) {
+                        let c = &mut counts;
+                        let sum = second_pass(integrator, sampler, x, y, f.sum, sink, &mut px, c);
                         (sum / f64::from(total), total)
                     } else {
                         (f.sum / f64::from(spp), spp)
                     };
-                    if R::DIAGNOSE {
+                    let diag = if diagnose {
                         let (s, l) = diag(&before, &counts);
                         let (s0, l0) = fdiag[x as usize];
-                        d.push((s0 + s, l0 + l));
+                        (s0 + s, l0 + l)
+                    } else {
+                        (0, 0)
+                    };
+                    PixelOut {
+                        value,
+                        taken,
+                        diag,
+                        out: sink.finish(px, taken),
                     }
-                    taken.push(n);
-                    l
                 })
                 .collect();
             progress();
-            (pixels, d, taken, counts)
+            (pixels, counts)
         })
         .collect()
 }

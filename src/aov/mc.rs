@@ -5,7 +5,8 @@ use super::AovRender;
 /// What one pixel's samples did.
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
 pub struct McPixel {
-    /// Samples taken (`settings.spp`; a dropped sample counts, as black).
+    /// Samples taken (`settings.spp`, or `max_spp` where adaptive antialiasing refined the
+    /// pixel; a dropped sample counts, as black).
     pub samples: u32,
     /// Samples whose radiance was NaN or infinite, dropped (counted black).
     pub dropped: u32,

@@ -42,20 +42,15 @@ fn parse(a: &RenderArgs) -> Result<(Vec<raytree::aov::Aov>, Vec<McView>)> {
 
 /// Render with AOVs and debug views.
 pub fn run(a: &RenderArgs) -> Result<()> {
-    if a.diagnose || a.spp_map.is_some() {
+    if a.diagnose {
         bail!(
-            "--diagnose and --spp-map do not combine with --aov or --debug-view (render them separately)"
+            "--diagnose does not combine with --aov or --debug-view (they trace with different recorders): render them in two runs"
         );
     }
     let format = image_format(&a.output)?;
     let (aovs, views) = parse(a)?;
     let loaded = load(a.scene.as_deref(), &a.overrides)?;
     let scene = &loaded.scene;
-    if scene.settings.adaptive.is_some() {
-        bail!(
-            "--aov and --debug-view do not combine with adaptive antialiasing (settings.adaptive or --adaptive) yet"
-        );
-    }
     let whitted = scene.settings.integrator == IntegratorKind::Whitted;
     if whitted && !aovs.is_empty() {
         bail!("--aov: {}", raytree::aov::AovError::Whitted);
@@ -84,6 +79,7 @@ pub fn run(a: &RenderArgs) -> Result<()> {
             .iter()
             .map(|v| beside(&a.output, &format!("view-{}", v.file_name(&names)), "png")),
     );
+    paths.extend(a.spp_map.clone());
     if let Some(p) = paths
         .iter()
         .enumerate()
@@ -118,6 +114,17 @@ pub fn run(a: &RenderArgs) -> Result<()> {
     for v in &views {
         files.push(false_colour(&r, v, &names)?);
     }
+    if a.spp_map.is_some() {
+        let samples = r.mc.iter().map(|p| p.samples).collect();
+        let (width, height) = (r.beauty.width, r.beauty.height);
+        let map = raytree::DiagnosticMap {
+            width,
+            height,
+            samples,
+            ..raytree::DiagnosticMap::default()
+        };
+        files.push(super::spp_map::png(&map)?);
+    }
     for (p, bytes) in pending.into_iter().zip(&files) {
         p.commit(bytes)?;
     }
@@ -143,9 +150,18 @@ fn report(
     sayln!(
         "wrote {} ({w}x{h}, {} spp) in {secs:.3} s, {} rays",
         a.output.display(),
-        r.mc.first().map_or(0, |p| p.samples),
+        r.mc.iter().map(|p| p.samples).min().unwrap_or(0),
         r.stats.rays.total()
     )?;
+    if r.stats.refined_pixels > 0 {
+        sayln!(
+            "adaptive: {} of {} pixels refined, {} samples ({:.2} per pixel)",
+            r.stats.refined_pixels,
+            r.mc.len(),
+            r.stats.samples,
+            r.stats.samples as f64 / r.mc.len().max(1) as f64
+        )?;
+    }
     for (k, img) in r.aovs.iter().enumerate() {
         let share = if total > 0.0 { lum(img) / total } else { 0.0 };
         sayln!(
@@ -155,8 +171,15 @@ fn report(
             100.0 * share
         )?;
     }
-    for p in &paths[1 + names.len()..] {
+    let views = &paths[1 + names.len()..paths.len() - usize::from(a.spp_map.is_some())];
+    for p in views {
         sayln!("debug view: {}", p.display())?;
+    }
+    if let Some(p) = &a.spp_map {
+        sayln!(
+            "wrote {} (samples per pixel, white = the most)",
+            p.display()
+        )?;
     }
     if let Some((x, y, s)) = r.stats.rays.first_dropped {
         warnln!(

@@ -5,8 +5,9 @@ use super::args::RenderArgs;
 use super::output::{ImageFormat, Inputs, Pending, encode_counting};
 use super::say::sayln;
 use anyhow::Result;
-use raytree::denoise::{DenoiseParams, Features, denoise, gather};
-use raytree::{Image, RenderStats, Scene, SceneIntegrator};
+use raytree::denoise::{DenoiseParams, Features, denoise, gather_counted};
+use raytree::sampling::SceneSampler;
+use raytree::{DiagnosticMap, Image, RenderStats, Scene, SceneIntegrator};
 use std::cell::RefCell;
 use std::path::Path;
 use std::time::Instant;
@@ -52,8 +53,15 @@ impl Guides {
 
     /// Render with the features (the same image as the plain render) and, with `--denoise`,
     /// return the denoised image; prints the filter's time.
-    pub fn render(&self, scene: &Scene, progress: &(dyn Fn(u32) + Sync)) -> (Image, RenderStats) {
-        let (image, stats, features) = gather(&SceneIntegrator::new(scene), progress);
+    /// Also returns the samples each pixel took (for `--spp-map`).
+    pub fn render(
+        &self,
+        scene: &Scene,
+        progress: &(dyn Fn(u32) + Sync),
+    ) -> (Image, RenderStats, DiagnosticMap) {
+        let sampler = SceneSampler::for_settings(&scene.settings);
+        let (image, stats, features, map) =
+            gather_counted(&SceneIntegrator::new(scene), &sampler, progress);
         let image = if self.denoise {
             let t = Instant::now();
             let out = denoise(&image, &features, &DenoiseParams::default());
@@ -67,7 +75,7 @@ impl Guides {
             image
         };
         *self.features.borrow_mut() = Some(features);
-        (image, stats)
+        (image, stats, map)
     }
 
     /// Write the albedo and normal images (with `--features`).

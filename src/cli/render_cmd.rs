@@ -10,14 +10,6 @@ use std::time::Instant;
 
 /// Render the scene to a PNG or EXR file and report time and rays.
 pub fn run(a: &RenderArgs) -> Result<()> {
-    if !a.aov.is_empty() || !a.debug_view.is_empty() {
-        if a.denoise || a.features {
-            anyhow::bail!(
-                "--denoise and --features do not combine with --aov or --debug-view: render them in two runs"
-            );
-        }
-        return super::aov_cmd::run(a);
-    }
     let format = image_format(&a.output)?;
     if let Some(p) = &a.spp_map
         && image_format(p)? != ImageFormat::Png
@@ -32,22 +24,20 @@ pub fn run(a: &RenderArgs) -> Result<()> {
             p.display()
         );
     }
+    if !a.aov.is_empty() || !a.debug_view.is_empty() {
+        if a.denoise || a.features {
+            anyhow::bail!(
+                "--denoise and --features do not combine with --aov or --debug-view: render them in two runs"
+            );
+        }
+        return super::aov_cmd::run(a);
+    }
     let loaded = load(a.scene.as_deref(), &a.overrides)?;
     let scene = &loaded.scene;
     let mib = super::budget::mib(a.overrides.max_memory);
     super::budget::check_image(scene, mib)?;
     if a.denoise || a.features {
         super::budget::check_image_with(scene, mib, super::denoise_out::PIXEL_BYTES)?;
-        if a.spp_map.is_some() {
-            anyhow::bail!(
-                "--spp-map does not combine with --denoise or --features: render them in two runs"
-            );
-        }
-        if scene.settings.adaptive.is_some() {
-            anyhow::bail!(
-                "--denoise and --features do not combine with adaptive antialiasing (settings.adaptive or --adaptive) yet"
-            );
-        }
     }
     let inputs = Inputs::new(loaded.inputs.iter().map(|p| p.as_path()));
     let pending = Pending::create(&a.output, &inputs)?;
@@ -66,8 +56,7 @@ pub fn run(a: &RenderArgs) -> Result<()> {
     let start = Instant::now();
     let progress = |rows| bar.set_position(u64::from(rows));
     let (image, stats, map) = if let Some(g) = &guides {
-        let (image, stats) = g.render(scene, &progress);
-        (image, stats, raytree::DiagnosticMap::default())
+        g.render(scene, &progress)
     } else if a.diagnose {
         raytree::render_diagnosed(scene, &progress)
     } else if a.spp_map.is_some() {
@@ -126,7 +115,8 @@ pub fn run(a: &RenderArgs) -> Result<()> {
         )?;
     }
     if scene.settings.integrator == raytree::scene::IntegratorKind::Path {
-        let samples = u64::from(w) * u64::from(h) * u64::from(scene.settings.spp);
+        // The samples taken (adaptive antialiasing's refined pixels take more than spp).
+        let samples = stats.samples;
         sayln!(
             "path: {samples} samples ({:.0} samples/s), diffuse bounces {}, rr depth {}, sampler {}",
             samples as f64 / secs,

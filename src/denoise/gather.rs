@@ -1,26 +1,78 @@
 //! The render with feature buffers: the same samples as [`crate::render::render_sampled`] (the
-//! same camera samples, integrator calls and sum, so the same image bit for bit), plus per pixel
-//! the mean albedo and normal of its samples' feature rays and the variance of its mean
-//! luminance.
+//! same pixel loop, [`crate::render::pixel_loop`], with adaptive antialiasing's passes when the
+//! scene has them, so the same image bit for bit), plus per pixel the mean albedo and normal of
+//! its samples' feature rays and the variance of its mean luminance. With adaptive
+//! antialiasing a refined pixel's features are over all its samples; [`Features::spp`] is the
+//! first pass's `spp` (the fewest a pixel takes).
 
 use super::Features;
 use super::features::first_non_delta;
 use crate::bsdf::luminance;
 use crate::math::Rgb;
-use crate::render::{Image, RenderStats, camera_sample};
+use crate::render::pixel_loop::{self, Sample, SampleSink};
+use crate::render::{DiagnosticMap, Image, RenderStats};
 use crate::sampling::{PixelSampler, SceneSampler};
-use crate::scene::IntegratorKind;
-use crate::trace::{Integrator, NoopRecorder, RayCounts, Tracer};
+use crate::trace::{Integrator, NoopRecorder, Tracer};
 use glam::DVec3;
-use rayon::prelude::*;
 
-/// One pixel's beauty value and features.
+/// One pixel's features.
 struct Px {
-    color: Rgb,
     albedo: Rgb,
     normal: DVec3,
     variance: f64,
     albedo_variance: f64,
+}
+
+/// The gather's sink of the pixel loop: each sample's feature ray
+/// ([`first_non_delta`] of its camera ray) and luminance.
+struct FeatureSink<'a>(&'a Tracer<'a>, NoopRecorder);
+
+/// One pixel's sums while its samples come in.
+#[derive(Default)]
+struct Sums {
+    albedo: Rgb,
+    normal: DVec3,
+    /// Sum and sum of squares of the finite samples' luminance, and their number.
+    m: (f64, f64, u32),
+    /// Sum and sum of squares of the albedo's luminance.
+    a: (f64, f64),
+}
+
+impl SampleSink for FeatureSink<'_> {
+    type Rec = NoopRecorder;
+    type Pixel = Sums;
+    type Out = Px;
+
+    #[inline(always)]
+    fn recorder(&mut self) -> &mut NoopRecorder {
+        &mut self.1
+    }
+
+    fn sample(&mut self, px: &mut Sums, s: &Sample) {
+        let f = first_non_delta(self.0, s.ray);
+        if s.radiance.is_finite() {
+            let y = luminance(s.radiance);
+            px.m.0 += y;
+            px.m.1 += y * y;
+            px.m.2 += 1;
+        }
+        px.albedo += f.albedo;
+        let ya = luminance(f.albedo);
+        px.a.0 += ya;
+        px.a.1 += ya * ya;
+        px.normal += f.normal;
+    }
+
+    fn finish(&mut self, px: Sums, taken: u32) -> Px {
+        let k = f64::from(taken);
+        Px {
+            albedo: px.albedo / k,
+            normal: px.normal / k,
+            // Variance of the mean: the unbiased sample variance over n.
+            variance: variance_of_mean(px.m.0, px.m.1, px.m.2),
+            albedo_variance: variance_of_mean(px.a.0, px.a.1, taken),
+        }
+    }
 }
 
 /// [`gather_sampled`] with the scene's default sampler, as [`crate::render::render_with`].
@@ -32,75 +84,34 @@ pub fn gather<I: Integrator>(
     gather_sampled(integrator, &sampler, progress)
 }
 
-/// Render every pixel as [`crate::render::render_sampled`] does (rows in parallel, copies of
-/// `sampler`), and gather the features. `progress` is called with the rows finished so far.
+/// Render every pixel as [`crate::render::render_sampled`] does (the pixel loop, rows in
+/// parallel, copies of `sampler`; with `settings.adaptive` its two passes), and gather the
+/// features over each pixel's samples. `progress` is called with the rows finished so far.
 pub fn gather_sampled<I: Integrator, S: PixelSampler>(
     integrator: &I,
     sampler: &S,
     progress: &(dyn Fn(u32) + Sync),
 ) -> (Image, RenderStats, Features) {
+    let (image, stats, features, _) = gather_counted(integrator, sampler, progress);
+    (image, stats, features)
+}
+
+/// [`gather_sampled`] that also returns the samples each pixel took
+/// ([`DiagnosticMap::samples`], as [`crate::render::render_sample_map`]'s; its self-hit and
+/// leak counts stay empty).
+pub fn gather_counted<I: Integrator, S: PixelSampler>(
+    integrator: &I,
+    sampler: &S,
+    progress: &(dyn Fn(u32) + Sync),
+) -> (Image, RenderStats, Features, DiagnosticMap) {
     let scene = integrator.scene();
     let (w, h) = (scene.camera.width, scene.camera.height);
     let spp = scene.settings.spp.max(1);
-    let filter = scene.settings.filter.filter();
-    let film = integrator.film();
     let tracer = Tracer::new(scene);
-    let whitted = integrator.kind() == IntegratorKind::Whitted;
-    let done = std::sync::atomic::AtomicU32::new(0);
-    let rows: Vec<(Vec<Px>, RayCounts)> = (0..h)
-        .into_par_iter()
-        .map(|y| {
-            let mut counts = RayCounts::default();
-            let mut sampler = sampler.clone();
-            let row = (0..w)
-                .map(|x| {
-                    let (mut sum, mut albedo, mut normal) = (Rgb::ZERO, Rgb::ZERO, DVec3::ZERO);
-                    let (mut m1, mut m2, mut n) = (0.0, 0.0, 0u32);
-                    let (mut a1, mut a2) = (0.0, 0.0);
-                    for s in 0..spp {
-                        let (_, ray) = camera_sample(film, filter, &mut sampler, x, y, s);
-                        let f = first_non_delta(&tracer, ray);
-                        let (l, _) = integrator.camera_radiance(
-                            ray,
-                            &mut sampler,
-                            &mut NoopRecorder,
-                            &mut counts,
-                        );
-                        if counts.keep_sample(l, whitted, (x, y, s)) {
-                            sum += l;
-                        }
-                        if l.is_finite() {
-                            let y = luminance(l);
-                            m1 += y;
-                            m2 += y * y;
-                            n += 1;
-                        }
-                        albedo += f.albedo;
-                        let ya = luminance(f.albedo);
-                        a1 += ya;
-                        a2 += ya * ya;
-                        normal += f.normal;
-                    }
-                    let k = f64::from(spp);
-                    // Variance of the mean: the unbiased sample variance over n.
-                    let variance = variance_of_mean(m1, m2, n);
-                    let albedo_variance = variance_of_mean(a1, a2, spp);
-                    Px {
-                        color: sum / k,
-                        albedo: albedo / k,
-                        normal: normal / k,
-                        variance,
-                        albedo_variance,
-                    }
-                })
-                .collect();
-            progress(done.fetch_add(1, std::sync::atomic::Ordering::Relaxed) + 1);
-            (row, counts)
-        })
-        .collect();
-    let mut stats = RenderStats::default();
+    let make = || FeatureSink(&tracer, NoopRecorder);
+    let rows = pixel_loop::rows(integrator, sampler, make, progress);
+    let (image, stats, map, outs) = pixel_loop::assemble((w, h), spp, false, rows);
     let n = (w * h) as usize;
-    let mut pixels = Vec::with_capacity(n);
     let mut features = Features {
         width: w,
         height: h,
@@ -109,26 +120,17 @@ pub fn gather_sampled<I: Integrator, S: PixelSampler>(
         variance: Vec::with_capacity(n),
         albedo_variance: Vec::with_capacity(n),
         spp,
-        stochastic: !integrator.traces_packets() || film.has_lens(),
+        stochastic: !integrator.traces_packets() || integrator.film().has_lens(),
     };
-    for (y, (row, counts)) in rows.into_iter().enumerate() {
-        stats.rays += counts;
-        for (x, p) in row.into_iter().enumerate() {
-            pixels.push(stats.admit_pixel(p.color, x, y));
-            let finite = |v: Rgb| if v.is_finite() { v } else { Rgb::ZERO };
-            features.albedo.push(finite(p.albedo));
-            features.normal.push(finite(p.normal));
-            let finite_f = |v: f64| if v.is_finite() { v } else { 0.0 };
-            features.variance.push(finite_f(p.variance));
-            features.albedo_variance.push(finite_f(p.albedo_variance));
-        }
+    let finite = |v: Rgb| if v.is_finite() { v } else { Rgb::ZERO };
+    let finite_f = |v: f64| if v.is_finite() { v } else { 0.0 };
+    for p in outs {
+        features.albedo.push(finite(p.albedo));
+        features.normal.push(finite(p.normal));
+        features.variance.push(finite_f(p.variance));
+        features.albedo_variance.push(finite_f(p.albedo_variance));
     }
-    let image = Image {
-        width: w,
-        height: h,
-        pixels,
-    };
-    (image, stats, features)
+    (image, stats, features, map)
 }
 
 /// The variance of the mean of `n` values from their sum `s1` and sum of squares `s2` (the

@@ -14,7 +14,7 @@ mod tests;
 
 pub use atrous::{DenoiseParams, denoise};
 pub use features::{FeatureSample, MAX_DELTA_BOUNCES, first_non_delta};
-pub use gather::{gather, gather_sampled};
+pub use gather::{gather, gather_counted, gather_sampled};
 
 use crate::math::Rgb;
 use crate::render::Image;

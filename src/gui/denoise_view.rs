@@ -58,12 +58,6 @@ impl DenoiseView {
                 DenoiseState::Unavailable("not with progressive rendering"),
             );
         }
-        if doc.scene.settings.adaptive.is_some() {
-            return (
-                None,
-                DenoiseState::Unavailable("not with adaptive antialiasing"),
-            );
-        }
         let Some(key) = key(doc) else {
             return (None, DenoiseState::Waiting);
         };
