@@ -5,27 +5,12 @@
 use egui_kittest::Harness;
 use egui_kittest::kittest::Queryable;
 use raytree::gui::progressive::{Options, Stop};
-use raytree::gui::{Command, Files, InspectorApp, Session};
-use std::path::Path;
-use std::sync::Arc;
-use std::time::SystemTime;
+use raytree::gui::{Command, InspectorApp};
+
+mod gui_support;
+use gui_support::*;
 
 const CORNELL: &str = include_str!("../fixtures/cornell-box.json");
-
-/// The Cornell box, read-only.
-struct OneScene;
-
-impl Files for OneScene {
-    fn read(&self, _: &Path) -> std::io::Result<String> {
-        Ok(CORNELL.to_owned())
-    }
-    fn modified(&self, _: &Path) -> Option<SystemTime> {
-        Some(SystemTime::UNIX_EPOCH)
-    }
-    fn write(&self, _: &Path, _: &[u8]) -> std::io::Result<()> {
-        Err(std::io::Error::other("read-only"))
-    }
-}
 
 fn has(h: &Harness<'_, InspectorApp>, text: &str) -> bool {
     h.query_all_by_label_contains(text).next().is_some()
@@ -37,22 +22,7 @@ fn ticking_progressive_shows_the_noise_estimate_and_the_stop() {
         s.camera = s.camera.with_size(48, 48);
         Ok(())
     });
-    let session = Session::new(
-        Some("cornell-box.json".into()),
-        Box::new(OneScene),
-        adjust,
-        Arc::new(|| {}),
-    );
-    let mut h = Harness::builder()
-        .with_size([1500.0, 950.0])
-        .with_max_steps(16)
-        .build_ui_state(
-            |ui, app: &mut InspectorApp| app.show(ui),
-            InspectorApp::new(session),
-        );
-    h.run();
-    h.state_mut().session.wait_render();
-    h.run();
+    let mut h = read_only_inspector(CORNELL, adjust);
     assert!(!h.state().session.doc.progressive.options.on);
     assert!(!has(&h, "stop at error"));
     assert!(!has(&h, "noise "));

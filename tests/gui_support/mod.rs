@@ -83,3 +83,42 @@ pub fn click_pixel(h: &mut Harness<'static, InspectorApp>, x: u32, y: u32) {
     }
     h.run();
 }
+
+/// One scene, read-only: every path reads `text`, writes fail.
+pub struct ReadOnly(pub &'static str);
+
+impl Files for ReadOnly {
+    fn read(&self, _: &Path) -> std::io::Result<String> {
+        Ok(self.0.to_owned())
+    }
+    fn modified(&self, _: &Path) -> Option<SystemTime> {
+        Some(SystemTime::UNIX_EPOCH)
+    }
+    fn write(&self, _: &Path, _: &[u8]) -> std::io::Result<()> {
+        Err(std::io::Error::other("read-only"))
+    }
+}
+
+/// The inspector on the read-only scene `text` (adjusted by `adjust`) in a 1500x950 window,
+/// its render finished. Up to 16 steps to settle: a frame can see the worker's deliveries
+/// (image, then statistics) one at a time.
+pub fn read_only_inspector(
+    text: &'static str,
+    adjust: raytree::gui::Adjust,
+) -> Harness<'static, InspectorApp> {
+    let session = raytree::gui::Session::new(
+        Some("scene.json".into()),
+        Box::new(ReadOnly(text)),
+        adjust,
+        Arc::new(|| {}),
+    );
+    let mut h = Harness::builder()
+        .with_size([1500.0, 950.0])
+        .with_max_steps(16)
+        .build_ui_state(
+            |ui, app: &mut InspectorApp| app.show(ui),
+            InspectorApp::new(session),
+        );
+    settle(&mut h);
+    h
+}
