@@ -24,7 +24,7 @@ impl Scene {
         cost: &mut [TraversalCost],
     ) {
         assert!(rays.len() <= PACKET && hits.len() >= rays.len() && cost.len() >= rays.len());
-        if self.accel.is_for(self.objects.len()) {
+        if self.accel.single_rays(self.objects.len()) {
             for (i, ray) in rays.iter().enumerate() {
                 hits[i] = self.intersect_counted(ray, f64::INFINITY, &mut cost[i]);
             }
@@ -73,7 +73,7 @@ impl Scene {
         let n = rays.len();
         assert!(n <= PACKET && t_max.len() >= n && blocked.len() >= n);
         let mut cost = TraversalCost::default();
-        if self.accel.is_for(self.objects.len()) {
+        if self.accel.single_rays(self.objects.len()) {
             for i in 0..n {
                 blocked[i] = self.occluded(&rays[i], t_max[i], &mut cost);
             }
