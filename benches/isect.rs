@@ -11,7 +11,8 @@
 //! keeps its fastest of the passes, so load from other processes, which only adds time, hits
 //! both alike. Both must give the same answers (checked).
 //!
-//! Run: `cargo bench --bench isect` (`-- --passes N`, default 9). Figures: docs/cost.md.
+//! Run: `cargo bench --bench isect` (`-- --passes N`, default 9; `-- --only caustic` for one
+//! scene). Figures: docs/cost.md.
 
 use glam::DVec3;
 use raytree::Scene;
@@ -100,8 +101,16 @@ fn main() {
         .position(|a| a == "--passes")
         .and_then(|i| args.get(i + 1)?.parse().ok())
         .unwrap_or(9);
+    // `--only NAME`: the scenes whose path contains NAME (for profiling).
+    let only = args
+        .iter()
+        .position(|a| a == "--only")
+        .and_then(|i| args.get(i + 1).cloned());
     eprintln!("one thread, fastest of {passes} alternated passes; Mrays/s (closest + any-hit)");
     for path in SCENES {
+        if only.as_ref().is_some_and(|o| !path.contains(o.as_str())) {
+            continue;
+        }
         let src = std::fs::read_to_string(path).expect("scene file");
         let s = Scene::from_json(&src).expect("valid scene");
         let r = rays(&s);

@@ -15,7 +15,7 @@ mod spawn;
 
 pub(crate) use crate::mesh::triangle::triangle_t;
 use intersect::{accept, box_normal, slab_interval, sphere_hit, sphere_roots};
-pub(crate) use prepared::Prepared;
+pub(crate) use prepared::{Prepared, Shear};
 use reject::{plane_out_of_range, quad_surely_missed};
 pub use spawn::{SELF_HIT_FRACTION, gamma};
 

@@ -4,7 +4,8 @@
 //!
 //! [`Prepared::t`] is the `t` of [`Shape::intersect`] bit for bit: the same functions in the same
 //! order on the same values (the ray's shear for the watertight test is computed once per ray,
-//! and [`ShearedRay::t`] is exactly `triangle_t`). [`Prepared::normal`] is its normal for that
+//! once per ray and only if some flat shape survives its rejection, and [`ShearedRay::t`] is
+//! exactly `triangle_t`). [`Prepared::normal`] is its normal for that
 //! `t`. The tests are in `src/scene/accel/tests.rs`, against [`Shape::intersect`].
 
 use super::Shape;
@@ -13,6 +14,9 @@ use super::reject::{QuadFrame, plane_out_of_range};
 use crate::math::Ray;
 use crate::mesh::triangle::ShearedRay;
 use glam::DVec3;
+
+/// The watertight test's per-ray shear, computed at the first flat shape that needs it.
+pub(crate) type Shear = std::cell::OnceCell<Option<ShearedRay>>;
 
 /// A non-mesh shape with its per-shape precomputation; meshes keep their own BVH and are
 /// tested by the caller.
@@ -54,17 +58,19 @@ impl Prepared {
         }
     }
 
-    /// Whether the watertight test (and so [`ShearedRay`]) serves this shape.
-    #[must_use]
-    pub(crate) fn is_flat(&self) -> bool {
-        matches!(self, Prepared::Triangle { .. } | Prepared::Quad { .. })
-    }
-
-    /// The `t` of [`Shape::intersect`] (`None` where it misses); `sheared` is
-    /// `ShearedRay::new(ray)`, needed by flat shapes only. Meshes: `None` (the caller's).
+    /// The `t` of [`Shape::intersect`] (`None` where it misses); `sheared` holds
+    /// `ShearedRay::new(ray)` once a flat shape has needed it (a fresh cell for each ray).
+    /// Meshes: `None` (the caller's).
     #[inline]
     #[must_use]
-    pub(crate) fn t(&self, ray: &Ray, sheared: Option<&ShearedRay>, t_max: f64) -> Option<f64> {
+    pub(crate) fn t(&self, ray: &Ray, sheared: &Shear, t_max: f64) -> Option<f64> {
+        self.t_inline(ray, sheared, t_max)
+    }
+
+    /// [`Prepared::t`], always inlined (for the scan of a scene of planes and spheres).
+    #[inline(always)]
+    #[must_use]
+    pub(crate) fn t_inline(&self, ray: &Ray, sheared: &Shear, t_max: f64) -> Option<f64> {
         let t = match *self {
             Prepared::Sphere { center, radius } => {
                 let (t0, t1) = sphere_roots(center, radius, ray)?;
@@ -85,7 +91,10 @@ impl Prepared {
                 if plane_out_of_range(vertices[0], normal, ray, t_max) {
                     return None;
                 }
-                sheared?.t(&vertices)?
+                sheared
+                    .get_or_init(|| ShearedRay::new(ray))
+                    .as_ref()?
+                    .t(&vertices)?
             }
             Prepared::Quad {
                 ref vertices,
@@ -95,7 +104,7 @@ impl Prepared {
                 if frame.surely_missed(vertices[0], normal, ray, t_max) {
                     return None;
                 }
-                let s = sheared?;
+                let s = sheared.get_or_init(|| ShearedRay::new(ray)).as_ref()?;
                 let [v0, v1, v2, v3] = *vertices;
                 s.t(&[v0, v1, v2]).or_else(|| s.t(&[v0, v2, v3]))?
             }

@@ -11,9 +11,8 @@
 
 use super::{Hit, Object, Scene};
 use crate::bvh::{Aabb, BoxRay, Bvh, TraversalCost, Visit};
-use crate::geometry::{Prepared, Shape};
+use crate::geometry::{Prepared, Shape, Shear};
 use crate::math::Ray;
-use crate::mesh::triangle::ShearedRay;
 use rayon::prelude::*;
 use small::Groups;
 
@@ -39,8 +38,6 @@ pub struct Accel {
     /// A small scene's spheres, tested without their bounds (empty with a BVH).
     spheres: Vec<u32>,
     objects: usize,
-    /// Whether any object is a triangle or a quad (the watertight test's shear is needed).
-    flat: bool,
     /// Whether any object is a mesh.
     mesh: bool,
 }
@@ -85,7 +82,6 @@ impl Accel {
         Self {
             bvh,
             groups,
-            flat: prepared.iter().any(Prepared::is_flat),
             mesh: prepared.contains(&Prepared::Mesh),
             prepared,
             planes,
@@ -180,17 +176,19 @@ impl Scene {
         let q = Query::new(self, ray);
         let mut best: Option<Best> = None;
         if self.accel.unboxed() {
+            // Planes and spheres only: no mesh, no shear; the tests inlined into the loop.
             let mut t_max = t_max;
-            for i in 0..n {
-                if let Some((t, triangle)) = q.test(i, t_max, cost) {
+            for (i, p) in self.accel.prepared.iter().enumerate() {
+                if let Some(t) = p.t_inline(ray, &q.sheared, t_max) {
                     t_max = t;
                     best = Some(Best {
                         t,
                         object: i,
-                        triangle,
+                        triangle: None,
                     });
                 }
             }
+            cost.prims += n as u32;
             return best.map(|b| q.hit(b));
         }
         for &i in self.accel.planes.iter().chain(&self.accel.spheres) {
@@ -230,7 +228,12 @@ impl Scene {
         }
         let q = Query::new(self, ray);
         if self.accel.unboxed() {
-            return (0..n).any(|i| q.blocks(i, t_max, cost));
+            let prepared = &self.accel.prepared;
+            let hit = prepared
+                .iter()
+                .position(|p| p.t_inline(ray, &q.sheared, t_max).is_some());
+            cost.prims += hit.map_or(n, |i| i + 1) as u32;
+            return hit.is_some();
         }
         if (self.accel.planes.iter().chain(&self.accel.spheres))
             .any(|&i| q.blocks(i as usize, t_max, cost))
@@ -285,11 +288,12 @@ struct Best {
     triangle: Option<u32>,
 }
 
-/// One ray's queries over the prepared objects: the watertight test's shear computed once.
+/// One ray's queries over the prepared objects: the watertight test's shear computed once,
+/// when the first flat object needs it.
 struct Query<'a> {
     scene: &'a Scene,
     ray: &'a Ray,
-    sheared: Option<ShearedRay>,
+    sheared: Shear,
 }
 
 impl<'a> Query<'a> {
@@ -297,11 +301,7 @@ impl<'a> Query<'a> {
         Self {
             scene,
             ray,
-            sheared: if scene.accel.flat {
-                ShearedRay::new(ray)
-            } else {
-                None
-            },
+            sheared: Shear::new(),
         }
     }
 
@@ -317,7 +317,7 @@ impl<'a> Query<'a> {
                 let (t, tri) = m.intersect(self.ray, t_max, cost)?;
                 Some((t, Some(tri as u32)))
             }
-            p => Some((p.t(self.ray, self.sheared.as_ref(), t_max)?, None)),
+            p => Some((p.t(self.ray, &self.sheared, t_max)?, None)),
         }
     }
 
