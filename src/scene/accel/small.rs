@@ -4,16 +4,13 @@
 //! the exact tests then run only for those whose entry distance is not beyond the best hit so
 //! far (object order: no candidate list to sort, which cost more than it saved here).
 //!
-//! Conservative: each box is the object's bounds padded on every axis by a billionth of its
-//! largest extent plus 1e-12 of its largest coordinate, then rounded outwards to `f32`, and the
+//! Conservative as the object BVH's leaves are: each box is the object's bounds padded by
+//! [`Aabb::padded`] (on every axis 1e-9 of the largest extent plus 1e-12 of the largest
+//! coordinate, far above the rounding of an exact test's hit point, about 1e-16 of the
+//! coordinates) and rounded outwards to `f32` (the box a one-object BVH leaf holds), and the
 //! slab test is [`BoxRay`]'s (a NaN from a ray in a slab's boundary plane counts as inside
-//! that slab). The padding is far above the rounding of an exact test's hit point (about
-//! 1e-16 of the coordinates), so a hit lies strictly inside its object's box and its entry
-//! distance is below the hit's: skipping an entry beyond the best hit skips no closer hit and
-//! no tie. Unlike [`Aabb::padded`] (the BVH's, per axis), a flat quad gets a thickness:
-//! with none, a floor at `y = 0` has the entry distance `(0 - o.y) / d.y`, which can round an
-//! ulp above the watertight test's distance of a hit on its edge, and lose a tie with the wall
-//! it meets there to the higher index (test `corner_tie_goes_to_the_lowest_index`).
+//! that slab). A hit lies strictly inside its object's box, so its entry distance is below
+//! the hit's: skipping an entry beyond the best hit skips no closer hit and no tie.
 //!
 //! [`BoxRay`]: crate::bvh::BoxRay
 
@@ -70,12 +67,11 @@ impl Groups {
         assert!(boxes.len() == ids.len() && ids.len() <= SMALL_MAX);
         let mut groups = vec![Group::default(); ids.len().div_ceil(4)];
         for (k, b) in boxes.iter().enumerate() {
-            let pad = 1e-9 * (b.max - b.min).max_element()
-                + 1e-12 * b.min.abs().max(b.max.abs()).max_element();
+            let p = b.padded();
             let g = &mut groups[k / 4];
             for a in 0..3 {
-                g.lo[a][k % 4] = f64::from(down(b.min[a] - pad));
-                g.hi[a][k % 4] = f64::from(up(b.max[a] + pad));
+                g.lo[a][k % 4] = f64::from(down(p.min[a]));
+                g.hi[a][k % 4] = f64::from(up(p.max[a]));
             }
         }
         Self {

@@ -242,8 +242,10 @@ fn small_scenes_test_few_objects() {
 
 /// The Cornell box's floor (object 0) and left wall (object 3) meet on the line `x = -1`,
 /// `y = 0`; this camera ray hits both there at the same distance. The floor must win (lowest
-/// index), as in the linear scan: with boxes padded per axis (none across a flat quad at
-/// `y = 0`), the floor's entry distance rounded above the hit and the wall won.
+/// index), as in the linear scan. With the candidates sorted by entry distance and boxes
+/// padded per axis (none across a flat quad at `y = 0`), the floor's entry rounded above the
+/// hit and the wall won; candidates are now tried in object order, so this ray passes with
+/// either padding (`shared_edges_tie_as_the_linear_scan` is the one the padding fails).
 #[test]
 fn corner_tie_goes_to_the_lowest_index() {
     let src = std::fs::read_to_string(concat!(
@@ -270,4 +272,84 @@ fn corner_tie_goes_to_the_lowest_index() {
     assert_eq!(wall.t, want.0, "a tie");
     let got = s.intersect(&ray, f64::INFINITY).expect("a hit");
     assert_eq!((got.t, got.object, got.normal), want);
+}
+
+/// Rooms of axis-aligned quads on the planes `x, y, z in {-1, 0, 1}` (walls that share edges,
+/// some through zero, where a per-axis padding gives a flat box no thickness), boxes and
+/// duplicates (every other room with distant spheres enough for the object BVH), and rays from grid points to points on the shared edges: closest hit and
+/// any-hit as the linear scan, ties (both quads of an edge hit at one distance) included.
+#[test]
+fn shared_edges_tie_as_the_linear_scan() {
+    let mut r = Rng(3);
+    let (mut ties, mut rays) = (0, 0);
+    for room in 0..80 {
+        let mut s = Scene::default_scene();
+        let mut objects = Vec::new();
+        let grid = |r: &mut Rng| f64::from(r.below(3) as i32 - 1);
+        for _ in 0..12 {
+            let a = r.below(3);
+            let mut p = DVec3::new(grid(&mut r), grid(&mut r), grid(&mut r));
+            p[(a + 1) % 3] = p[(a + 1) % 3].min(0.0);
+            p[(a + 2) % 3] = p[(a + 2) % 3].min(0.0);
+            let (mut u, mut v) = (DVec3::ZERO, DVec3::ZERO);
+            u[(a + 1) % 3] = 1.0;
+            v[(a + 2) % 3] = 1.0;
+            let (u, v) = if r.f() < 0.5 { (u, v) } else { (v, u) };
+            objects.push(Shape::Quad {
+                vertices: [p, p + u, p + u + v, p + v],
+                normal: u.cross(v),
+            });
+        }
+        objects.push(Shape::Box {
+            min: DVec3::splat(-1.0),
+            max: DVec3::ZERO,
+        });
+        for k in [3, 7] {
+            objects.insert(k, objects[r.below(objects.len())].clone());
+        }
+        // Every other room out of the small scan's reach: the object BVH serves it.
+        if room % 2 == 1 {
+            for k in 0..SMALL_MAX {
+                objects.push(Shape::Sphere {
+                    center: DVec3::new(50.0 + 3.0 * k as f64, 0.0, 0.0),
+                    radius: 1.0,
+                });
+            }
+        }
+        s.objects = (objects.into_iter().enumerate())
+            .map(|(i, shape)| Object {
+                name: format!("o{i}"),
+                shape,
+                material: 0,
+            })
+            .collect();
+        s.rebuild_accel();
+        for _ in 0..400 {
+            let o = DVec3::new(grid(&mut r), grid(&mut r), grid(&mut r)) * 3.0
+                + DVec3::new(0.5, 0.25, 0.125);
+            let Shape::Quad { vertices, .. } = s.objects[r.below(12)].shape else {
+                continue;
+            };
+            let k = r.below(4);
+            let target = vertices[k].lerp(vertices[(k + 1) % 4], r.f());
+            let ray = Ray::new(o, target - o, 0.0);
+            let want = linear(&s, &ray, f64::INFINITY);
+            let got = s.intersect(&ray, f64::INFINITY);
+            assert_eq!(
+                want.map(|(t, i, _)| (t, i)),
+                got.map(|h| (h.t, h.object)),
+                "{ray:?}"
+            );
+            let tie = want.is_some_and(|(t, i, _)| {
+                s.objects[i + 1..].iter().any(|o| {
+                    o.shape
+                        .intersect(&ray, f64::INFINITY)
+                        .is_some_and(|h| h.t == t)
+                })
+            });
+            ties += usize::from(tie);
+            rays += 1;
+        }
+    }
+    assert!(ties > rays / 20, "{ties} ties in {rays} rays");
 }
