@@ -12,8 +12,9 @@ impl Scene {
     /// [`Scene::intersect_counted`] over `(ray.t_min, infinity)` for each of `rays` (at most
     /// [`PACKET`]), into `hits`; adds each ray's work to `cost`. The hits are the single rays'
     /// bit for bit (the closest, lowest object index among equal distances, and in a mesh the
-    /// lowest triangle index). Scenes large enough for the object BVH take their rays one by
-    /// one; the others (a few objects, typically one big mesh) share each mesh walk.
+    /// lowest triangle index). Scenes large enough for the object BVH, and scenes without a
+    /// mesh, take their rays one by one (the single-ray query culls by the objects' boxes);
+    /// the others (a few objects, typically one big mesh) share each mesh walk.
     ///
     /// # Panics
     /// If there are more than [`PACKET`] rays or a slice is shorter than `rays`.
@@ -65,7 +66,7 @@ impl Scene {
     /// into `blocked`: the single rays' answers. Shadow rays towards one light from a tile's
     /// hits are coherent, so each mesh is walked once for all the rays no other object blocked
     /// before it ([`crate::mesh::Mesh::occludes_packet`]); other objects take the rays one by
-    /// one, and scenes large enough for the object BVH take every ray alone.
+    /// one, and scenes large enough for the object BVH or without a mesh take every ray alone.
     ///
     /// # Panics
     /// If there are more than [`PACKET`] rays or a slice is shorter than `rays`.
