@@ -77,11 +77,18 @@ impl Aabb {
         0.5 * (self.min + self.max)
     }
 
-    /// The box grown by a relative 1e-9 of its size plus 1e-12 of its magnitude, so that a
-    /// primitive test's rounding never reports a hit the box test has culled.
+    /// The box grown on every axis by 1e-9 of its largest extent plus 1e-12 of its largest
+    /// coordinate, so that a primitive test's rounding never reports a hit the box test has
+    /// culled. The same pad on every axis: a flat primitive (an axis-aligned quad or triangle)
+    /// gets a thickness, without which a ray hitting it on an edge it shares with another at
+    /// `y = 0` could enter its box an ulp beyond the hit and lose it (test
+    /// `scene::accel::tests::shared_edges_tie_as_the_linear_scan`).
     #[must_use]
     pub fn padded(&self) -> Aabb {
-        let pad = 1e-9 * (self.max - self.min) + 1e-12 * self.min.abs().max(self.max.abs());
+        let pad = DVec3::splat(
+            1e-9 * (self.max - self.min).max_element()
+                + 1e-12 * self.min.abs().max(self.max.abs()).max_element(),
+        );
         Aabb {
             min: self.min - pad,
             max: self.max + pad,
@@ -271,13 +278,13 @@ impl Bvh {
 }
 
 /// The largest `f32` not above `x`.
-fn down(x: f64) -> f32 {
+pub(crate) fn down(x: f64) -> f32 {
     let f = x as f32;
     if f64::from(f) > x { f.next_down() } else { f }
 }
 
 /// The smallest `f32` not below `x`.
-fn up(x: f64) -> f32 {
+pub(crate) fn up(x: f64) -> f32 {
     let f = x as f32;
     if f64::from(f) < x { f.next_up() } else { f }
 }

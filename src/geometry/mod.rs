@@ -9,11 +9,13 @@ use glam::DVec3;
 use std::sync::Arc;
 
 mod intersect;
+mod prepared;
 mod reject;
 mod spawn;
 
 pub(crate) use crate::mesh::triangle::triangle_t;
 use intersect::{accept, box_normal, slab_interval, sphere_hit, sphere_roots};
+pub(crate) use prepared::{Prepared, Shear};
 use reject::{plane_out_of_range, quad_surely_missed};
 pub use spawn::{SELF_HIT_FRACTION, gamma};
 

@@ -35,31 +35,66 @@ pub(super) fn plane_out_of_range(p: DVec3, normal: DVec3, ray: &Ray, t_max: f64)
 /// only widen the margin); a NaN anywhere compares false and rejects nothing.
 #[inline]
 pub(super) fn quad_surely_missed(v: &[DVec3; 4], normal: DVec3, ray: &Ray, t_max: f64) -> bool {
-    let l1 = |x: DVec3| x.abs().element_sum();
-    let d = ray.direction;
-    let inv = 1.0 / normal.dot(d);
-    let to = v[0] - ray.origin;
-    // One division; `t` within an ulp of `plane_out_of_range`'s, `dist` its bound with the
-    // 1-norm (no square root): both far inside the margin.
-    let t = to.dot(normal) * inv;
-    if !t.is_finite() {
-        return false;
+    QuadFrame::new(v).surely_missed(v[0], normal, ray, t_max)
+}
+
+/// The per-quad part of [`quad_surely_missed`]: edges, `c = e1 x e2`, `|c|^2` and the margin's
+/// edge scale `max(|e1|_1, |e2|_1) max|c|`, computed once per quad by a prepared scene
+/// ([`super::Prepared`]); the same values, so the same answers, as computing them per ray.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub(crate) struct QuadFrame {
+    e1: DVec3,
+    e2: DVec3,
+    c: DVec3,
+    area2: f64,
+    scale: f64,
+}
+
+fn l1(x: DVec3) -> f64 {
+    x.abs().element_sum()
+}
+
+impl QuadFrame {
+    /// The frame of the parallelogram `v`.
+    #[inline]
+    pub(crate) fn new(v: &[DVec3; 4]) -> Self {
+        let (e1, e2) = (v[1] - v[0], v[3] - v[0]);
+        let c = e1.cross(e2);
+        Self {
+            e1,
+            e2,
+            c,
+            area2: c.dot(c),
+            scale: l1(e1).max(l1(e2)) * c.abs().max_element(),
+        }
     }
-    let dist = l1(to) * inv.abs();
-    let margin = 1e-6 * (dist + t.abs());
-    if t > t_max + margin || t < ray.t_min - margin {
-        return true;
+
+    /// [`quad_surely_missed`] of the parallelogram with first corner `v0` and this frame.
+    #[inline]
+    pub(crate) fn surely_missed(&self, v0: DVec3, normal: DVec3, ray: &Ray, t_max: f64) -> bool {
+        let d = ray.direction;
+        let inv = 1.0 / normal.dot(d);
+        let to = v0 - ray.origin;
+        // One division; `t` within an ulp of `plane_out_of_range`'s, `dist` its bound with the
+        // 1-norm (no square root): both far inside the margin.
+        let t = to.dot(normal) * inv;
+        if !t.is_finite() {
+            return false;
+        }
+        let dist = l1(to) * inv.abs();
+        let margin = 1e-6 * (dist + t.abs());
+        if t > t_max + margin || t < ray.t_min - margin {
+            return true;
+        }
+        let q = t * d - to;
+        let (c, area2) = (self.c, self.area2);
+        let a = q.cross(self.e2).dot(c);
+        let b = self.e1.cross(q).dot(c);
+        let d1 = l1(d);
+        let len = t.abs() * d1 + l1(to) + dist * d1 + l1(q);
+        let m = 1e-6 * area2 + 3e-9 * len * self.scale;
+        a < -m || b < -m || a > area2 + m || b > area2 + m
     }
-    let q = t * d - to;
-    let (e1, e2) = (v[1] - v[0], v[3] - v[0]);
-    let c = e1.cross(e2);
-    let area2 = c.dot(c);
-    let a = q.cross(e2).dot(c);
-    let b = e1.cross(q).dot(c);
-    let d1 = l1(d);
-    let len = t.abs() * d1 + l1(to) + dist * d1 + l1(q);
-    let m = 1e-6 * area2 + 3e-9 * len * l1(e1).max(l1(e2)) * c.abs().max_element();
-    a < -m || b < -m || a > area2 + m || b > area2 + m
 }
 
 #[cfg(test)]

@@ -12,8 +12,9 @@ impl Scene {
     /// [`Scene::intersect_counted`] over `(ray.t_min, infinity)` for each of `rays` (at most
     /// [`PACKET`]), into `hits`; adds each ray's work to `cost`. The hits are the single rays'
     /// bit for bit (the closest, lowest object index among equal distances, and in a mesh the
-    /// lowest triangle index). Scenes large enough for the object BVH take their rays one by
-    /// one; the others (a few objects, typically one big mesh) share each mesh walk.
+    /// lowest triangle index). Scenes large enough for the object BVH, and scenes without a
+    /// mesh, take their rays one by one (the single-ray query culls by the objects' boxes);
+    /// the others (a few objects, typically one big mesh) share each mesh walk.
     ///
     /// # Panics
     /// If there are more than [`PACKET`] rays or a slice is shorter than `rays`.
@@ -24,7 +25,7 @@ impl Scene {
         cost: &mut [TraversalCost],
     ) {
         assert!(rays.len() <= PACKET && hits.len() >= rays.len() && cost.len() >= rays.len());
-        if self.accel.is_for(self.objects.len()) {
+        if self.accel.single_rays(self.objects.len()) {
             for (i, ray) in rays.iter().enumerate() {
                 hits[i] = self.intersect_counted(ray, f64::INFINITY, &mut cost[i]);
             }
@@ -65,7 +66,7 @@ impl Scene {
     /// into `blocked`: the single rays' answers. Shadow rays towards one light from a tile's
     /// hits are coherent, so each mesh is walked once for all the rays no other object blocked
     /// before it ([`crate::mesh::Mesh::occludes_packet`]); other objects take the rays one by
-    /// one, and scenes large enough for the object BVH take every ray alone.
+    /// one, and scenes large enough for the object BVH or without a mesh take every ray alone.
     ///
     /// # Panics
     /// If there are more than [`PACKET`] rays or a slice is shorter than `rays`.
@@ -73,7 +74,7 @@ impl Scene {
         let n = rays.len();
         assert!(n <= PACKET && t_max.len() >= n && blocked.len() >= n);
         let mut cost = TraversalCost::default();
-        if self.accel.is_for(self.objects.len()) {
+        if self.accel.single_rays(self.objects.len()) {
             for i in 0..n {
                 blocked[i] = self.occluded(&rays[i], t_max[i], &mut cost);
             }
