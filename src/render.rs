@@ -102,7 +102,7 @@ pub fn render_pixel_with<I: Integrator, R: Recorder>(
 
 /// [`render_pixel_with`] drawing every sample from `sampler` (the sampler seam): sample `s`
 /// starts with [`PixelSampler::start_sample`], its film position is the pixel corner plus the
-/// first [`PixelSampler::next_2d`] through the filter ([`camera_sample`]: then the lens sample
+/// first [`PixelSampler::next_2d`] through the filter (`camera_sample`: then the lens sample
 /// of a thin-lens camera), and the integrator draws its further dimensions.
 pub fn render_pixel_sampled<I: Integrator, S: PixelSampler, R: Recorder>(
     integrator: &I,

@@ -130,7 +130,7 @@ impl Lobe {
         }
     }
 
-    /// The solid-angle density of [`Self::sample`]'s direction (0 for delta lobes).
+    /// The solid-angle density of `Self::sample`'s direction (0 for delta lobes).
     #[must_use]
     pub fn pdf(&self, wo: DVec3, wi: DVec3) -> f64 {
         match *self {

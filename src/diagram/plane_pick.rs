@@ -74,7 +74,7 @@ fn held(
 
 /// The automatic plane: the plane of incidence at the camera ray's hit, unless the plane
 /// through one of the first bounce's kept rays and the camera ray holds clearly more of the
-/// pixel (by [`SWITCH`]). `ids` are the kept rays of the sample, `shares` every node's share.
+/// pixel (by `SWITCH`). `ids` are the kept rays of the sample, `shares` every node's share.
 #[must_use]
 pub fn auto(
     scene: &Scene,

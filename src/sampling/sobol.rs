@@ -220,7 +220,7 @@ const CACHED_PAIRS: usize = 32;
 /// depend only on how many draws came before it, not on whether they were 1D or 2D.
 ///
 /// The seeds of a pair depend only on the pixel (not on the sample index), so the sampler
-/// keeps those of the first [`CACHED_PAIRS`] pairs while it stays on one pixel: the samples
+/// keeps those of the first `CACHED_PAIRS` pairs while it stays on one pixel: the samples
 /// after a pixel's first draw each pair with three hashes fewer. The values are the same bits
 /// either way (a pure function of seed, pixel, index and pair).
 #[derive(Clone, Copy, Debug)]

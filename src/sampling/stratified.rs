@@ -47,7 +47,7 @@ pub fn unit(h: u64) -> f64 {
 
 /// The default sampler: the film offset of sample `s` is the pixel centre for one sample per
 /// pixel, otherwise jittered stratified on a `cols x rows` grid with `cols x rows = spp` exactly
-/// (`cols` the smallest divisor of `spp` not below its square root, see [`grid`]), jittered by a SplitMix64 hash of (pixel, sample, seed); further dimensions are independent
+/// (`cols` the smallest divisor of `spp` not below its square root, see `grid`), jittered by a SplitMix64 hash of (pixel, sample, seed); further dimensions are independent
 /// uniform values from a counter-based hash of (pixel, sample, seed, dimension).
 ///
 /// The seed enters as `key ^ (splitmix64(seed) ^ splitmix64(0))`, which is `key` for seed 0:

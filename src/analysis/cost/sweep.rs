@@ -211,7 +211,7 @@ impl Sweep {
         out
     }
 
-    /// The reference a row of `axis` with `settings` is compared with: [`reference_settings`]
+    /// The reference a row of `axis` with `settings` is compared with: `reference_settings`
     /// (one sample at each pixel centre), except for the stochastic axes: `spp` against
     /// `reference_spp` samples, `light_samples` against `reference_light_samples` light
     /// samples, `glossy_samples` against `reference_glossy_samples` glossy samples, and
