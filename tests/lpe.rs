@@ -210,3 +210,59 @@ fn diagram_lpe_draws_only_the_matching_paths() {
     assert!(String::from_utf8_lossy(&o.stderr).contains("no path"));
     assert!(!none.exists());
 }
+
+/// `diagram --lpe X --sample K` draws the pixel's sample K (numbered as `raytree trace` numbers
+/// them, not its position among the matching ones); a sample with no matching path is an
+/// error that names the samples that have one, with no file written.
+#[test]
+fn diagram_lpe_sample_is_the_pixels_sample() {
+    let path = caustic();
+    let scene = Scene::from_json(&std::fs::read_to_string(&path).unwrap()).unwrap();
+    let tree = trace_pixel(&scene, PIXEL.0, PIXEL.1).unwrap();
+    let lpe = Lpe::parse("C<RD><TS><TS>L").unwrap();
+    let kept = filter_tree(&tree, std::slice::from_ref(&lpe)).unwrap().tree;
+    let matching: Vec<u32> = kept.samples.iter().map(|s| s.index).collect();
+    // A matching sample that is not the first matching one (its position differs from its
+    // index), and a sample without a match.
+    let k = *matching.last().unwrap();
+    assert!(k as usize != matching.len() - 1, "{matching:?}");
+    let missing = (0..tree.samples.len() as u32)
+        .find(|i| !matching.contains(i))
+        .unwrap();
+    let dir = tempfile::tempdir().unwrap();
+    let d = dir.path();
+    let pixel = format!("{},{}", PIXEL.0, PIXEL.1);
+    let run = |sample: u32, out: &std::path::Path| {
+        let sample = sample.to_string();
+        raytree(
+            &[
+                "diagram",
+                path.to_str().unwrap(),
+                "--pixel",
+                &pixel,
+                "--lpe",
+                "C<RD><TS><TS>L",
+                "--sample",
+                &sample,
+                "-o",
+                out.to_str().unwrap(),
+            ],
+            d,
+        )
+    };
+    let svg = d.join("k.svg");
+    let o = run(k, &svg);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let text = std::fs::read_to_string(&svg).unwrap();
+    assert!(
+        text.contains(&format!("sample {k},")),
+        "the title names sample {k}"
+    );
+    let none = d.join("none.svg");
+    let o = run(missing, &none);
+    assert_eq!(o.status.code(), Some(2));
+    let err = String::from_utf8_lossy(&o.stderr);
+    let list: Vec<String> = matching.iter().map(u32::to_string).collect();
+    assert!(err.contains(&list.join(", ")), "{err}");
+    assert!(!none.exists());
+}

@@ -342,9 +342,10 @@ pub struct DiagramArgs {
     /// Ray kinds to draw, comma-separated.
     #[arg(long, value_name = "camera,reflected,refracted,shadow,diffuse")]
     pub kinds: Option<String>,
-    /// Which sample of the pixel to draw (for spp > 1).
-    #[arg(long, value_name = "K", default_value_t = 0)]
-    pub sample: usize,
+    /// Which sample of the pixel to draw (for spp > 1), numbered as `raytree trace` numbers
+    /// them; default: the first (with --lpe, the first with a matching path).
+    #[arg(long, value_name = "K")]
+    pub sample: Option<usize>,
     /// Also draw every other sample of the pixel under --sample, faded by its value.
     #[arg(long)]
     pub all_samples: bool,

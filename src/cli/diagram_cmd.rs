@@ -107,14 +107,31 @@ pub fn run(a: &DiagramArgs) -> Result<()> {
             tree.nodes.len() - 1
         );
     }
-    if a.sample >= tree.samples.len() {
+    // `--sample K` names the pixel's sample K (as `raytree trace` numbers them), also when
+    // --lpe has dropped the samples without a matching path: its position in the tree.
+    // Without it, the first sample the tree holds.
+    let wanted = a.sample;
+    let found = match wanted {
+        None => (!tree.samples.is_empty()).then_some(0),
+        Some(k) => tree.samples.iter().position(|s| s.index as usize == k),
+    };
+    let Some(position) = found else {
+        let k = wanted.unwrap_or(0);
+        if lpes.is_empty() {
+            bail!(
+                "--sample {k}: the pixel has {} sample(s) (spp {})",
+                tree.samples.len(),
+                scene.settings.spp
+            );
+        }
+        let kept: Vec<String> = tree.samples.iter().map(|s| s.index.to_string()).collect();
         bail!(
-            "--sample {}: the pixel has {} sample(s) (spp {})",
-            a.sample,
-            tree.samples.len(),
-            scene.settings.spp
+            "--sample {k}: it has no path matching --lpe {}; the samples that do: {}",
+            a.lpe.join(" | "),
+            kept.join(", ")
         );
-    }
+    };
+    let index = tree.samples[position].index;
     let pending = Pending::create(
         &a.output,
         &Inputs::new(loaded.inputs.iter().map(|p| p.as_path())),
@@ -130,10 +147,10 @@ pub fn run(a: &DiagramArgs) -> Result<()> {
         format!(
             ", all {} samples (sample {} in full)",
             tree.samples.len(),
-            a.sample
+            index
         )
-    } else if tree.samples.len() > 1 {
-        format!(", sample {}", a.sample)
+    } else if tree.samples.len() > 1 || index > 0 {
+        format!(", sample {index}")
     } else {
         String::new()
     };
@@ -143,7 +160,7 @@ pub fn run(a: &DiagramArgs) -> Result<()> {
         height,
         max_depth: a.draw_depth,
         kinds,
-        sample: a.sample,
+        sample: position,
         zoom_offsets: a.zoom_offsets,
         all_samples: a.all_samples,
         highlight: None,
