@@ -34,19 +34,6 @@ fn harness(files: &MemFiles) -> Harness<'static, InspectorApp> {
     h
 }
 
-/// The inspector on `session` in a harness. Up to 16 steps to settle: a frame can see the
-/// worker's deliveries (image, then statistics) one at a time, and on a loaded machine they
-/// arrive at different frames (4, kittest's default, was once too few under CI).
-fn inspector(session: Session) -> Harness<'static, InspectorApp> {
-    Harness::builder()
-        .with_size([1500.0, 950.0])
-        .with_max_steps(16)
-        .build_ui_state(
-            |ui, app: &mut InspectorApp| app.show(ui),
-            InspectorApp::new(session),
-        )
-}
-
 fn has(h: &Harness<'static, InspectorApp>, text: &str) -> bool {
     h.query_all_by_label_contains(text).next().is_some()
 }

@@ -31,13 +31,7 @@ fn harness(files: &MemFiles, spp: u32) -> Harness<'static, InspectorApp> {
         adjust,
         Arc::new(|| {}),
     );
-    let mut h = Harness::builder()
-        .with_size([1500.0, 950.0])
-        .with_max_steps(16)
-        .build_ui_state(
-            |ui, app: &mut InspectorApp| app.show(ui),
-            InspectorApp::new(session),
-        );
+    let mut h = inspector(session);
     settle(&mut h);
     click_pixel(&mut h, 200, 100);
     h

@@ -27,13 +27,7 @@ fn harness_on(scene: &str) -> Harness<'static, InspectorApp> {
         }),
         Arc::new(|| {}),
     );
-    let mut h = Harness::builder()
-        .with_size([1500.0, 950.0])
-        .with_max_steps(16)
-        .build_ui_state(
-            |ui, app: &mut InspectorApp| app.show(ui),
-            InspectorApp::new(session),
-        );
+    let mut h = inspector(session);
     settle(&mut h);
     h
 }

@@ -62,6 +62,19 @@ impl Files for MemFiles {
     }
 }
 
+/// The inspector on `session` in a 1500x950 harness. Up to 16 steps to settle: a frame can see
+/// the worker's deliveries (image, then statistics) one at a time, and on a loaded machine they
+/// arrive at different frames (4, kittest's default, was once too few under CI).
+pub fn inspector(session: raytree::gui::Session) -> Harness<'static, InspectorApp> {
+    Harness::builder()
+        .with_size([1500.0, 950.0])
+        .with_max_steps(16)
+        .build_ui_state(
+            |ui, app: &mut InspectorApp| app.show(ui),
+            InspectorApp::new(session),
+        )
+}
+
 /// Wait for the worker, then let the UI settle.
 pub fn settle(h: &mut Harness<'static, InspectorApp>) {
     h.run();
@@ -99,9 +112,7 @@ impl Files for ReadOnly {
     }
 }
 
-/// The inspector on the read-only scene `text` (adjusted by `adjust`) in a 1500x950 window,
-/// its render finished. Up to 16 steps to settle: a frame can see the worker's deliveries
-/// (image, then statistics) one at a time.
+/// The inspector on the read-only scene `text` (adjusted by `adjust`), its render finished.
 pub fn read_only_inspector(
     text: &'static str,
     adjust: raytree::gui::Adjust,
@@ -112,13 +123,7 @@ pub fn read_only_inspector(
         adjust,
         Arc::new(|| {}),
     );
-    let mut h = Harness::builder()
-        .with_size([1500.0, 950.0])
-        .with_max_steps(16)
-        .build_ui_state(
-            |ui, app: &mut InspectorApp| app.show(ui),
-            InspectorApp::new(session),
-        );
+    let mut h = inspector(session);
     settle(&mut h);
     h
 }
