@@ -148,13 +148,13 @@ pub(crate) fn prefetch<T>(value: &T) {
 
 /// `x < y ? x : y`: one `minsd`; a NaN in `x` yields `y` (what the slab test relies on).
 #[inline(always)]
-fn fmin(x: f64, y: f64) -> f64 {
+pub(crate) fn fmin(x: f64, y: f64) -> f64 {
     if x < y { x } else { y }
 }
 
 /// `x > y ? x : y`: one `maxsd`; a NaN in `x` yields `y`.
 #[inline(always)]
-fn fmax(x: f64, y: f64) -> f64 {
+pub(crate) fn fmax(x: f64, y: f64) -> f64 {
     if x > y { x } else { y }
 }
 

@@ -15,7 +15,7 @@
 //! [`BoxRay`]: crate::bvh::BoxRay
 
 use super::SMALL_MAX;
-use crate::bvh::{Aabb, TraversalCost, down, up};
+use crate::bvh::{Aabb, TraversalCost, down, fmax, fmin, up};
 use crate::math::Ray;
 
 /// Four boxes, one per lane; `lo[axis][lane]`.
@@ -23,18 +23,6 @@ use crate::math::Ray;
 struct Group {
     lo: [[f64; 4]; 3],
     hi: [[f64; 4]; 3],
-}
-
-/// `x < y ? x : y` (a NaN in `x` yields `y`), as the BVH's slab test.
-#[inline(always)]
-fn fmin(x: f64, y: f64) -> f64 {
-    if x < y { x } else { y }
-}
-
-/// `x > y ? x : y` (a NaN in `x` yields `y`).
-#[inline(always)]
-fn fmax(x: f64, y: f64) -> f64 {
-    if x > y { x } else { y }
 }
 
 impl Group {
