@@ -1,0 +1,126 @@
+//! The render worker: supersession, the debug-view pass, growth statistics.
+
+use super::*;
+
+#[test]
+fn a_newer_job_supersedes_an_older_one_and_matches_render() {
+    let w = Worker::new(Arc::new(|| {}));
+    let mut scene = Scene::default_scene();
+    scene.camera = scene.camera.with_size(64, 36);
+    let g1 = w.start(Arc::new(scene.clone()), true);
+    scene.settings.max_depth = 0;
+    let g2 = w.start(Arc::new(scene.clone()), true);
+    assert!(g2 > g1);
+    let mut pixels = vec![Rgb::ZERO; 64 * 36];
+    let mut stats = vec![PixelStats::default(); 64 * 36];
+    let (mut image_done, mut stats_rows) = (false, 0);
+    loop {
+        match w.recv().unwrap() {
+            Delivery::Band {
+                generation,
+                y0,
+                pixels: p,
+            } if generation == g2 => {
+                assert_eq!(stats_rows, 0, "the image comes first");
+                let at = y0 as usize * 64;
+                pixels[at..at + p.len()].copy_from_slice(&p);
+            }
+            Delivery::Done { generation, .. } if generation == g2 => image_done = true,
+            Delivery::Stats {
+                generation,
+                y0,
+                stats: s,
+            } if generation == g2 => {
+                assert!(image_done);
+                let at = y0 as usize * 64;
+                stats[at..at + s.len()].copy_from_slice(&s);
+                stats_rows += s.len() / 64;
+            }
+            Delivery::StatsDone { generation, .. } if generation == g2 => break,
+            d => assert_eq!(d.generation(), g1),
+        }
+    }
+    assert_eq!(stats_rows, 36);
+    let (image, _) = crate::render(&scene, &|_| {});
+    assert_eq!(pixels, image.pixels);
+    // The statistics are those of each pixel's recorded tree.
+    for (x, y) in [(10, 5), (40, 20), (63, 35)] {
+        let tree = crate::render::trace_pixel(&scene, x, y).unwrap();
+        let want = super::super::stats::summarize(&tree.nodes, 1);
+        assert_eq!(stats[(y * 64 + x) as usize], want, "pixel {x},{y}");
+    }
+}
+
+#[test]
+fn with_a_debug_view_one_recorded_pass_delivers_the_same_image_and_statistics() {
+    let mut scene = Scene::default_scene();
+    scene.camera = scene.camera.with_size(48, 27);
+    let scene = Arc::new(scene);
+    let collect = |image_first: bool| {
+        let w = Worker::new(Arc::new(|| {}));
+        let g = w.start(Arc::clone(&scene), image_first);
+        let mut pixels = vec![Rgb::ZERO; 48 * 27];
+        let mut stats = vec![PixelStats::default(); 48 * 27];
+        let mut rays = None;
+        loop {
+            match w.recv().unwrap() {
+                Delivery::Band { y0, pixels: p, .. } => {
+                    let at = y0 as usize * 48;
+                    pixels[at..at + p.len()].copy_from_slice(&p);
+                }
+                Delivery::Stats { y0, stats: s, .. } => {
+                    let at = y0 as usize * 48;
+                    stats[at..at + s.len()].copy_from_slice(&s);
+                }
+                Delivery::Done { rays: r, .. } => rays = Some(r),
+                Delivery::StatsDone { generation, .. } => {
+                    assert_eq!(generation, g);
+                    break;
+                }
+                Delivery::Growth { .. } => unreachable!("comes after the statistics"),
+                Delivery::Pass { .. } => unreachable!("not a progressive job"),
+            }
+        }
+        (pixels, stats, rays.expect("the image is reported done"))
+    };
+    let (a, b) = (collect(true), collect(false));
+    assert_eq!(a.0, b.0);
+    assert_eq!(a.1, b.1);
+    assert_eq!(a.2, b.2);
+    assert_eq!(a.0, crate::render(&scene, &|_| {}).0.pixels);
+}
+
+#[test]
+fn after_the_statistics_the_tree_growth_and_what_the_cut_saves() {
+    let nested = include_str!("../../../fixtures/nested.json");
+    for (json, want) in [
+        (nested, "ray tree exponential"),
+        (
+            include_str!("../../../fixtures/diffuse.json"),
+            "ray tree bounded",
+        ),
+    ] {
+        let mut scene = Scene::from_json(json).unwrap();
+        scene.camera = scene.camera.with_size(64, 36);
+        let w = Worker::new(Arc::new(|| {}));
+        let g = w.start(Arc::new(scene), true);
+        let mut stats_done = false;
+        let line = loop {
+            match w.recv().unwrap() {
+                Delivery::StatsDone { .. } => stats_done = true,
+                Delivery::Growth { generation, line } => {
+                    assert_eq!(generation, g);
+                    break line;
+                }
+                _ => {}
+            }
+        };
+        assert!(stats_done, "{line}");
+        assert!(line.starts_with(want), "{line}");
+        assert_eq!(
+            line.contains("x fewer) on a 16x9 sample"),
+            json == nested,
+            "{line}"
+        );
+    }
+}
