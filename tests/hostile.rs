@@ -18,3 +18,9 @@ mod bounds;
 
 #[path = "hostile/commands.rs"]
 mod commands;
+
+#[path = "hostile/finite.rs"]
+mod finite;
+
+#[path = "hostile/scenes.rs"]
+mod scenes;
