@@ -10,6 +10,9 @@ mod harness;
 #[path = "hostile/outputs.rs"]
 mod outputs;
 
+#[path = "hostile/streams.rs"]
+mod streams;
+
 #[path = "hostile/loader.rs"]
 mod loader;
 
