@@ -3,10 +3,12 @@
 //! distance is found apart from the normal, which only the closest hit needs.
 //!
 //! [`Prepared::t`] is the `t` of [`Shape::intersect`] bit for bit: the same functions in the same
-//! order on the same values (the ray's shear for the watertight test is computed once per ray,
-//! once per ray and only if some flat shape survives its rejection, and [`ShearedRay::t`] is
-//! exactly `triangle_t`). [`Prepared::normal`] is its normal for that
-//! `t`. The tests are in `src/scene/accel/tests.rs`, against [`Shape::intersect`].
+//! order on the same values (the ray's shear for the watertight test is computed once per ray
+//! and only if some flat shape survives its rejection, [`ShearedRay::t`] is exactly
+//! `triangle_t`, and a quad's [`ShearedRay::t_quad`] is `t` of its two triangles, the shared
+//! corners sheared once). [`Prepared::normal`] is its normal for that `t`. The tests are in
+//! `src/scene/accel/tests.rs`, against [`Shape::intersect`] (whose quad test still calls `t`
+//! twice).
 
 use super::Shape;
 use super::intersect::{accept, box_normal, slab_interval, sphere_roots};
