@@ -3,10 +3,12 @@
 //! distance is found apart from the normal, which only the closest hit needs.
 //!
 //! [`Prepared::t`] is the `t` of [`Shape::intersect`] bit for bit: the same functions in the same
-//! order on the same values (the ray's shear for the watertight test is computed once per ray,
-//! once per ray and only if some flat shape survives its rejection, and [`ShearedRay::t`] is
-//! exactly `triangle_t`). [`Prepared::normal`] is its normal for that
-//! `t`. The tests are in `src/scene/accel/tests.rs`, against [`Shape::intersect`].
+//! order on the same values (the ray's shear for the watertight test is computed once per ray
+//! and only if some flat shape survives its rejection, [`ShearedRay::t`] is exactly
+//! `triangle_t`, and a quad's [`ShearedRay::t_quad`] is `t` of its two triangles, the shared
+//! corners sheared once). [`Prepared::normal`] is its normal for that `t`. The tests are in
+//! `src/scene/accel/tests.rs`, against [`Shape::intersect`] (whose quad test still calls `t`
+//! twice).
 
 use super::Shape;
 use super::intersect::{accept, box_normal, slab_interval, sphere_roots};
@@ -16,7 +18,35 @@ use crate::mesh::triangle::ShearedRay;
 use glam::DVec3;
 
 /// The watertight test's per-ray shear, computed at the first flat shape that needs it.
-pub(crate) type Shear = std::cell::OnceCell<Option<ShearedRay>>;
+///
+/// A plain flag and value behind `&mut` rather than a `OnceCell` behind `&`: the cell's
+/// outlined, re-entrancy-checked initialisation (`OnceCell::try_init`) cost 3.6% of a render
+/// of `benches/mitsuba-scenes/glass-emitters.json` (perf, self time), where this is one
+/// inlined branch. The same `ShearedRay::new(ray)`, so the same bits.
+#[derive(Clone, Copy, Debug, Default)]
+pub(crate) struct Shear {
+    done: bool,
+    ray: Option<ShearedRay>,
+}
+
+impl Shear {
+    /// A shear not yet computed (one for each ray).
+    #[inline(always)]
+    #[must_use]
+    pub(crate) fn new() -> Self {
+        Self::default()
+    }
+
+    /// `ShearedRay::new(ray)`, computed on the first call.
+    #[inline(always)]
+    pub(crate) fn get(&mut self, ray: &Ray) -> Option<&ShearedRay> {
+        if !self.done {
+            self.ray = ShearedRay::new(ray);
+            self.done = true;
+        }
+        self.ray.as_ref()
+    }
+}
 
 /// A non-mesh shape with its per-shape precomputation; meshes keep their own BVH and are
 /// tested by the caller.
@@ -59,18 +89,18 @@ impl Prepared {
     }
 
     /// The `t` of [`Shape::intersect`] (`None` where it misses); `sheared` holds
-    /// `ShearedRay::new(ray)` once a flat shape has needed it (a fresh cell for each ray).
+    /// `ShearedRay::new(ray)` once a flat shape has needed it (a fresh one for each ray).
     /// Meshes: `None` (the caller's).
     #[inline]
     #[must_use]
-    pub(crate) fn t(&self, ray: &Ray, sheared: &Shear, t_max: f64) -> Option<f64> {
+    pub(crate) fn t(&self, ray: &Ray, sheared: &mut Shear, t_max: f64) -> Option<f64> {
         self.t_inline(ray, sheared, t_max)
     }
 
     /// [`Prepared::t`], always inlined (for the scan of a scene of planes and spheres).
     #[inline(always)]
     #[must_use]
-    pub(crate) fn t_inline(&self, ray: &Ray, sheared: &Shear, t_max: f64) -> Option<f64> {
+    pub(crate) fn t_inline(&self, ray: &Ray, sheared: &mut Shear, t_max: f64) -> Option<f64> {
         let t = match *self {
             Prepared::Sphere { center, radius } => {
                 let (t0, t1) = sphere_roots(center, radius, ray)?;
@@ -91,10 +121,7 @@ impl Prepared {
                 if plane_out_of_range(vertices[0], normal, ray, t_max) {
                     return None;
                 }
-                sheared
-                    .get_or_init(|| ShearedRay::new(ray))
-                    .as_ref()?
-                    .t(&vertices)?
+                sheared.get(ray)?.t(&vertices)?
             }
             Prepared::Quad {
                 ref vertices,
@@ -104,9 +131,8 @@ impl Prepared {
                 if frame.surely_missed(vertices[0], normal, ray, t_max) {
                     return None;
                 }
-                let s = sheared.get_or_init(|| ShearedRay::new(ray)).as_ref()?;
-                let [v0, v1, v2, v3] = *vertices;
-                s.t(&[v0, v1, v2]).or_else(|| s.t(&[v0, v2, v3]))?
+                // `t` of the triangles v0 v1 v2, then v0 v2 v3, bit for bit.
+                sheared.get(ray)?.t_quad(vertices)?
             }
             Prepared::Box { min, max } => {
                 let (t0, t1) = slab_interval(min, max, ray)?;

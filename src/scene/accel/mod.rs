@@ -173,13 +173,13 @@ impl Scene {
             }
             return best;
         }
-        let q = Query::new(self, ray);
+        let mut q = Query::new(self, ray);
         let mut best: Option<Best> = None;
         if self.accel.unboxed() {
             // Planes and spheres only: no mesh, no shear; the tests inlined into the loop.
             let mut t_max = t_max;
             for (i, p) in self.accel.prepared.iter().enumerate() {
-                if let Some(t) = p.t_inline(ray, &q.sheared, t_max) {
+                if let Some(t) = p.t_inline(ray, &mut q.sheared, t_max) {
                     t_max = t;
                     best = Some(Best {
                         t,
@@ -226,12 +226,12 @@ impl Scene {
                 _ => object_hit(&self.objects[i], i, ray, t_max, cost).is_some(),
             });
         }
-        let q = Query::new(self, ray);
+        let mut q = Query::new(self, ray);
         if self.accel.unboxed() {
             let prepared = &self.accel.prepared;
             let hit = prepared
                 .iter()
-                .position(|p| p.t_inline(ray, &q.sheared, t_max).is_some());
+                .position(|p| p.t_inline(ray, &mut q.sheared, t_max).is_some());
             cost.prims += hit.map_or(n, |i| i + 1) as u32;
             return hit.is_some();
         }
@@ -307,7 +307,12 @@ impl<'a> Query<'a> {
 
     /// The exact test of object `i` over `(ray.t_min, t_max)`: distance and (meshes) triangle.
     #[inline]
-    fn test(&self, i: usize, t_max: f64, cost: &mut TraversalCost) -> Option<(f64, Option<u32>)> {
+    fn test(
+        &mut self,
+        i: usize,
+        t_max: f64,
+        cost: &mut TraversalCost,
+    ) -> Option<(f64, Option<u32>)> {
         cost.prims += 1;
         match &self.scene.accel.prepared[i] {
             Prepared::Mesh => {
@@ -317,14 +322,20 @@ impl<'a> Query<'a> {
                 let (t, tri) = m.intersect(self.ray, t_max, cost)?;
                 Some((t, Some(tri as u32)))
             }
-            p => Some((p.t(self.ray, &self.sheared, t_max)?, None)),
+            p => Some((p.t(self.ray, &mut self.sheared, t_max)?, None)),
         }
     }
 
     /// Test object `i` against the best hit so far, with `t_max` just above it so that ties
     /// reach the comparison (lowest index wins, as in a linear scan).
     #[inline]
-    fn consider(&self, i: usize, t_max: f64, best: &mut Option<Best>, cost: &mut TraversalCost) {
+    fn consider(
+        &mut self,
+        i: usize,
+        t_max: f64,
+        best: &mut Option<Best>,
+        cost: &mut TraversalCost,
+    ) {
         let limit = best.map_or(t_max, |b| b.t.next_up());
         if let Some((t, triangle)) = self.test(i, limit, cost)
             && best.is_none_or(|b| t < b.t || (t == b.t && i < b.object))
@@ -339,7 +350,7 @@ impl<'a> Query<'a> {
 
     /// Whether object `i` blocks the ray in `(ray.t_min, t_max)`.
     #[inline]
-    fn blocks(&self, i: usize, t_max: f64, cost: &mut TraversalCost) -> bool {
+    fn blocks(&mut self, i: usize, t_max: f64, cost: &mut TraversalCost) -> bool {
         match &self.scene.objects[i].shape {
             Shape::Mesh(m) => {
                 cost.prims += 1;
