@@ -469,9 +469,7 @@ fn the_hover_readout_legend_and_errors_stay_readable() {
     let pos = h.state().screen_of_pixel(100, 60).unwrap();
     h.hover_at(pos);
     h.run();
-    let readout = h
-        .get_by_label_contains("BVH nodes + primitive tests")
-        .rect();
+    let readout = h.get_by_label_contains("boxes + primitive tests").rect();
     let image = h.state().placement().unwrap().rect;
     assert!(readout.left() >= image.left() - 1.0 && readout.width() > 100.0);
     // The debug legend sits under the image, not over it.

@@ -310,7 +310,7 @@ fn hover_readout(ui: &egui::Ui, area: Rect, film: Vec2, doc: &Document) {
     let s = c.to_array().map(linear_to_srgb8);
     let st = doc.stats_at(x, y);
     let text = format!(
-        "pixel {x}, {y}\nlinear {}\nsRGB {} {} {}\ndepth {}  rays {}  TIR {}\nself-hits {}  leaks {}  cut {:.3}\nBVH nodes + primitive tests {}",
+        "pixel {x}, {y}\nlinear {}\nsRGB {} {} {}\ndepth {}  rays {}  TIR {}\nself-hits {}  leaks {}  cut {:.3}\nboxes + primitive tests {}",
         rgb(c),
         s[0],
         s[1],

@@ -22,7 +22,8 @@ pub struct PixelStats {
     /// Path weight cut off by `max_depth`, mean over samples (max channel of throughput x
     /// attenuation x truncated weight).
     pub cut: f32,
-    /// Acceleration-structure work of every ray: BVH nodes plus primitive tests
+    /// Acceleration-structure work of every ray: boxes tested (BVH nodes, or in a small scene
+    /// one per non-sphere object) plus primitive tests
     /// ([`crate::bvh::TraversalCost::total`]), the traversal heat map.
     pub traversal: u32,
     /// Monte Carlo statistics of the samples ([`crate::aov::pixel_from_nodes`]): relative
