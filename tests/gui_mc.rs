@@ -81,6 +81,19 @@ fn the_noise_view_is_picked_from_the_menu_and_shows_a_legend() {
     );
 }
 
+/// Click "denoised image" and run frames (up to 600, 10 ms apart) until the filtered image
+/// shows; the frames it took.
+fn turn_on_denoised(h: &mut Harness<'static, InspectorApp>) -> u32 {
+    h.get_by_label("denoised image").click();
+    let mut frames = 0;
+    while !h.state().shows_denoised() && frames < 600 {
+        h.run();
+        std::thread::sleep(std::time::Duration::from_millis(10));
+        frames += 1;
+    }
+    frames
+}
+
 /// The "denoised image" toggle (issue 16): once the render has finished the image panel shows
 /// the denoised image, computed on its own thread; the document's image (what exports and
 /// hovering read) and the selected pixel's tree stay the raw samples; off shows the raw image.
@@ -89,13 +102,7 @@ fn the_denoise_toggle_shows_the_denoised_image_and_keeps_the_raw_samples() {
     let mut h = caustic(8, Some((96, 72)));
     assert!(h.state().denoise_state().is_none());
     assert!(!h.state().shows_denoised());
-    h.get_by_label("denoised image").click();
-    let mut frames = 0;
-    while !h.state().shows_denoised() && frames < 600 {
-        h.run();
-        std::thread::sleep(std::time::Duration::from_millis(10));
-        frames += 1;
-    }
+    let frames = turn_on_denoised(&mut h);
     assert!(
         h.state().shows_denoised(),
         "no denoised image after {frames} frames"
@@ -191,13 +198,7 @@ fn the_denoise_toggle_works_on_an_adaptive_scene() {
         Ok(())
     });
     let mut h = read_only_inspector(CAUSTIC, adjust);
-    h.get_by_label("denoised image").click();
-    let mut frames = 0;
-    while !h.state().shows_denoised() && frames < 600 {
-        h.run();
-        std::thread::sleep(std::time::Duration::from_millis(10));
-        frames += 1;
-    }
+    let frames = turn_on_denoised(&mut h);
     assert!(
         h.state().shows_denoised(),
         "no denoised image after {frames} frames: {:?}",
