@@ -106,7 +106,7 @@ impl<R: Recorder, F: FnMut(SampleRecord)> SampleSink for Traced<'_, R, F> {
 
 /// What is fixed for every sample of a render: film, filter, whether the NaN rule keeps all.
 #[derive(Clone, Copy)]
-pub(super) struct Camera<'a> {
+pub(crate) struct Camera<'a> {
     film: &'a Film<'a>,
     filter: PixelFilter,
     whitted: bool,
@@ -114,7 +114,7 @@ pub(super) struct Camera<'a> {
 
 impl<'a> Camera<'a> {
     #[inline(always)]
-    pub(super) fn new<I: Integrator>(integrator: &'a I) -> Self {
+    pub(crate) fn new<I: Integrator>(integrator: &'a I) -> Self {
         Self {
             film: integrator.film(),
             filter: integrator.scene().settings.filter.filter(),
@@ -126,7 +126,7 @@ impl<'a> Camera<'a> {
 /// Sample `s` of pixel (x, y) traced into `sink`: returns its radiance and whether it is kept.
 #[inline(always)]
 #[allow(clippy::too_many_arguments)]
-pub(super) fn one_sample<I: Integrator, S: PixelSampler, K: SampleSink>(
+pub(crate) fn one_sample<I: Integrator, S: PixelSampler, K: SampleSink>(
     integrator: &I,
     cam: Camera<'_>,
     sampler: &mut S,

@@ -30,9 +30,8 @@ pub use ui::{progressive_ui, title_ui};
 use super::worker::{Delivery, IMAGE_ROWS};
 use crate::bsdf::luminance;
 use crate::math::Rgb;
-use crate::render::camera_sample;
+use crate::render::pixel_loop::{self, Beauty};
 use crate::sampling::{PixelSampler, SceneSampler};
-use crate::scene::IntegratorKind;
 use crate::trace::{Integrator, NoopRecorder, RayCounts};
 use rayon::prelude::*;
 use std::time::Instant;
@@ -202,9 +201,7 @@ impl Accumulator {
         cancelled: &(dyn Fn() -> bool + Sync),
     ) -> RayCounts {
         let w = self.width as usize;
-        let film = integrator.film();
-        let filter = integrator.scene().settings.filter.filter();
-        let whitted = integrator.kind() == IntegratorKind::Whitted;
+        let cam = pixel_loop::Camera::new(integrator);
         let mut pass = *sampler;
         pass.refine(first, count);
         self.pixels[rows.start as usize * w..rows.end as usize * w]
@@ -219,18 +216,18 @@ impl Accumulator {
                         break;
                     }
                     for s in first..first + count {
-                        let (_, ray) = camera_sample(film, filter, &mut sampler, x as u32, y, s);
-                        let rec = &mut NoopRecorder;
-                        let (l, _) =
-                            integrator.camera_radiance(ray, &mut sampler, rec, &mut counts);
-                        // As the render: a non-finite path sample is dropped (black, counted).
-                        let at = (x as u32, y, s);
-                        let l = if counts.keep_sample(l, whitted, at) {
-                            l
-                        } else {
-                            Rgb::ZERO
-                        };
-                        p.add(s, l);
+                        // The render's sample: a non-finite path sample is dropped (black,
+                        // counted).
+                        let (l, kept) = pixel_loop::one_sample(
+                            integrator,
+                            cam,
+                            &mut sampler,
+                            (x as u32, y, s),
+                            &mut Beauty(NoopRecorder),
+                            &mut (),
+                            &mut counts,
+                        );
+                        p.add(s, if kept { l } else { Rgb::ZERO });
                     }
                 }
                 counts
