@@ -10,6 +10,17 @@ pub(super) fn accept(t: f64, t_min: f64, t_max: f64) -> bool {
     t > t_min && t < t_max
 }
 
+/// The nearer of a solid's entry and exit `(t0, t1)` (`t0 <= t1`) inside `(ray.t_min, t_max)`:
+/// the entry, else the exit (the ray starts inside).
+#[inline(always)]
+pub(super) fn nearest_crossing((t0, t1): (f64, f64), ray: &Ray, t_max: f64) -> Option<f64> {
+    if accept(t0, ray.t_min, t_max) {
+        Some(t0)
+    } else {
+        accept(t1, ray.t_min, t_max).then_some(t1)
+    }
+}
+
 /// Both roots of the ray-sphere quadratic, in the numerically stable form of Haines et al.,
 /// "Precision Improvements for Ray/Sphere Intersection" (Ray Tracing Gems, ch. 7, eq. 10-14):
 /// the discriminant is computed from the perpendicular distance, and the second root from
@@ -42,14 +53,7 @@ impl SignumOrOne for f64 {
 
 #[inline]
 pub(super) fn sphere_hit(center: DVec3, radius: f64, ray: &Ray, t_max: f64) -> Option<ShapeHit> {
-    let (t0, t1) = sphere_roots(center, radius, ray)?;
-    let t = if accept(t0, ray.t_min, t_max) {
-        t0
-    } else if accept(t1, ray.t_min, t_max) {
-        t1
-    } else {
-        return None;
-    };
+    let t = nearest_crossing(sphere_roots(center, radius, ray)?, ray, t_max)?;
     let normal = ((ray.at(t) - center) / radius).normalize();
     Some(ShapeHit { t, normal })
 }

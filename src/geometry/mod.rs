@@ -14,7 +14,7 @@ mod reject;
 mod spawn;
 
 pub(crate) use crate::mesh::triangle::triangle_t;
-use intersect::{accept, box_normal, slab_interval, sphere_hit, sphere_roots};
+use intersect::{accept, box_normal, nearest_crossing, slab_interval, sphere_hit, sphere_roots};
 pub(crate) use prepared::{Prepared, Shear};
 use reject::{plane_out_of_range, quad_surely_missed};
 pub use spawn::{SELF_HIT_FRACTION, gamma};
@@ -111,14 +111,7 @@ impl Shape {
                 accept(t, ray.t_min, t_max).then_some(ShapeHit { t, normal })
             }
             Shape::Box { min, max } => {
-                let (t0, t1) = slab_interval(min, max, ray)?;
-                let t = if accept(t0, ray.t_min, t_max) {
-                    t0
-                } else if accept(t1, ray.t_min, t_max) {
-                    t1
-                } else {
-                    return None;
-                };
+                let t = nearest_crossing(slab_interval(min, max, ray)?, ray, t_max)?;
                 Some(ShapeHit {
                     t,
                     normal: box_normal(min, max, ray.at(t)),

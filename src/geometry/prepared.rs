@@ -11,7 +11,7 @@
 //! twice).
 
 use super::Shape;
-use super::intersect::{accept, box_normal, slab_interval, sphere_roots};
+use super::intersect::{accept, box_normal, nearest_crossing, slab_interval, sphere_roots};
 use super::reject::{QuadFrame, plane_out_of_range};
 use crate::math::Ray;
 use crate::mesh::triangle::ShearedRay;
@@ -103,12 +103,7 @@ impl Prepared {
     pub(crate) fn t_inline(&self, ray: &Ray, sheared: &mut Shear, t_max: f64) -> Option<f64> {
         let t = match *self {
             Prepared::Sphere { center, radius } => {
-                let (t0, t1) = sphere_roots(center, radius, ray)?;
-                return if accept(t0, ray.t_min, t_max) {
-                    Some(t0)
-                } else {
-                    accept(t1, ray.t_min, t_max).then_some(t1)
-                };
+                return nearest_crossing(sphere_roots(center, radius, ray)?, ray, t_max);
             }
             Prepared::Plane { point, normal } => {
                 let denom = normal.dot(ray.direction);
@@ -135,12 +130,7 @@ impl Prepared {
                 sheared.get(ray)?.t_quad(vertices)?
             }
             Prepared::Box { min, max } => {
-                let (t0, t1) = slab_interval(min, max, ray)?;
-                return if accept(t0, ray.t_min, t_max) {
-                    Some(t0)
-                } else {
-                    accept(t1, ray.t_min, t_max).then_some(t1)
-                };
+                return nearest_crossing(slab_interval(min, max, ray)?, ray, t_max);
             }
             Prepared::Mesh => return None,
         };
