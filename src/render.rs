@@ -160,7 +160,9 @@ pub fn render_with<I: Integrator>(
     render_sampled(integrator, &sampler, progress)
 }
 
-/// [`render_with`] drawing samples from copies of `sampler` (one per row or band).
+/// [`render_with`] drawing samples from copies of `sampler` (one per row or band); under
+/// automatic antialiasing ([`AdaptivePlan::auto`]) the film positions are its own (the pixel
+/// centre, then Sobol points) and `sampler` is not used.
 pub fn render_sampled<I: Integrator, S: PixelSampler>(
     integrator: &I,
     sampler: &S,
@@ -244,12 +246,19 @@ fn uses_packets<R: Recorder, I: Integrator>(integrator: &I) -> bool {
     !R::RECORDS
         && !R::DIAGNOSE
         && integrator.traces_packets()
-        && scene.settings.adaptive.is_none()
+        && adaptive_plan(integrator).is_none()
         && scene.camera.width > 0
         && scene
             .objects
             .iter()
             .any(|o| matches!(o.shape, Shape::Mesh(_)))
+}
+
+/// Samples every pixel of a render by `integrator` takes at least: `spp`, or the first pass of
+/// its [`AdaptivePlan`] (a pixel that took more was refined).
+#[must_use]
+pub fn first_spp<I: Integrator>(integrator: &I) -> u32 {
+    adaptive_plan(integrator).map_or(integrator.scene().settings.spp.max(1), |p| p.first)
 }
 
 fn render_recorded<R: Recorder + Default, I: Integrator, S: PixelSampler>(
@@ -286,7 +295,8 @@ fn render_recorded<R: Recorder + Default, I: Integrator, S: PixelSampler>(
     } else {
         pixel_loop::rows(integrator, sampler, || Beauty(R::default()), progress)
     };
-    let (image, stats, map, _) = pixel_loop::assemble((w, h), spp, R::DIAGNOSE, rows);
+    let first = first_spp(integrator);
+    let (image, stats, map, _) = pixel_loop::assemble((w, h), first, R::DIAGNOSE, rows);
     (image, stats, map)
 }
 
@@ -310,12 +320,15 @@ pub fn render_pixel_counted<I: Integrator, S: PixelSampler, R: Recorder>(
 
 #[path = "render_adaptive.rs"]
 mod adaptive;
+#[path = "render_auto.rs"]
+mod auto;
 #[path = "render_image.rs"]
 mod image;
 #[path = "render_packets.rs"]
 mod packets;
 #[path = "render_loop.rs"]
 pub mod pixel_loop;
+pub use adaptive::{AdaptivePlan, adaptive_plan};
 pub use image::{DiagnosticMap, Image, RenderStats};
 use packets::packet_bands;
 use pixel_loop::{Beauty, PixelOut, SinkRow};

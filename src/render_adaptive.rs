@@ -1,13 +1,16 @@
-//! Adaptive antialiasing (`settings.adaptive`) in the render and in one pixel.
+//! Adaptive antialiasing (`settings.adaptive`, and `settings.antialiasing: "auto"`) in the
+//! render and in one pixel.
 //!
-//! A pixel's first pass is its `spp` samples. It takes a second pass of `max_spp - spp` samples
-//! (drawn from a copy of the sampler after [`PixelSampler::refine`]: sample indices
-//! `spp..max_spp` on their own complete stratified grid) when the contrast
-//! ([`Spread::contrast`]) of its own first-pass samples together with the first-pass means of
-//! its 8 neighbours exceeds the threshold; its value is the mean of all its samples. The
-//! neighbours catch the edge that crosses a pixel between its first samples (all on one side):
-//! without them, on `benches/mitsuba-scenes/glass-emitters.json` at 4 spp, 83% of the remaining
-//! error sat in unrefined pixels beside refined ones.
+//! A pixel's first pass is its first `plan.first` samples (`spp` under `settings.adaptive`;
+//! automatic antialiasing, a probe through the centre, is in `src/render_auto.rs`). It takes a second pass
+//! of samples `first..total` (drawn from a copy of the sampler after
+//! [`PixelSampler::refine`]: on their own complete stratified grid, or the Sobol sequence
+//! continued) when the contrast ([`Spread::contrast`]) of its own first-pass samples together
+//! with the first-pass means of its 8 neighbours exceeds the threshold; its value is the mean
+//! of all its samples. The neighbours catch the edge that crosses a pixel between its first
+//! samples (all on one side): without them, on `benches/mitsuba-scenes/glass-emitters.json` at
+//! 4 spp, 83% of the remaining error sat in unrefined pixels beside refined ones; with them a
+//! first pass of one sample per pixel finds the edges.
 //!
 //! The render computes every pixel's first pass, then decides and traces the second passes
 //! ([`rows`]); one pixel alone ([`pixel`], and so `render_pixel_counted` and `raytree trace`)
@@ -19,9 +22,55 @@
 use super::pixel_loop::{Beauty, Camera, PixelOut, SampleSink, SinkRow, diag, one_sample};
 use crate::math::Rgb;
 use crate::sampling::{PixelSampler, Spread};
-use crate::scene::AdaptiveDesc;
+use crate::scene::{AUTO_THRESHOLD, Antialiasing};
 use crate::trace::{Integrator, NoopRecorder, RayCounts, Recorder};
 use rayon::prelude::*;
+
+/// Which samples the pixels of a render take when some take more than others.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct AdaptivePlan {
+    /// Samples of every pixel's first pass.
+    pub first: u32,
+    /// Samples of a refined pixel in all (first pass included).
+    pub total: u32,
+    /// Contrast above which a pixel is refined.
+    pub threshold: f64,
+    /// Automatic antialiasing (`src/render_auto.rs`): the first pass is one probe through the
+    /// pixel centre, a refined pixel's value the mean of `total` samples at its Sobol points
+    /// (the probe not among them); the scene's sampler is not used.
+    pub auto: bool,
+}
+
+/// The plan of a render by `integrator`: `settings.adaptive` when set (first pass `spp`,
+/// refined to its `max_spp`); otherwise, under `settings.antialiasing: "auto"`, automatic
+/// antialiasing (a probe through the centre, refined to `spp` samples, contrast above
+/// [`AUTO_THRESHOLD`]) when
+/// `spp >= 2`, no `settings.sampler` is chosen and the radiance of a camera sample is a
+/// function of its film position alone ([`Integrator::film_only`]); `None`: every pixel takes
+/// `spp` samples.
+#[must_use]
+pub fn adaptive_plan<I: Integrator>(integrator: &I) -> Option<AdaptivePlan> {
+    let settings = &integrator.scene().settings;
+    let spp = settings.spp.max(1);
+    if let Some(a) = settings.adaptive {
+        return Some(AdaptivePlan {
+            first: spp,
+            total: a.max_spp(spp).max(spp),
+            threshold: a.threshold,
+            auto: false,
+        });
+    }
+    let auto = settings.antialiasing == Antialiasing::Auto
+        && spp >= 2
+        && settings.sampler.is_none()
+        && integrator.film_only();
+    auto.then_some(AdaptivePlan {
+        first: 1,
+        total: spp,
+        threshold: AUTO_THRESHOLD,
+        auto: true,
+    })
+}
 
 /// The neighbours whose first-pass means enter a pixel's decision.
 const NEIGHBOURS: [(i64, i64); 8] = [
@@ -42,24 +91,45 @@ struct First {
     spread: Spread,
 }
 
-/// Every sample of pixel (x, y) into `sink` under `settings.adaptive` (see the module
-/// documentation): the pixel radiance (the mean of its samples), how many samples it took and
-/// the sink's result.
+/// Every sample of pixel (x, y) into `sink` under `plan` (see the module documentation): the
+/// pixel radiance (the mean of its samples), how many samples it took and the sink's result.
+/// Automatic antialiasing is [`super::auto::pixel`].
 pub(super) fn pixel<I: Integrator, S: PixelSampler, K: SampleSink>(
     integrator: &I,
     sampler: &mut S,
-    a: AdaptiveDesc,
+    plan: AdaptivePlan,
+    xy: (u32, u32),
+    sink: &mut K,
+    counts: &mut RayCounts,
+) -> (Rgb, u32, K::Out) {
+    if plan.auto {
+        super::auto::pixel(integrator, plan, xy, sink, counts)
+    } else {
+        pixel_from(integrator, sampler, plan, xy, sink, counts)
+    }
+}
+
+/// [`pixel`] with its film positions from `sampler`.
+fn pixel_from<I: Integrator, S: PixelSampler, K: SampleSink>(
+    integrator: &I,
+    sampler: &mut S,
+    plan: AdaptivePlan,
     (x, y): (u32, u32),
     sink: &mut K,
     counts: &mut RayCounts,
 ) -> (Rgb, u32, K::Out) {
     let scene = integrator.scene();
-    let spp = scene.settings.spp.max(1);
+    let first_n = plan.first;
     let mut px = K::Pixel::default();
-    let first = first_pass(integrator, sampler, x, y, sink, &mut px, counts);
-    let total = a.max_spp(spp);
-    let unrefined = |sink: &mut K, px| (first.sum / f64::from(spp), spp, sink.finish(px, spp));
-    if total <= spp {
+    let first = first_pass(integrator, sampler, plan, (x, y), sink, &mut px, counts);
+    let unrefined = |sink: &mut K, px| {
+        (
+            first.sum / f64::from(first_n),
+            first_n,
+            sink.finish(px, first_n),
+        )
+    };
+    if plan.total <= first_n {
         return unrefined(sink, px);
     }
     let (w, h) = (scene.camera.width, scene.camera.height);
@@ -70,48 +140,58 @@ pub(super) fn pixel<I: Integrator, S: PixelSampler, K: SampleSink>(
         let (nx, ny) = (i64::from(x) + dx, i64::from(y) + dy);
         let inside = (0..i64::from(w)).contains(&nx) && (0..i64::from(h)).contains(&ny);
         inside.then(|| {
-            let (nx, ny) = (nx as u32, ny as u32);
+            let n = (nx as u32, ny as u32);
             let f = first_pass(
                 integrator,
                 &mut other,
-                nx,
-                ny,
+                plan,
+                n,
                 &mut quiet,
                 &mut (),
                 &mut scratch,
             );
-            f.sum / f64::from(spp)
+            f.sum / f64::from(first_n)
         })
     });
-    if !refines(&a, &first, means) {
+    if !refines(plan, &first, means) {
         return unrefined(sink, px);
     }
-    let sum = second_pass(integrator, sampler, x, y, first.sum, sink, &mut px, counts);
+    let sum = second_pass(
+        integrator,
+        sampler,
+        plan,
+        (x, y),
+        first.sum,
+        sink,
+        &mut px,
+        counts,
+    );
+    let total = plan.total;
     (sum / f64::from(total), total, sink.finish(px, total))
 }
 
 /// Whether a pixel with first pass `own` and neighbours' first-pass `means` is refined.
-fn refines(a: &AdaptiveDesc, own: &First, means: impl Iterator<Item = Rgb>) -> bool {
+fn refines(plan: AdaptivePlan, own: &First, means: impl Iterator<Item = Rgb>) -> bool {
     let mut spread = own.spread;
     for m in means {
         spread.add(m);
     }
-    spread.contrast() > a.threshold
+    spread.contrast() > plan.threshold
 }
 
-/// Samples `0..spp` of pixel (x, y).
+/// Samples `0..plan.first` of pixel (x, y).
 fn first_pass<I: Integrator, S: PixelSampler, K: SampleSink>(
     integrator: &I,
     sampler: &mut S,
-    x: u32,
-    y: u32,
+    plan: AdaptivePlan,
+    (x, y): (u32, u32),
     sink: &mut K,
     px: &mut K::Pixel,
     counts: &mut RayCounts,
 ) -> First {
     let cam = Camera::new(integrator);
     let mut f = First::default();
-    for s in 0..integrator.scene().settings.spp.max(1) {
+    for s in 0..plan.first {
         let l = kept(one_sample(
             integrator,
             cam,
@@ -133,26 +213,23 @@ fn kept((l, kept): (Rgb, bool)) -> Rgb {
     if kept { l } else { Rgb::ZERO }
 }
 
-/// Samples `spp..max_spp` of pixel (x, y) added to `sum` (the first pass's) in order, from a
-/// copy of `sampler` refined for the pass.
+/// Samples `plan.first..plan.total` of pixel (x, y) added to `sum` (the first pass's) in
+/// order, from a copy of `sampler` refined for the pass.
 #[allow(clippy::too_many_arguments)]
 fn second_pass<I: Integrator, S: PixelSampler, K: SampleSink>(
     integrator: &I,
     sampler: &S,
-    x: u32,
-    y: u32,
+    plan: AdaptivePlan,
+    (x, y): (u32, u32),
     mut sum: Rgb,
     sink: &mut K,
     px: &mut K::Pixel,
     counts: &mut RayCounts,
 ) -> Rgb {
-    let settings = &integrator.scene().settings;
-    let spp = settings.spp.max(1);
-    let total = settings.adaptive.map_or(spp, |a| a.max_spp(spp));
     let cam = Camera::new(integrator);
     let mut second = sampler.clone();
-    second.refine(spp, total - spp);
-    for s in spp..total {
+    second.refine(plan.first, plan.total - plan.first);
+    for s in plan.first..plan.total {
         sum += kept(one_sample(
             integrator,
             cam,
@@ -168,11 +245,32 @@ fn second_pass<I: Integrator, S: PixelSampler, K: SampleSink>(
 
 /// The rows of an adaptive render through sinks from `make` (rows in parallel): every pixel's
 /// first pass, then each pixel's decision and second pass; `progress` is called as
-/// second-pass rows finish.
+/// second-pass rows finish. Automatic antialiasing is [`super::auto::rows`].
 pub(super) fn rows<I, S, K, F>(
     integrator: &I,
     sampler: &S,
-    a: AdaptiveDesc,
+    plan: AdaptivePlan,
+    make: F,
+    progress: &(dyn Fn() + Sync),
+) -> Vec<SinkRow<K::Out>>
+where
+    I: Integrator,
+    S: PixelSampler,
+    K: SampleSink,
+    F: Fn() -> K + Sync + Send,
+{
+    if plan.auto {
+        super::auto::rows(integrator, plan, make, progress)
+    } else {
+        rows_from(integrator, sampler, plan, make, progress)
+    }
+}
+
+/// [`rows`] with film positions from copies of `sampler`.
+fn rows_from<I, S, K, F>(
+    integrator: &I,
+    sampler: &S,
+    plan: AdaptivePlan,
     make: F,
     progress: &(dyn Fn() + Sync),
 ) -> Vec<SinkRow<K::Out>>
@@ -184,8 +282,7 @@ where
 {
     let scene = integrator.scene();
     let (w, h) = (scene.camera.width, scene.camera.height);
-    let spp = scene.settings.spp.max(1);
-    let total = a.max_spp(spp);
+    let (first_n, total) = (plan.first, plan.total);
     let diagnose = K::Rec::DIAGNOSE;
     type FirstRow = (Vec<First>, Vec<(u32, u32)>, RayCounts);
     let first: Vec<(FirstRow, Vec<K::Pixel>)> = (0..h)
@@ -197,7 +294,8 @@ where
                 .map(|x| {
                     let before = counts;
                     let mut px = K::Pixel::default();
-                    let f = first_pass(integrator, &mut sampler, x, y, sink, &mut px, &mut counts);
+                    let (s, c) = (&mut sampler, &mut counts);
+                    let f = first_pass(integrator, s, plan, (x, y), sink, &mut px, c);
                     if diagnose {
                         d.push(diag(&before, &counts));
                     }
@@ -211,7 +309,7 @@ where
     let (first, data): (Vec<FirstRow>, Vec<Vec<K::Pixel>>) = first.into_iter().unzip();
     let mean = |x: i64, y: i64| -> Option<Rgb> {
         let row = &first.get(usize::try_from(y).ok()?)?.0;
-        Some(row.get(usize::try_from(x).ok()?)?.sum / f64::from(spp))
+        Some(row.get(usize::try_from(x).ok()?)?.sum / f64::from(first_n))
     };
     data.into_par_iter()
         .enumerate()
@@ -230,12 +328,13 @@ where
                         .filter_map(|&(dx, dy)| mean(cx + dx, cy + dy));
                     let before = counts;
                     let x = x as u32;
-                    let (value, taken) = if total > spp && refines(&a, &f, means) {
+                    let (value, taken) = if total > first_n && refines(plan, &f, means) {
                         let c = &mut counts;
-                        let sum = second_pass(integrator, sampler, x, y, f.sum, sink, &mut px, c);
+                        let sum =
+                            second_pass(integrator, sampler, plan, (x, y), f.sum, sink, &mut px, c);
                         (sum / f64::from(total), total)
                     } else {
-                        (f.sum / f64::from(spp), spp)
+                        (f.sum / f64::from(first_n), first_n)
                     };
                     let diag = if diagnose {
                         let (s, l) = diag(&before, &counts);

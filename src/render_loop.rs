@@ -1,5 +1,5 @@
-//! The one pixel loop: for a pixel, choose its samples (the scene's `spp`, or with
-//! `settings.adaptive` the two passes of `src/render_adaptive.rs`), draw each camera sample
+//! The one pixel loop: for a pixel, choose its samples (the scene's `spp`, or under an
+//! [`AdaptivePlan`](super::AdaptivePlan) the two passes of `src/render_adaptive.rs`), draw each camera sample
 //! from the scene's sampler (`camera_sample`), trace it, apply the NaN rule
 //! ([`RayCounts::keep_sample`]) and hand it to a [`SampleSink`]. The render ([`Beauty`]), a
 //! pixel's tree (`render_pixel_counted`), the AOV render (`crate::aov::render_aovs`: the
@@ -44,6 +44,9 @@ pub trait SampleSink {
     type Rec: Recorder;
     /// Per-pixel state while its samples come in (kept between the adaptive passes).
     type Pixel: Default + Send;
+    /// Whether the sink does anything with a sample (automatic antialiasing hands an
+    /// unrefined pixel's probe to a sink only if it does).
+    const TAKES_SAMPLES: bool = true;
     /// A finished pixel's result.
     type Out: Send;
     /// The recorder for the next sample.
@@ -65,6 +68,7 @@ impl<R: Recorder> SampleSink for Beauty<R> {
     type Rec = R;
     type Pixel = ();
     type Out = ();
+    const TAKES_SAMPLES: bool = R::RECORDS;
     #[inline(always)]
     fn recorder(&mut self) -> &mut R {
         &mut self.0
@@ -153,8 +157,8 @@ pub(crate) fn one_sample<I: Integrator, S: PixelSampler, K: SampleSink>(
 }
 
 /// Every sample of pixel (x, y) into `sink`: the pixel radiance (the mean of its samples), how
-/// many samples it took (`spp`, or `max_spp` where adaptive antialiasing refines it) and the
-/// sink's result.
+/// many samples it took (`spp`, or under an [`AdaptivePlan`](super::AdaptivePlan) its first
+/// pass or its refined total) and the sink's result.
 pub fn pixel<I: Integrator, S: PixelSampler, K: SampleSink>(
     integrator: &I,
     sampler: &mut S,
@@ -163,8 +167,8 @@ pub fn pixel<I: Integrator, S: PixelSampler, K: SampleSink>(
     sink: &mut K,
     counts: &mut RayCounts,
 ) -> (Rgb, u32, K::Out) {
-    if let Some(a) = integrator.scene().settings.adaptive {
-        return super::adaptive::pixel(integrator, sampler, a, (x, y), sink, counts);
+    if let Some(plan) = super::adaptive_plan(integrator) {
+        return super::adaptive::pixel(integrator, sampler, plan, (x, y), sink, counts);
     }
     let cam = Camera::new(integrator);
     let spp = integrator.scene().settings.spp.max(1);
@@ -204,9 +208,9 @@ pub(super) fn diag(before: &RayCounts, after: &RayCounts) -> (u32, u32) {
 }
 
 /// Every row of the image through sinks from `make` (one per rayon work split), rows in
-/// parallel over copies of `sampler`; `progress` gets the number of rows finished. With
-/// `settings.adaptive`, every pixel's first pass and then the decisions and second passes
-/// ([`super::adaptive::rows`]).
+/// parallel over copies of `sampler`; `progress` gets the number of rows finished. Under an
+/// [`AdaptivePlan`](super::AdaptivePlan), every pixel's first pass and then the decisions and
+/// second passes ([`super::adaptive::rows`]).
 pub(crate) fn rows<I, S, K, F>(
     integrator: &I,
     sampler: &S,
@@ -222,8 +226,8 @@ where
     let scene = integrator.scene();
     let done = std::sync::atomic::AtomicU32::new(0);
     let on_row = || progress(done.fetch_add(1, std::sync::atomic::Ordering::Relaxed) + 1);
-    if let Some(a) = scene.settings.adaptive {
-        return super::adaptive::rows(integrator, sampler, a, make, &on_row);
+    if let Some(plan) = super::adaptive_plan(integrator) {
+        return super::adaptive::rows(integrator, sampler, plan, make, &on_row);
     }
     let w = scene.camera.width;
     (0..scene.camera.height)
@@ -257,10 +261,10 @@ where
 
 /// The image, the render's counts, the per-pixel samples (and with `diagnose` the self-hits
 /// and leaks) and the sinks' results of `rows`: every pixel admitted by
-/// [`RenderStats::admit_pixel`].
+/// [`RenderStats::admit_pixel`]; a pixel that took more than `first` samples counts as refined.
 pub(crate) fn assemble<O>(
     (w, h): (u32, u32),
-    spp: u32,
+    first: u32,
     diagnose: bool,
     rows: Vec<SinkRow<O>>,
 ) -> (Image, RenderStats, super::DiagnosticMap, Vec<O>) {
@@ -274,12 +278,12 @@ pub(crate) fn assemble<O>(
         samples: Vec::with_capacity(n),
         ..super::DiagnosticMap::default()
     };
-    let spp = spp.max(1);
+    let first = first.max(1);
     for (y, (row, counts)) in rows.into_iter().enumerate() {
         stats.rays += counts;
         for (x, p) in row.into_iter().enumerate() {
             stats.samples += u64::from(p.taken);
-            stats.refined_pixels += u64::from(p.taken > spp);
+            stats.refined_pixels += u64::from(p.taken > first);
             map.samples.push(p.taken);
             pixels.push(stats.admit_pixel(p.value, x, y));
             if diagnose {

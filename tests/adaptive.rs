@@ -1,6 +1,7 @@
 //! Adaptive antialiasing (`settings.adaptive`, issue 18): more samples only where a pixel's
-//! first pass disagrees, decided from the pixel's own samples so that a re-traced pixel records
-//! exactly the samples the render used.
+//! first pass (or its neighbours') disagrees, decided from the same bits when one pixel is
+//! re-traced, so that its tree records exactly the samples the render used. The automatic
+//! default (`settings.antialiasing`) is in `tests/auto_antialiasing.rs`.
 
 mod common;
 use common::{fails_with, raytree};
@@ -26,7 +27,7 @@ fn disc(spp: u32) -> Scene {
         {"type": "sphere", "center": [0.1, 0.05, -5], "radius": 1.1, "material": "lamp"},
         {"type": "sphere", "center": [-1.1, -0.5, -3.5], "radius": 0.5, "material": "glass"}
       ],
-      "settings": {"spp": SPP}
+      "settings": {"spp": SPP, "antialiasing": "uniform"}
     }"#;
     Scene::from_json(&src.replace("SPP", &spp.to_string())).unwrap()
 }
@@ -180,8 +181,8 @@ fn flags_and_errors() {
     std::fs::write(d.join("s.json"), src).unwrap();
     let fails = |args: &[&str], text: &str| fails_with(d, args, text);
     fails(
-        &["render", "s.json", "--adaptive", "0.05", "-o", "a.png"],
-        "--adaptive: needs spp >= 2",
+        &["render", "s.json", "--antialiasing", "edges", "-o", "a.png"],
+        "--antialiasing: unknown mode \"edges\", expected auto or uniform",
     );
     fails(
         &[

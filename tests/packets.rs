@@ -149,7 +149,9 @@ fn packet_render_equals_per_pixel_render_bit_for_bit() {
         (diffuse, 2, 61, 45, true),
         (&all_matte, 1, 61, 45, true),
     ] {
-        let scene = scene(objects, w, h, spp);
+        let mut scene = scene(objects, w, h, spp);
+        // Packets trace uniform renders (automatic antialiasing probes pixel by pixel).
+        scene.settings.antialiasing = raytree::scene::Antialiasing::Uniform;
         assert_eq!(EffectPlan::for_scene(&scene).direct_only(), direct);
         let (image, stats) = render(&scene, &|_| {});
         let mut counts = RayCounts::default();

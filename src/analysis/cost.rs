@@ -169,6 +169,7 @@ pub fn run(scene: &Scene, sweep: &Sweep, progress: &dyn Fn(usize, usize)) -> Cos
         spp: 1,
         min_weight: None,
         adaptive: None,
+        antialiasing: crate::scene::Antialiasing::Uniform,
         dielectric_roulette: None,
         ..scene.settings
     };

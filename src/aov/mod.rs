@@ -90,7 +90,8 @@ pub fn render_aovs<I: Integrator>(
     // A sink per rayon work split, so each distinct path string is matched a few times per
     // thread, not once per row.
     let rows = pixel_loop::rows(integrator, &sampler, || AovSink::new(lpes), progress);
-    let (beauty, stats, _, outs) = pixel_loop::assemble((w, h), scene.settings.spp, false, rows);
+    let first = crate::render::first_spp(integrator);
+    let (beauty, stats, _, outs) = pixel_loop::assemble((w, h), first, false, rows);
     let k = lpes.len();
     let n = (w * h) as usize;
     let mut aovs = vec![Vec::with_capacity(n); k];

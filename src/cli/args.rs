@@ -118,9 +118,14 @@ pub struct Overrides {
         allow_hyphen_values = true
     )]
     pub filter: Option<String>,
-    /// Adaptive antialiasing: pixels whose first --spp samples differ by more than this
-    /// contrast ((max - min) / (max + min + 0.01) in a channel, e.g. 0.05) take --max-spp
-    /// samples in all; needs --spp 2 or more.
+    /// What --spp means: auto (the default: where the image depends on the film position
+    /// alone, pixels on an edge take --spp samples, the others one) or uniform (every pixel
+    /// takes --spp samples).
+    #[arg(long, value_name = "auto|uniform")]
+    pub antialiasing: Option<String>,
+    /// Adaptive antialiasing: pixels whose first --spp samples (and their 8 neighbours' means)
+    /// differ by more than this contrast ((max - min) / (max + min + 0.01) in a channel, e.g.
+    /// 0.05) take --max-spp samples in all.
     #[arg(long, value_name = "THRESHOLD", allow_hyphen_values = true)]
     pub adaptive: Option<f64>,
     /// Adaptive antialiasing: samples of a refined pixel in all (default 16 x --spp).

@@ -192,6 +192,13 @@ pub fn apply(scene: &mut Scene, o: &Overrides) -> Result<()> {
     if let Some(v) = o.dielectric_roulette {
         s.dielectric_roulette = Some(v);
     }
+    if let Some(v) = &o.antialiasing {
+        s.antialiasing = match v.as_str() {
+            "auto" => raytree::scene::Antialiasing::Auto,
+            "uniform" => raytree::scene::Antialiasing::Uniform,
+            _ => bail!("--antialiasing: unknown mode {v:?}, expected auto or uniform"),
+        };
+    }
     if let Some(t) = o.adaptive {
         s.adaptive = Some(raytree::scene::AdaptiveDesc {
             threshold: t,

@@ -97,16 +97,28 @@ pub fn run(a: &RenderArgs) -> Result<()> {
         r.refracted,
         r.shadow
     )?;
-    if let Some(ad) = scene.settings.adaptive {
+    let integrator = raytree::trace::SceneIntegrator::new(scene);
+    if let Some(plan) = raytree::render::adaptive_plan(&integrator) {
         let pixels = u64::from(w) * u64::from(h);
-        sayln!(
-            "adaptive: {} of {pixels} pixels refined to {} spp (contrast > {}), {} samples ({:.2} per pixel)",
-            stats.refined_pixels,
-            ad.max_spp(scene.settings.spp),
-            ad.threshold,
-            stats.samples,
-            stats.samples as f64 / pixels.max(1) as f64
-        )?;
+        let per_pixel = stats.samples as f64 / pixels.max(1) as f64;
+        if plan.auto {
+            sayln!(
+                "antialiasing auto: {} of {pixels} pixels on an edge took {} spp, the others 1 (contrast > {}), {} samples ({per_pixel:.2} per pixel; --antialiasing uniform: {} everywhere)",
+                stats.refined_pixels,
+                plan.total,
+                plan.threshold,
+                stats.samples,
+                plan.total
+            )?;
+        } else {
+            sayln!(
+                "adaptive: {} of {pixels} pixels refined to {} spp (contrast > {}), {} samples ({per_pixel:.2} per pixel)",
+                stats.refined_pixels,
+                plan.total,
+                plan.threshold,
+                stats.samples
+            )?;
+        }
     }
     if let Some(p) = &a.spp_map {
         sayln!(

@@ -110,7 +110,8 @@ pub fn gather_counted<I: Integrator, S: PixelSampler>(
     let tracer = Tracer::new(scene);
     let make = || FeatureSink(&tracer, NoopRecorder);
     let rows = pixel_loop::rows(integrator, sampler, make, progress);
-    let (image, stats, map, outs) = pixel_loop::assemble((w, h), spp, false, rows);
+    let first = crate::render::first_spp(integrator);
+    let (image, stats, map, outs) = pixel_loop::assemble((w, h), first, false, rows);
     let n = (w * h) as usize;
     let mut features = Features {
         width: w,

@@ -295,9 +295,10 @@ pub enum LightDesc {
     },
 }
 
+mod antialias;
 mod settings;
+pub use antialias::{ADAPTIVE_FACTOR, AUTO_THRESHOLD, AdaptiveDesc, Antialiasing};
 pub use settings::{
-    ADAPTIVE_FACTOR, AdaptiveDesc, DEFAULT_MAX_RAYS, DEFAULT_RR_DEPTH, DEFAULT_TOLERANCE,
-    FilterDesc, GAUSSIAN_RADIUS_SIGMAS, IntegratorKind, OffsetDesc, OffsetStrategy, SamplerKind,
-    Settings, ShadowMode,
+    DEFAULT_MAX_RAYS, DEFAULT_RR_DEPTH, DEFAULT_TOLERANCE, FilterDesc, GAUSSIAN_RADIUS_SIGMAS,
+    IntegratorKind, OffsetDesc, OffsetStrategy, SamplerKind, Settings, ShadowMode,
 };

@@ -25,8 +25,8 @@ use std::borrow::Cow;
 pub use accel::{Accel, traversal_cost_image};
 pub use camera::{Camera, Film};
 pub use desc::{
-    AdaptiveDesc, FilterDesc, IntegratorKind, OffsetDesc, OffsetStrategy, SamplerKind, SceneDesc,
-    Settings, ShadowMode,
+    AUTO_THRESHOLD, AdaptiveDesc, Antialiasing, FilterDesc, IntegratorKind, OffsetDesc,
+    OffsetStrategy, SamplerKind, SceneDesc, Settings, ShadowMode,
 };
 pub use error::SceneError;
 pub use generated::icosphere_scene;

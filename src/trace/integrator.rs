@@ -45,6 +45,19 @@ pub trait Integrator: Sync {
     /// the sampler past the film offset (a packet holds rays of 64 different pixels).
     fn traces_packets(&self) -> bool;
 
+    /// Whether a camera sample's radiance is a function of its film position alone: the
+    /// Whitted integrator drawing nothing from the sampler past the film offset (no area
+    /// light, no rough lobe: [`Integrator::traces_packets`]), without a lens and without the
+    /// dielectric roulette (its hashed choices make neighbouring samples differ where the
+    /// image has no edge). Automatic antialiasing needs it (`crate::render::adaptive_plan`).
+    fn film_only(&self) -> bool {
+        let settings = &self.scene().settings;
+        self.kind() == IntegratorKind::Whitted
+            && self.traces_packets()
+            && !self.film().has_lens()
+            && settings.dielectric_roulette.is_none()
+    }
+
     /// The radiance of a packet of camera rays (at most [`crate::bvh::wide::PACKET`]) whose
     /// closest hits and traversal costs are known (from [`Scene::intersect_packet`]), into
     /// `out`: bit for bit what [`Integrator::camera_radiance`] gives each ray. Called only when

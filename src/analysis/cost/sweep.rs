@@ -4,7 +4,9 @@
 use super::with_settings;
 use crate::effects::EffectPlan;
 use crate::math::FresnelModel;
-use crate::scene::{AdaptiveDesc, FilterDesc, OffsetStrategy, Scene, Settings};
+use crate::render::adaptive_plan;
+use crate::scene::{AdaptiveDesc, Antialiasing, FilterDesc, OffsetStrategy, Scene, Settings};
+use crate::trace::SceneIntegrator;
 use crate::trace::bound::auto_min_weight;
 
 /// The sweep: which values each axis takes.
@@ -141,6 +143,18 @@ impl Sweep {
         for &n in &self.spps {
             push("spp", n.to_string(), Settings { spp: n, ..*base });
         }
+        // Automatic antialiasing beside each uniform spp row, where the scene allows it.
+        for &n in &self.spps {
+            let s = Settings {
+                spp: n,
+                antialiasing: Antialiasing::Auto,
+                ..*base
+            };
+            let scene = with_settings(scene, s);
+            if adaptive_plan(&SceneIntegrator::new(&scene)).is_some_and(|p| p.auto) {
+                push("antialiasing", format!("auto {n} spp"), s);
+            }
+        }
         for &o in &self.offsets {
             let mut s = *base;
             s.offset.strategy = o;
@@ -215,12 +229,13 @@ impl Sweep {
     /// (one sample at each pixel centre), except for the stochastic axes: `spp` against
     /// `reference_spp` samples, `light_samples` against `reference_light_samples` light
     /// samples, `glossy_samples` against `reference_glossy_samples` glossy samples, and
-    /// `filter` against the same filter at `reference_spp` samples; `adaptive` like `spp`.
+    /// `filter` against the same filter at `reference_spp` samples; `adaptive` and
+    /// `antialiasing` (automatic) like `spp`. The base, and so every reference, is uniform.
     #[must_use]
     pub fn reference_for(&self, axis: &str, settings: &Settings, reference: &Settings) -> Settings {
         let r = *reference;
         match axis {
-            "spp" | "adaptive" => Settings {
+            "spp" | "adaptive" | "antialiasing" => Settings {
                 spp: self.reference_spp,
                 ..r
             },

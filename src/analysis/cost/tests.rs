@@ -161,16 +161,28 @@ fn adaptive_rows_take_more_samples_at_edges_and_have_less_error() {
         ..Sweep::quick()
     };
     let r = run(&scene, &sweep, &|_, _| {});
-    let [uniform, adaptive] = &r.rows[..] else {
+    let [uniform, auto, adaptive] = &r.rows[..] else {
         panic!("{:?}", r.rows)
     };
     assert_eq!(
-        (uniform.axis.as_str(), adaptive.axis.as_str()),
-        ("spp", "adaptive")
+        (
+            uniform.axis.as_str(),
+            auto.axis.as_str(),
+            adaptive.axis.as_str()
+        ),
+        ("spp", "antialiasing", "adaptive")
     );
     assert_eq!(adaptive.value, "0 to 16 spp");
+    assert_eq!(auto.value, "auto 2 spp");
     let pixels = 48 * 27;
     assert_eq!(uniform.rays.camera, 2 * pixels);
+    // Automatic antialiasing: a probe per pixel, two more samples on the edges (at this size
+    // most of the checkered floor).
+    assert!(
+        auto.rays.camera > pixels && auto.rays.camera < 3 * pixels,
+        "{}",
+        auto.rays.camera
+    );
     assert!(
         adaptive.rays.camera > 2 * pixels && adaptive.rays.camera < 16 * pixels,
         "{}",

@@ -1,6 +1,7 @@
 //! The `settings` block and its parts (offsets, shadows, integrator, pixel filter) of the scene
 //! JSON: the serde mirror, documented in `docs/scene-format.md`.
 
+use super::antialias::{AdaptiveDesc, Antialiasing};
 use crate::math::FresnelModel;
 use serde::{Deserialize, Serialize};
 
@@ -310,8 +311,12 @@ pub struct Settings {
     /// The sampler (absent: the integrator's default, [`Settings::sampler_kind`]).
     #[serde(skip_serializing_if = "Option::is_none")]
     pub sampler: Option<SamplerKind>,
-    /// Adaptive antialiasing: more samples only for pixels whose first `spp` samples disagree
-    /// (absent: every pixel takes `spp` samples).
+    /// What `spp` means without `adaptive`: `auto` (edge pixels take `spp` samples, the
+    /// others one, where the image is a function of the film position alone) or `uniform`.
+    #[serde(skip_serializing_if = "Antialiasing::is_auto")]
+    pub antialiasing: Antialiasing,
+    /// Adaptive antialiasing with a chosen threshold: more samples only for pixels whose
+    /// first `spp` samples (and their neighbours') disagree; overrides `antialiasing`.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub adaptive: Option<AdaptiveDesc>,
     /// Whitted integrator: from this depth on (0 = the camera ray's hit), a smooth dielectric
@@ -332,36 +337,6 @@ impl Settings {
             IntegratorKind::Path => SamplerKind::Sobol,
             IntegratorKind::Whitted => SamplerKind::Stratified,
         })
-    }
-}
-
-/// Adaptive antialiasing (`settings.adaptive`, after Whitted 1980 and Mitchell 1987): a pixel's
-/// first pass is its `spp` stratified samples; if in any channel their contrast
-/// `(max - min) / (max + min + 0.01)` exceeds `threshold`, the pixel takes a second pass of
-/// `max_spp - spp` samples stratified on their own complete grid, and its value is the mean of
-/// all `max_spp` samples. The decision uses only the pixel's own samples, so `raytree trace`
-/// re-traces exactly the samples the render used ([`crate::sampling::contrast`]).
-#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
-#[serde(deny_unknown_fields)]
-pub struct AdaptiveDesc {
-    /// Contrast above which a pixel is refined (>= 0; 0 refines every pixel whose samples
-    /// differ at all).
-    pub threshold: f64,
-    /// Samples of a refined pixel in all (first pass included); absent:
-    /// [`ADAPTIVE_FACTOR`] times `spp` (at most 65536).
-    #[serde(default, skip_serializing_if = "Option::is_none")]
-    pub max_spp: Option<u32>,
-}
-
-/// A refined pixel's samples per first-pass sample when `adaptive.max_spp` is absent.
-pub const ADAPTIVE_FACTOR: u32 = 16;
-
-impl AdaptiveDesc {
-    /// The samples of a refined pixel when the first pass has `spp` samples.
-    #[must_use]
-    pub fn max_spp(&self, spp: u32) -> u32 {
-        self.max_spp
-            .unwrap_or_else(|| spp.saturating_mul(ADAPTIVE_FACTOR).min(65_536))
     }
 }
 
@@ -400,6 +375,7 @@ impl Default for Settings {
             rr_depth: DEFAULT_RR_DEPTH,
             glossy_samples: 1,
             sampler: None,
+            antialiasing: Antialiasing::Auto,
             adaptive: None,
             dielectric_roulette: None,
         }

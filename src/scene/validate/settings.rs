@@ -85,19 +85,13 @@ pub fn check_settings(s: &Settings) -> Result<Settings, (String, String)> {
     Ok(*s)
 }
 
-/// `settings.adaptive`: a finite threshold >= 0, a first pass of at least 2 samples (one
-/// sample has no spread), and `max_spp` in `spp..=65536`.
+/// `settings.adaptive`: a finite threshold >= 0 and `max_spp` in `spp..=65536`. A first pass
+/// of one sample is allowed: the neighbours' first passes give it a spread.
 fn check_adaptive(a: &crate::scene::desc::AdaptiveDesc, spp: u32) -> Result<(), (String, String)> {
     if !(a.threshold.is_finite() && a.threshold >= 0.0) {
         return Err((
             "settings.adaptive.threshold".into(),
             format!("must be a finite number >= 0, got {}", a.threshold),
-        ));
-    }
-    if spp < 2 {
-        return Err((
-            "settings.adaptive".into(),
-            format!("needs spp >= 2 (the first pass; one sample has no spread), got spp {spp}"),
         ));
     }
     if let Some(m) = a.max_spp
