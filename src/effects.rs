@@ -237,7 +237,7 @@ impl EffectPlan {
             line(
                 "supersampling",
                 self.supersampling,
-                format!("spp {}", s.spp),
+                crate::render::antialiasing_note(&crate::trace::SceneIntegrator::new(scene)),
             ),
             line("area lights", self.area_lights, {
                 let emitters: Vec<&str> = (0..scene.objects.len())

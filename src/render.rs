@@ -328,7 +328,7 @@ mod image;
 mod packets;
 #[path = "render_loop.rs"]
 pub mod pixel_loop;
-pub use adaptive::{AdaptivePlan, adaptive_plan};
+pub use adaptive::{AdaptivePlan, adaptive_plan, antialiasing_note};
 pub use image::{DiagnosticMap, Image, RenderStats};
 use packets::packet_bands;
 use pixel_loop::{Beauty, PixelOut, SinkRow};

@@ -72,6 +72,45 @@ pub fn adaptive_plan<I: Integrator>(integrator: &I) -> Option<AdaptivePlan> {
     })
 }
 
+/// How the pixels of a render by `integrator` are sampled, in words (`raytree effects`): the
+/// plan ([`adaptive_plan`]) and, for a uniform render of more than one sample, why automatic
+/// antialiasing does not apply.
+#[must_use]
+pub fn antialiasing_note<I: Integrator>(integrator: &I) -> String {
+    let settings = &integrator.scene().settings;
+    let spp = settings.spp.max(1);
+    match adaptive_plan(integrator) {
+        Some(p) if p.auto => format!(
+            "spp {spp}, automatic antialiasing: one probe through each pixel centre, {} samples \
+             where a pixel's probe and its 8 neighbours' differ (contrast > {}); \
+             settings.antialiasing \"uniform\" for {spp} everywhere",
+            p.total, p.threshold
+        ),
+        Some(p) => format!(
+            "spp {spp}, adaptive: {} samples where a pixel's first {} and its neighbours' \
+             differ (contrast > {})",
+            p.total, p.first, p.threshold
+        ),
+        None if spp == 1 => "spp 1".to_string(),
+        None => {
+            let why = if settings.antialiasing == Antialiasing::Uniform {
+                "settings.antialiasing uniform"
+            } else if settings.sampler.is_some() {
+                "settings.sampler chosen"
+            } else if integrator.kind() != crate::scene::IntegratorKind::Whitted {
+                "the path integrator's samples all differ"
+            } else if !integrator.traces_packets() {
+                "area lights or rough lobes make every sample differ"
+            } else if integrator.film().has_lens() {
+                "the lens makes every sample differ"
+            } else {
+                "the dielectric roulette makes every sample differ"
+            };
+            format!("spp {spp} in every pixel ({why})")
+        }
+    }
+}
+
 /// The neighbours whose first-pass means enter a pixel's decision.
 const NEIGHBOURS: [(i64, i64); 8] = [
     (-1, -1),
