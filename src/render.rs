@@ -195,9 +195,11 @@ pub fn render_diagnosed(
 }
 
 /// Rows `rows` of the image without recording, in parallel over rayon's pool: linear radiance
-/// (row-major, non-finite values as traced) and the rays traced. The same code path and so the
-/// same pixels as [`render_with`] (for scenes with meshes, bands of 8 rows from `rows.start`
-/// traced as 8x8 packets); the inspector shows its image with it before it gathers statistics.
+/// (row-major, non-finite values as traced) and the rays traced. The same pixels as
+/// [`render_with`] (for scenes with meshes, bands of 8 rows from `rows.start` traced as 8x8
+/// packets; under automatic antialiasing the probes of the rows and of the rows beside them,
+/// which are traced again by the next band); the inspector shows its image with it before it
+/// gathers statistics.
 pub fn render_rows<I: Integrator>(
     integrator: &I,
     rows: std::ops::Range<u32>,
@@ -207,6 +209,14 @@ pub fn render_rows<I: Integrator>(
     let sampler = SceneSampler::for_settings(&scene.settings);
     let parts: Vec<(Vec<Rgb>, RayCounts)> = if uses_packets::<NoopRecorder, I>(integrator) {
         packet_bands::<NoopRecorder, I, _>(integrator, &sampler, rows, &|_| {})
+    } else if let Some(plan) = adaptive_plan(integrator).filter(|p| p.auto) {
+        // The band's probes and those of the rows beside it once, not a pixel's neighbours
+        // per pixel: the same pixels as the render.
+        let make = || Beauty(NoopRecorder);
+        auto::rows(integrator, plan, rows, make, &|| {})
+            .into_iter()
+            .map(|(row, counts)| (row.into_iter().map(|p| p.value).collect(), counts))
+            .collect()
     } else {
         rows.into_par_iter()
             .map(|y| {

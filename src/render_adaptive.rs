@@ -299,7 +299,8 @@ where
     F: Fn() -> K + Sync + Send,
 {
     if plan.auto {
-        super::auto::rows(integrator, plan, make, progress)
+        let h = integrator.scene().camera.height;
+        super::auto::rows(integrator, plan, 0..h, make, progress)
     } else {
         rows_from(integrator, sampler, plan, make, progress)
     }

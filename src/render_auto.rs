@@ -154,11 +154,14 @@ pub(super) fn pixel<I: Integrator, K: SampleSink>(
     finish(integrator, plan, (x, y), own, edge, sink, counts)
 }
 
-/// The rows of the render through sinks from `make`: every pixel's probe (rows in parallel),
-/// then each pixel's decision and samples; `progress` is called as rows finish.
+/// Rows `rows` of the render through sinks from `make`: the probes of those rows and of the
+/// rows beside them (rows in parallel), then each pixel's decision and samples; `progress` is
+/// called as rows finish. The probes of the rows beside the range are traced for the decisions
+/// at its edges and counted in no row.
 pub(super) fn rows<I, K, F>(
     integrator: &I,
     plan: AdaptivePlan,
+    rows: std::ops::Range<u32>,
     make: F,
     progress: &(dyn Fn() + Sync),
 ) -> Vec<SinkRow<K::Out>>
@@ -170,8 +173,11 @@ where
     let scene = integrator.scene();
     let (w, h) = (scene.camera.width, scene.camera.height);
     let diagnose = K::Rec::DIAGNOSE;
+    // Probed rows: the range and one row on each side (inside the image).
+    let y0 = rows.start.saturating_sub(1);
+    let y1 = (rows.end + 1).min(h);
     type ProbeRow = (Vec<Rgb>, Vec<(u32, u32)>, RayCounts);
-    let probes: Vec<ProbeRow> = (0..h)
+    let probes: Vec<ProbeRow> = (y0..y1)
         .into_par_iter()
         .map(|y| {
             let mut counts = RayCounts::default();
@@ -190,13 +196,12 @@ where
         })
         .collect();
     let at = |x: i64, y: i64| -> Option<Rgb> {
-        let row = &probes.get(usize::try_from(y).ok()?)?.0;
+        let row = &probes.get(usize::try_from(y - i64::from(y0)).ok()?)?.0;
         row.get(usize::try_from(x).ok()?).copied()
     };
-    (0..h)
-        .into_par_iter()
+    rows.into_par_iter()
         .map_init(&make, |sink, y| {
-            let (prow, pdiag, mut counts) = probes[y as usize].clone();
+            let (prow, pdiag, mut counts) = probes[(y - y0) as usize].clone();
             let pixels = (0..w)
                 .map(|x| {
                     let (cx, cy) = (i64::from(x), i64::from(y));

@@ -1,6 +1,7 @@
 //! Progressive rendering in the inspector (issue 16) through egui_kittest: ticking
 //! "progressive" starts passes whose noise estimate, samples and time appear under the
-//! checkbox, and a run that reaches its cap says so.
+//! checkbox, and a run that reaches its cap says so. Also the automatic antialiasing toggle
+//! (issue 18).
 
 use egui_kittest::Harness;
 use egui_kittest::kittest::Queryable;
@@ -57,4 +58,35 @@ fn ticking_progressive_shows_the_noise_estimate_and_the_stop() {
     h.run();
     assert!(h.state().session.doc.progressive.report.is_none());
     assert!(!has(&h, "noise "));
+}
+
+/// "antialias edges only" (automatic antialiasing, the default) shows the render's image;
+/// unticking it renders every pixel at the scene's samples per pixel (the uniform render).
+#[test]
+fn unticking_antialias_edges_only_gives_the_uniform_render() {
+    let src = include_str!("../benches/mitsuba-scenes/glass-emitters.json");
+    let adjust = Box::new(|s: &mut raytree::Scene| {
+        s.camera = s.camera.with_size(40, 24);
+        s.settings.spp = 8;
+        Ok(())
+    });
+    let mut h = read_only_inspector(src, adjust);
+    h.state_mut().session.wait_render();
+    h.run();
+    let mut scene: raytree::Scene = (*h.state().session.doc.scene).clone();
+    assert_eq!(
+        scene.settings.antialiasing,
+        raytree::scene::Antialiasing::Auto
+    );
+    let auto = raytree::render(&scene, &|_| {}).0;
+    assert_eq!(h.state().session.doc.image, auto);
+    h.get_by_label("antialias edges only").click();
+    h.run();
+    h.state_mut().session.wait_render();
+    h.run();
+    scene.settings.antialiasing = raytree::scene::Antialiasing::Uniform;
+    assert_eq!(h.state().session.doc.scene.settings, scene.settings);
+    let uniform = raytree::render(&scene, &|_| {}).0;
+    assert_ne!(uniform, auto);
+    assert_eq!(h.state().session.doc.image, uniform);
 }

@@ -6,7 +6,7 @@ use super::export::ExportKind;
 use super::stats::DebugView;
 use super::style::{SELECTED, dot, kind_colour};
 use crate::math::FresnelModel;
-use crate::scene::{IntegratorKind, OffsetStrategy, ShadowMode};
+use crate::scene::{Antialiasing, IntegratorKind, OffsetStrategy, ShadowMode};
 use crate::tree::RayKind;
 use egui::{RichText, Slider};
 
@@ -66,6 +66,19 @@ pub fn settings_ui(ui: &mut egui::Ui, doc: &Document, cmds: &mut Vec<Command>) {
             .logarithmic(true)
             .text("samples / pixel"),
     );
+    // Automatic antialiasing: edge pixels take spp samples, the others one probe (where the
+    // image depends on the film position alone; the hover says whether it applies).
+    let mut auto = s.antialiasing == Antialiasing::Auto;
+    ui.checkbox(&mut auto, "antialias edges only")
+        .on_hover_ui(|ui| {
+            let integrator = crate::trace::SceneIntegrator::new(&doc.scene);
+            ui.label(crate::render::antialiasing_note(&integrator));
+        });
+    s.antialiasing = if auto {
+        Antialiasing::Auto
+    } else {
+        Antialiasing::Uniform
+    };
     egui::ComboBox::from_label("offset")
         .selected_text(offset_label(s.offset.strategy))
         .show_ui(ui, |ui| {
