@@ -256,3 +256,91 @@ fn bands_of_rows_equal_the_render_under_auto() {
     }
     assert_eq!(pixels, render(&scene, &|_| {}).0.pixels);
 }
+
+mod random_scenes {
+    use super::*;
+    use proptest::prelude::*;
+
+    /// A sphere: centre, radius and material (0 glass, 1 mirror, 2 lamp, 3 water).
+    fn sphere() -> impl Strategy<Value = ([f64; 3], f64, u8)> {
+        (
+            [-1.5f64..1.5, -1.0f64..1.0, -5.0f64..-2.0],
+            0.2f64..0.9,
+            0u8..4,
+        )
+    }
+
+    fn scene(spheres: &[([f64; 3], f64, u8)], spp: u32, seed: u64) -> Scene {
+        let objects: Vec<String> = spheres
+            .iter()
+            .map(|(c, r, m)| {
+                let m = ["glass", "mirror", "lamp", "water"][*m as usize];
+                format!(
+                    r#"{{"type": "sphere", "center": [{}, {}, {}], "radius": {r}, "material": "{m}"}}"#,
+                    c[0], c[1], c[2]
+                )
+            })
+            .collect();
+        let src = format!(
+            r#"{{
+              "camera": {{"position": [0, 0, 0], "look_at": [0, 0, -1], "fov_y": 50, "width": 16, "height": 12}},
+              "background": [0.2, 0.3, 0.5],
+              "materials": {{
+                "glass": {{"transmissivity": [1, 1, 1], "ior": 1.5}},
+                "water": {{"transmissivity": [0.9, 1, 1], "ior": 1.33}},
+                "mirror": {{"reflectivity": [0.9, 0.9, 0.9]}},
+                "lamp": {{"emission": [3, 2, 1]}}
+              }},
+              "objects": [{}],
+              "settings": {{"spp": {spp}, "seed": {seed}, "max_depth": 8}}
+            }}"#,
+            objects.join(", ")
+        );
+        Scene::from_json(&src).unwrap()
+    }
+
+    proptest! {
+        #![proptest_config(ProptestConfig { cases: 24, failure_persistence: None, ..ProptestConfig::default() })]
+
+        /// On random glass, water, mirror and lamp spheres: the auto image is the centre render
+        /// where the contrast rule finds no edge and the Sobol render where it finds one, bit
+        /// for bit, every pixel finite; a pixel's tree equals its pixel with the samples the
+        /// render took.
+        #[test]
+        fn auto_composes_centre_and_sobol_renders(
+            spheres in prop::collection::vec(sphere(), 1..5),
+            spp in 2u32..9,
+            seed in 0u64..1000,
+            probe in (0u32..16, 0u32..12),
+        ) {
+            let auto = scene(&spheres, spp, seed);
+            prop_assert!(plan(&auto).is_some_and(|p| p.auto));
+            let mut sobol = auto.clone();
+            sobol.settings.sampler = Some(SamplerKind::Sobol);
+            let mut centre = auto.clone();
+            centre.settings.spp = 1;
+            let (a, _, map) = render_sample_map(&auto, &|_| {});
+            let (sobol, centre) = (render(&sobol, &|_| {}).0, render(&centre, &|_| {}).0);
+            for y in 0..12u32 {
+                for x in 0..16u32 {
+                    let mut values = vec![centre.get(x, y)];
+                    for (dx, dy) in (-1..=1).flat_map(|dy| (-1..=1).map(move |dx| (dx, dy))) {
+                        let (nx, ny) = (x as i32 + dx, y as i32 + dy);
+                        if (0..16).contains(&nx) && (0..12).contains(&ny) {
+                            values.push(centre.get(nx as u32, ny as u32));
+                        }
+                    }
+                    let edge =
+                        raytree::sampling::contrast(&values) > raytree::scene::AUTO_THRESHOLD;
+                    let want = if edge { sobol.get(x, y) } else { centre.get(x, y) };
+                    prop_assert_eq!(a.get(x, y), want, "pixel {},{}", x, y);
+                    prop_assert!(a.get(x, y).is_finite());
+                }
+            }
+            let (x, y) = probe;
+            let tree = trace_pixel(&auto, x, y).unwrap();
+            prop_assert_eq!(tree.radiance, a.get(x, y));
+            prop_assert_eq!(tree.samples.len() as u32, map.samples[(y * 16 + x) as usize]);
+        }
+    }
+}
