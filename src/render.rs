@@ -125,7 +125,14 @@ pub fn trace_pixel(scene: &Scene, x: u32, y: u32) -> Option<RayTree> {
     let mut rec = TreeRecorder::default();
     let mut samples = Vec::new();
     let mut counts = RayCounts::default();
-    let radiance = render_pixel(scene, x, y, &mut rec, &mut counts, |s| samples.push(s));
+    let integrator = SceneIntegrator::new(scene);
+    let radiance = render_pixel_with(&integrator, x, y, &mut rec, &mut counts, |s| {
+        samples.push(s);
+    });
+    // Automatic antialiasing: an edge pixel took more than its probe.
+    let edge = adaptive_plan(&integrator)
+        .filter(|p| p.auto)
+        .map(|_| samples.len() > 1);
     // The settings as traced: the automatic cut is recorded as the value it took.
     let settings = crate::scene::Settings {
         min_weight: Some(crate::trace::bound::effective_min_weight(scene)),
@@ -138,6 +145,7 @@ pub fn trace_pixel(scene: &Scene, x: u32, y: u32) -> Option<RayTree> {
         radiance,
         samples,
         nodes: rec.nodes,
+        edge,
     })
 }
 

@@ -279,19 +279,30 @@ fn node_summary(n: &RayNode) -> String {
 #[must_use]
 pub fn tree_text(tree: &RayTree) -> String {
     let st = &tree.settings;
+    let (spp, sampler) = match tree.edge {
+        Some(true) => (
+            format!("{} (automatic antialiasing: an edge)", st.spp),
+            "sobol",
+        ),
+        Some(false) => (
+            format!("{} (automatic antialiasing: no edge, 1 probe)", st.spp),
+            "centre",
+        ),
+        None => (st.spp.to_string(), st.sampler_kind().name()),
+    };
     let mut out = format!(
         "pixel ({}, {})  radiance {}  spp {}  max_depth {}  fresnel {}  shadows {}  offset {} {}  integrator {}  sampler {}\n",
         tree.pixel[0],
         tree.pixel[1],
         rgb(tree.radiance),
-        st.spp,
+        spp,
         st.max_depth,
         serde_name(&st.fresnel),
         serde_name(&st.shadows),
         serde_name(&st.offset.strategy),
         sci(st.offset.epsilon, None),
         st.integrator.name(),
-        st.sampler_kind().name(),
+        sampler,
     );
     for s in &tree.samples {
         let _ = writeln!(

@@ -237,6 +237,22 @@ fn render_reports_auto_and_uniform_turns_it_off() {
     assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
     let tree: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
     assert_eq!(tree["samples"].as_array().unwrap().len(), 8);
+    assert_eq!(tree["edge"], true);
+    // The text tree says so too, and a pixel without an edge has its probe.
+    let args = [&["trace", "s.json", "--pixel", &pixel][..], &size[..]].concat();
+    let text = String::from_utf8_lossy(&raytree(&args, d).stdout).into_owned();
+    assert!(
+        text.contains("spp 8 (automatic antialiasing: an edge)") && text.contains("sampler sobol"),
+        "{text}"
+    );
+    let j = map.pixels().position(|p| p.0 == [0; 3]).unwrap() as u32;
+    let flat = format!("{},{}", j % 40, j / 40);
+    let args = [&["trace", "s.json", "--pixel", &flat][..], &size[..]].concat();
+    let text = String::from_utf8_lossy(&raytree(&args, d).stdout).into_owned();
+    assert!(
+        text.contains("(automatic antialiasing: no edge, 1 probe)") && text.contains(".500)"),
+        "{text}"
+    );
     let out = run(&["--antialiasing", "uniform"]);
     assert!(!out.contains("antialiasing auto"), "{out}");
 }

@@ -23,6 +23,7 @@ impl HandTree {
                 radiance: Rgb::ZERO,
                 samples: Vec::new(),
                 nodes: Vec::new(),
+                edge: None,
             },
         }
     }

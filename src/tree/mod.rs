@@ -258,6 +258,12 @@ pub struct RayTree {
     pub samples: Vec<SampleRecord>,
     /// All nodes.
     pub nodes: Vec<RayNode>,
+    /// Under automatic antialiasing (`settings.antialiasing: "auto"` where it applies): whether
+    /// the pixel was on an edge (`spp` samples at its Sobol points) or not (one probe through
+    /// its centre). Absent otherwise (every pixel took `spp`, or `settings.adaptive` decided),
+    /// and in files written before it existed.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub edge: Option<bool>,
 }
 
 impl RayTree {
