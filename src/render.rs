@@ -129,10 +129,10 @@ pub fn trace_pixel(scene: &Scene, x: u32, y: u32) -> Option<RayTree> {
     let radiance = render_pixel_with(&integrator, x, y, &mut rec, &mut counts, |s| {
         samples.push(s);
     });
-    // Automatic antialiasing: an edge pixel took more than its probe.
+    // Automatic antialiasing: an edge pixel took more than its first pass.
     let edge = adaptive_plan(&integrator)
         .filter(|p| p.auto)
-        .map(|_| samples.len() > 1);
+        .map(|p| samples.len() > p.first as usize);
     // The settings as traced: the automatic cut is recorded as the value it took.
     let settings = crate::scene::Settings {
         min_weight: Some(crate::trace::bound::effective_min_weight(scene)),
@@ -169,8 +169,8 @@ pub fn render_with<I: Integrator>(
 }
 
 /// [`render_with`] drawing samples from copies of `sampler` (one per row or band); under
-/// automatic antialiasing ([`AdaptivePlan::auto`]) the film positions are its own (the pixel
-/// centre, then Sobol points) and `sampler` is not used.
+/// automatic antialiasing ([`AdaptivePlan::auto`]) the film positions are its own (the
+/// pixel's Sobol points) and `sampler` is not used.
 pub fn render_sampled<I: Integrator, S: PixelSampler>(
     integrator: &I,
     sampler: &S,
@@ -205,9 +205,9 @@ pub fn render_diagnosed(
 /// Rows `rows` of the image without recording, in parallel over rayon's pool: linear radiance
 /// (row-major, non-finite values as traced) and the rays traced. The same pixels as
 /// [`render_with`] (for scenes with meshes, bands of 8 rows from `rows.start` traced as 8x8
-/// packets; under automatic antialiasing the probes of the rows and of the rows beside them,
-/// which are traced again by the next band); the inspector shows its image with it before it
-/// gathers statistics.
+/// packets; under adaptive or automatic antialiasing the first passes of the rows and of the
+/// rows beside them, which the next band traces again); the inspector shows its image with it
+/// before it gathers statistics.
 pub fn render_rows<I: Integrator>(
     integrator: &I,
     rows: std::ops::Range<u32>,
@@ -217,14 +217,10 @@ pub fn render_rows<I: Integrator>(
     let sampler = SceneSampler::for_settings(&scene.settings);
     let parts: Vec<(Vec<Rgb>, RayCounts)> = if uses_packets::<NoopRecorder, I>(integrator) {
         packet_bands::<NoopRecorder, I, _>(integrator, &sampler, rows, &|_| {})
-    } else if let Some(plan) = adaptive_plan(integrator).filter(|p| p.auto) {
-        // The band's probes and those of the rows beside it once, not a pixel's neighbours
-        // per pixel: the same pixels as the render.
-        let make = || Beauty(NoopRecorder);
-        auto::rows(integrator, plan, rows, make, &|| {})
-            .into_iter()
-            .map(|(row, counts)| (row.into_iter().map(|p| p.value).collect(), counts))
-            .collect()
+    } else if let Some(plan) = adaptive_plan(integrator) {
+        // The band's first passes and those of the rows beside it once, not a pixel's
+        // neighbours per pixel: the same pixels as the render.
+        adaptive::band_for(integrator, &sampler, plan, rows)
     } else {
         rows.into_par_iter()
             .map(|y| {
@@ -338,18 +334,18 @@ pub fn render_pixel_counted<I: Integrator, S: PixelSampler, R: Recorder>(
 
 #[path = "render_adaptive.rs"]
 mod adaptive;
-#[path = "render_auto.rs"]
-mod auto;
 #[path = "render_image.rs"]
 mod image;
 #[path = "render_packets.rs"]
 mod packets;
 #[path = "render_loop.rs"]
 pub mod pixel_loop;
-pub use adaptive::{AdaptivePlan, adaptive_plan, antialiasing_note};
+#[path = "render_plan.rs"]
+mod plan;
 pub use image::{DiagnosticMap, Image, RenderStats};
 use packets::packet_bands;
 use pixel_loop::{Beauty, PixelOut, SinkRow};
+pub use plan::{AUTO_FIRST_DIVISOR, AdaptivePlan, adaptive_plan, antialiasing_note};
 
 #[cfg(test)]
 #[path = "render_tests.rs"]

@@ -1,114 +1,32 @@
-//! Adaptive antialiasing (`settings.adaptive`, and `settings.antialiasing: "auto"`) in the
-//! render and in one pixel.
+//! Adaptive antialiasing (`settings.adaptive`, and `settings.antialiasing: "auto"`, which
+//! draws its own Sobol points) in the render and in one pixel.
 //!
-//! A pixel's first pass is its first `plan.first` samples (`spp` under `settings.adaptive`;
-//! automatic antialiasing, a probe through the centre, is in `src/render_auto.rs`). It takes a second pass
-//! of samples `first..total` (drawn from a copy of the sampler after
-//! [`PixelSampler::refine`]: on their own complete stratified grid, or the Sobol sequence
-//! continued) when the contrast ([`Spread::contrast`]) of its own first-pass samples together
-//! with the first-pass means of its 8 neighbours exceeds the threshold; its value is the mean
-//! of all its samples. The neighbours catch the edge that crosses a pixel between its first
-//! samples (all on one side): without them, on `benches/mitsuba-scenes/glass-emitters.json` at
-//! 4 spp, 83% of the remaining error sat in unrefined pixels beside refined ones; with them a
-//! first pass of one sample per pixel finds the edges.
+//! A pixel's first pass is its first `plan.first` samples. It takes a second pass of samples
+//! `first..total` (a copy of the sampler after [`PixelSampler::refine`]: its own complete
+//! stratified grid, or the Sobol sequence continued) when the contrast ([`Spread::contrast`])
+//! of its first-pass samples and its 8 neighbours' first-pass means exceeds the threshold; its
+//! value is the mean of all its samples. The neighbours catch the edge that crosses a pixel
+//! between its first samples: without them, on `benches/mitsuba-scenes/glass-emitters.json` at
+//! 4 spp, 83% of the remaining error sat in unrefined pixels beside refined ones.
 //!
 //! The render computes every pixel's first pass, then decides and traces the second passes
-//! ([`rows`]); one pixel alone ([`pixel`], and so `render_pixel_counted` and `raytree trace`)
+//! ([`rows`]); one pixel alone ([`pixel`], so `render_pixel_counted` and `raytree trace`)
 //! traces the neighbours' first passes without recording, so it makes the same decision from
-//! the same bits and records exactly the samples the render used. Both hand every sample of the
-//! pixel to the loop's [`SampleSink`] in the same order (first pass, then second pass), so the
-//! AOV render and the denoiser's gather take the render's samples.
+//! the same bits and records exactly the samples the render used, in the same order (first
+//! pass, then second pass) for every [`SampleSink`].
 
+use super::AdaptivePlan;
 use super::pixel_loop::{Beauty, Camera, PixelOut, SampleSink, SinkRow, diag, one_sample};
 use crate::math::Rgb;
-use crate::sampling::{PixelSampler, Spread};
-use crate::scene::{AUTO_THRESHOLD, Antialiasing};
+use crate::sampling::{PixelSampler, SobolSampler, Spread};
 use crate::trace::{Integrator, NoopRecorder, RayCounts, Recorder};
 use rayon::prelude::*;
 
-/// Which samples the pixels of a render take when some take more than others.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct AdaptivePlan {
-    /// Samples of every pixel's first pass.
-    pub first: u32,
-    /// Samples of a refined pixel in all (first pass included).
-    pub total: u32,
-    /// Contrast above which a pixel is refined.
-    pub threshold: f64,
-    /// Automatic antialiasing (`src/render_auto.rs`): the first pass is one probe through the
-    /// pixel centre, a refined pixel's value the mean of `total` samples at its Sobol points
-    /// (the probe not among them); the scene's sampler is not used.
-    pub auto: bool,
-}
-
-/// The plan of a render by `integrator`: `settings.adaptive` when set (first pass `spp`,
-/// refined to its `max_spp`); otherwise, under `settings.antialiasing: "auto"`, automatic
-/// antialiasing (a probe through the centre, refined to `spp` samples, contrast above
-/// [`AUTO_THRESHOLD`]) when
-/// `spp >= 2`, no `settings.sampler` is chosen and the radiance of a camera sample is a
-/// function of its film position alone ([`Integrator::film_only`]); `None`: every pixel takes
-/// `spp` samples.
-#[must_use]
-pub fn adaptive_plan<I: Integrator>(integrator: &I) -> Option<AdaptivePlan> {
-    let settings = &integrator.scene().settings;
-    let spp = settings.spp.max(1);
-    if let Some(a) = settings.adaptive {
-        return Some(AdaptivePlan {
-            first: spp,
-            total: a.max_spp(spp).max(spp),
-            threshold: a.threshold,
-            auto: false,
-        });
-    }
-    let auto = settings.antialiasing == Antialiasing::Auto
-        && spp >= 2
-        && settings.sampler.is_none()
-        && integrator.film_only();
-    auto.then_some(AdaptivePlan {
-        first: 1,
-        total: spp,
-        threshold: AUTO_THRESHOLD,
-        auto: true,
-    })
-}
-
-/// How the pixels of a render by `integrator` are sampled, in words (`raytree effects`): the
-/// plan ([`adaptive_plan`]) and, for a uniform render of more than one sample, why automatic
-/// antialiasing does not apply.
-#[must_use]
-pub fn antialiasing_note<I: Integrator>(integrator: &I) -> String {
-    let settings = &integrator.scene().settings;
-    let spp = settings.spp.max(1);
-    match adaptive_plan(integrator) {
-        Some(p) if p.auto => format!(
-            "spp {spp}, automatic antialiasing: one probe through each pixel centre, {} samples \
-             where a pixel's probe and its 8 neighbours' differ (contrast > {}); \
-             settings.antialiasing \"uniform\" for {spp} everywhere",
-            p.total, p.threshold
-        ),
-        Some(p) => format!(
-            "spp {spp}, adaptive: {} samples where a pixel's first {} and its neighbours' \
-             differ (contrast > {})",
-            p.total, p.first, p.threshold
-        ),
-        None if spp == 1 => "spp 1".to_string(),
-        None => {
-            let why = if settings.antialiasing == Antialiasing::Uniform {
-                "settings.antialiasing uniform"
-            } else if settings.sampler.is_some() {
-                "settings.sampler chosen"
-            } else if integrator.kind() != crate::scene::IntegratorKind::Whitted {
-                "the path integrator's samples all differ"
-            } else if !integrator.traces_packets() {
-                "area lights or rough lobes make every sample differ"
-            } else if integrator.film().has_lens() {
-                "the lens makes every sample differ"
-            } else {
-                "the dielectric roulette makes every sample differ"
-            };
-            format!("spp {spp} in every pixel ({why})")
-        }
-    }
+/// Automatic antialiasing's sampler: the pixel's Owen-scrambled
+/// Sobol points under the scene's seed (the first pass points `0..first`, the second pass the
+/// sequence continued).
+fn auto_sobol<I: Integrator>(integrator: &I) -> SobolSampler {
+    SobolSampler::new(integrator.scene().settings.seed, (0, 0), 0)
 }
 
 /// The neighbours whose first-pass means enter a pixel's decision.
@@ -132,7 +50,7 @@ struct First {
 
 /// Every sample of pixel (x, y) into `sink` under `plan` (see the module documentation): the
 /// pixel radiance (the mean of its samples), how many samples it took and the sink's result.
-/// Automatic antialiasing is [`super::auto::pixel`].
+/// Automatic antialiasing draws from [`auto_sobol`], not `sampler`.
 pub(super) fn pixel<I: Integrator, S: PixelSampler, K: SampleSink>(
     integrator: &I,
     sampler: &mut S,
@@ -142,7 +60,8 @@ pub(super) fn pixel<I: Integrator, S: PixelSampler, K: SampleSink>(
     counts: &mut RayCounts,
 ) -> (Rgb, u32, K::Out) {
     if plan.auto {
-        super::auto::pixel(integrator, plan, xy, sink, counts)
+        let mut sobol = auto_sobol(integrator);
+        pixel_from(integrator, &mut sobol, plan, xy, sink, counts)
     } else {
         pixel_from(integrator, sampler, plan, xy, sink, counts)
     }
@@ -282,9 +201,83 @@ fn second_pass<I: Integrator, S: PixelSampler, K: SampleSink>(
     sum
 }
 
+/// Rows `rows` of the image under `plan` without recording (the inspector's bands,
+/// `render_rows`): the first passes of those rows and of the rows beside them, then each
+/// pixel's decision and second pass; the render's pixels, and its rays except the first passes
+/// of the rows beside the band.
+pub(super) fn band<I: Integrator, S: PixelSampler>(
+    integrator: &I,
+    sampler: &S,
+    plan: AdaptivePlan,
+    rows: std::ops::Range<u32>,
+) -> Vec<(Vec<Rgb>, RayCounts)> {
+    let (w, h) = (
+        integrator.scene().camera.width,
+        integrator.scene().camera.height,
+    );
+    let y0 = rows.start.saturating_sub(1);
+    let y1 = (rows.end + 1).min(h);
+    let firsts: Vec<(Vec<First>, RayCounts)> = (y0..y1)
+        .into_par_iter()
+        .map(|y| {
+            let (mut counts, mut sampler) = (RayCounts::default(), sampler.clone());
+            let mut quiet = Beauty(NoopRecorder);
+            let row = (0..w)
+                .map(|x| {
+                    let (s, c) = (&mut sampler, &mut counts);
+                    first_pass(integrator, s, plan, (x, y), &mut quiet, &mut (), c)
+                })
+                .collect();
+            (row, counts)
+        })
+        .collect();
+    let mean = |x: i64, y: i64| -> Option<Rgb> {
+        let row = &firsts.get(usize::try_from(y - i64::from(y0)).ok()?)?.0;
+        Some(row.get(usize::try_from(x).ok()?)?.sum / f64::from(plan.first))
+    };
+    rows.into_par_iter()
+        .map(|y| {
+            let (frow, mut counts) = firsts[(y - y0) as usize].clone();
+            let mut quiet = Beauty(NoopRecorder);
+            let values = (0..w)
+                .map(|x| {
+                    let f = frow[x as usize];
+                    let (cx, cy) = (i64::from(x), i64::from(y));
+                    let means = NEIGHBOURS
+                        .iter()
+                        .filter_map(|&(dx, dy)| mean(cx + dx, cy + dy));
+                    if plan.total > plan.first && refines(plan, &f, means) {
+                        let (q, c) = (&mut quiet, &mut counts);
+                        let sum =
+                            second_pass(integrator, sampler, plan, (x, y), f.sum, q, &mut (), c);
+                        sum / f64::from(plan.total)
+                    } else {
+                        f.sum / f64::from(plan.first)
+                    }
+                })
+                .collect();
+            (values, counts)
+        })
+        .collect()
+}
+
+/// [`band`] with automatic antialiasing's own positions when `plan.auto`.
+pub(super) fn band_for<I: Integrator, S: PixelSampler>(
+    integrator: &I,
+    sampler: &S,
+    plan: AdaptivePlan,
+    rows: std::ops::Range<u32>,
+) -> Vec<(Vec<Rgb>, RayCounts)> {
+    if plan.auto {
+        band(integrator, &auto_sobol(integrator), plan, rows)
+    } else {
+        band(integrator, sampler, plan, rows)
+    }
+}
+
 /// The rows of an adaptive render through sinks from `make` (rows in parallel): every pixel's
 /// first pass, then each pixel's decision and second pass; `progress` is called as
-/// second-pass rows finish. Automatic antialiasing is [`super::auto::rows`].
+/// second-pass rows finish. Automatic antialiasing draws from [`auto_sobol`].
 pub(super) fn rows<I, S, K, F>(
     integrator: &I,
     sampler: &S,
@@ -299,8 +292,7 @@ where
     F: Fn() -> K + Sync + Send,
 {
     if plan.auto {
-        let h = integrator.scene().camera.height;
-        super::auto::rows(integrator, plan, 0..h, make, progress)
+        rows_from(integrator, &auto_sobol(integrator), plan, make, progress)
     } else {
         rows_from(integrator, sampler, plan, make, progress)
     }

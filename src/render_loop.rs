@@ -44,9 +44,6 @@ pub trait SampleSink {
     type Rec: Recorder;
     /// Per-pixel state while its samples come in (kept between the adaptive passes).
     type Pixel: Default + Send;
-    /// Whether the sink does anything with a sample (automatic antialiasing hands an
-    /// unrefined pixel's probe to a sink only if it does).
-    const TAKES_SAMPLES: bool = true;
     /// A finished pixel's result.
     type Out: Send;
     /// The recorder for the next sample.
@@ -68,7 +65,6 @@ impl<R: Recorder> SampleSink for Beauty<R> {
     type Rec = R;
     type Pixel = ();
     type Out = ();
-    const TAKES_SAMPLES: bool = R::RECORDS;
     #[inline(always)]
     fn recorder(&mut self) -> &mut R {
         &mut self.0

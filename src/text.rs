@@ -285,8 +285,12 @@ pub fn tree_text(tree: &RayTree) -> String {
             "sobol",
         ),
         Some(false) => (
-            format!("{} (automatic antialiasing: no edge, 1 probe)", st.spp),
-            "centre",
+            format!(
+                "{} (automatic antialiasing: no edge, {} taken)",
+                st.spp,
+                tree.samples.len()
+            ),
+            "sobol",
         ),
         None => (st.spp.to_string(), st.sampler_kind().name()),
     };

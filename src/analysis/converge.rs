@@ -170,6 +170,13 @@ pub fn render_series(scene: &Scene, series: Series) -> (Image, f64) {
     if let Series::RrDepth(n) = series {
         s.settings.rr_depth = n;
     }
+    // A sampler series names its sampler in the settings too, so automatic antialiasing (its
+    // own film positions, for the default series) stands aside and the series is that sampler.
+    match series {
+        Series::Sobol => s.settings.sampler = Some(SamplerKind::Sobol),
+        Series::Stratified => s.settings.sampler = Some(SamplerKind::Stratified),
+        _ => {}
+    }
     let strat = SceneSampler::for_settings(&s.settings);
     let start = Instant::now();
     let image = match series {
@@ -202,11 +209,14 @@ fn run<I: Integrator, S: PixelSampler>(integrator: &I, sampler: &S) -> Image {
     render_sampled(integrator, sampler, &|_| {}).0
 }
 
-/// The reference: the scene's integrator at `spp` samples per pixel.
+/// The reference: the scene's integrator at `spp` samples in every pixel (uniform
+/// antialiasing: automatic antialiasing's unrefined pixels stop at their first pass, which
+/// is not the best estimate of the pixel's integral).
 #[must_use]
 pub fn reference(scene: &Scene, spp: u32) -> Image {
     let mut s = scene.clone();
     s.settings.spp = spp.max(1);
+    s.settings.antialiasing = crate::scene::Antialiasing::Uniform;
     render_series(&s, Series::Default).0
 }
 

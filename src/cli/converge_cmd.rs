@@ -186,6 +186,9 @@ fn reference_key(files: &[PathBuf], scene: &raytree::Scene, spp: u32) -> Result<
         "size": [scene.camera.width, scene.camera.height],
         "settings": scene.settings,
         "ref_spp": spp,
+        // Since automatic antialiasing: the reference takes ref_spp in every pixel (a cache
+        // from before, without this field, was an auto render and no longer matches).
+        "reference_antialiasing": "uniform",
         "version": env!("CARGO_PKG_VERSION"),
     });
     Ok(serde_json::to_string_pretty(&key)?)

@@ -103,9 +103,10 @@ pub fn run(a: &RenderArgs) -> Result<()> {
         let per_pixel = stats.samples as f64 / pixels.max(1) as f64;
         if plan.auto {
             sayln!(
-                "antialiasing auto: {} of {pixels} pixels on an edge took {} spp, the others 1 (contrast > {}), {} samples ({per_pixel:.2} per pixel; --antialiasing uniform: {} everywhere)",
+                "antialiasing auto: {} of {pixels} pixels on an edge took {} spp, the others {} (contrast > {}), {} samples ({per_pixel:.2} per pixel; --antialiasing uniform: {} everywhere)",
                 stats.refined_pixels,
                 plan.total,
+                plan.first,
                 plan.threshold,
                 stats.samples,
                 plan.total

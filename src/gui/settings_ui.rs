@@ -66,7 +66,7 @@ pub fn settings_ui(ui: &mut egui::Ui, doc: &Document, cmds: &mut Vec<Command>) {
             .logarithmic(true)
             .text("samples / pixel"),
     );
-    // Automatic antialiasing: edge pixels take spp samples, the others one probe (where the
+    // Automatic antialiasing: edge pixels take spp samples, the others a first pass (where the
     // image depends on the film position alone; the hover says whether it applies).
     let mut auto = s.antialiasing == Antialiasing::Auto;
     ui.checkbox(&mut auto, "antialias edges only")

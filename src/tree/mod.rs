@@ -259,8 +259,8 @@ pub struct RayTree {
     /// All nodes.
     pub nodes: Vec<RayNode>,
     /// Under automatic antialiasing (`settings.antialiasing: "auto"` where it applies): whether
-    /// the pixel was on an edge (`spp` samples at its Sobol points) or not (one probe through
-    /// its centre). Absent otherwise (every pixel took `spp`, or `settings.adaptive` decided),
+    /// the pixel was on an edge (`spp` samples at its Sobol points) or not (its first pass
+    /// only: its first `max(2, spp / 16)` Sobol points). Absent otherwise (every pixel took `spp`, or `settings.adaptive` decided),
     /// and in files written before it existed.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub edge: Option<bool>,

@@ -7,11 +7,11 @@ use serde::{Deserialize, Serialize};
 ///
 /// `auto` (the default): where the image is a function of the film position alone (the
 /// Whitted integrator without area lights, rough lobes, a lens or the dielectric roulette, and
-/// no `settings.sampler` chosen), every pixel first takes one sample, and only pixels on an
-/// edge (their sample and their 8 neighbours' differ by a contrast above [`AUTO_THRESHOLD`])
-/// take `spp` samples, at the pixel's Sobol points; elsewhere, and always at `spp` 1, it is
-/// `uniform`. `uniform`: every pixel takes `spp` samples. The rule and its measured cost are
-/// in `docs/cost.md` (automatic antialiasing).
+/// no `settings.sampler` chosen), every pixel first takes `max(2, spp / 16)` samples at its
+/// Owen-scrambled Sobol points, and only pixels on an edge (their samples and their 8
+/// neighbours' means differ by a contrast above [`AUTO_THRESHOLD`]) go on to `spp`; elsewhere,
+/// and always at `spp` 1, it is `uniform`. `uniform`: every pixel takes `spp` samples. The rule
+/// and its measured cost are in `docs/cost.md` (automatic antialiasing).
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
 #[serde(rename_all = "lowercase")]
 pub enum Antialiasing {
