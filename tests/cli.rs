@@ -1,34 +1,10 @@
-//! The `raytree` binary: the main jobs and every kind of bad input.
+//! The `raytree` binary: the main jobs and every kind of bad input (`effects`, `cost` and
+//! `compare` are in `tests/cli_analysis.rs`).
 
 mod common;
-use common::raytree;
+use common::{fails, fixture, raytree, stderr};
 
 use std::path::PathBuf;
-use std::process::Output;
-
-fn fixture(name: &str) -> String {
-    PathBuf::from(env!("CARGO_MANIFEST_DIR"))
-        .join("fixtures")
-        .join(name)
-        .display()
-        .to_string()
-}
-
-fn stderr(o: &Output) -> String {
-    String::from_utf8_lossy(&o.stderr).into_owned()
-}
-
-/// Assert exit code 2 and return stderr.
-fn fails(o: &Output) -> String {
-    assert_eq!(
-        o.status.code(),
-        Some(2),
-        "stdout: {}\nstderr: {}",
-        String::from_utf8_lossy(&o.stdout),
-        stderr(o)
-    );
-    stderr(o)
-}
 
 const GOOD: &str = r#"{
   "camera": {"position": [0,1,5], "look_at": [0,0,0], "fov_y": 40, "width": 8, "height": 6},
@@ -272,124 +248,6 @@ fn bad_arguments_and_outputs_exit_2_without_files() {
     assert!(err.contains("cannot read scene missing.json"), "{err}");
     fails(&raytree(&["render", "--bogus"], d));
     assert_eq!(std::fs::read_dir(d).unwrap().count(), 1, "no output files");
-}
-
-#[test]
-fn effects_cost_and_compare() {
-    let dir = tempfile::tempdir().unwrap();
-    let d = dir.path();
-    let o = raytree(&["effects", &fixture("mirrors.json")], d);
-    let text = String::from_utf8_lossy(&o.stdout);
-    assert!(
-        text.contains("[off] refraction (Snell)") && text.contains("[on ] reflection"),
-        "{text}"
-    );
-    assert!(
-        text.contains("ray tree: linear")
-            && text.contains("facing mirrors: front mirror and back mirror can see each other"),
-        "{text}"
-    );
-    let o = raytree(
-        &["effects", &fixture("nested.json"), "--max-depth", "16"],
-        d,
-    );
-    let text = String::from_utf8_lossy(&o.stdout);
-    assert!(
-        text.contains("ray tree: exponential")
-            && text.contains("nested: glass ball (dielectric) is inside water tank (dielectric)")
-            && text.contains("x fewer) on a 16x9 sample of pixel centres"),
-        "{text}"
-    );
-    let o = raytree(&["effects", &fixture("diffuse.json")], d);
-    let text = String::from_utf8_lossy(&o.stdout);
-    assert!(
-        text.contains("ray tree: bounded") && !text.contains("what the cut saves"),
-        "{text}"
-    );
-    let o = raytree(
-        &[
-            "cost",
-            "--quick",
-            "--size",
-            "16x9",
-            "--repeats",
-            "1",
-            "-o",
-            "rep",
-        ],
-        d,
-    );
-    assert!(o.status.success(), "{}", stderr(&o));
-    let csv = std::fs::read_to_string(d.join("rep/cost.csv")).unwrap();
-    // Header, depth, Fresnel, spp, automatic antialiasing (at 4 spp; at 1 it is uniform),
-    // offset, min weight, dielectric roulette, adaptive, filter (no area light, no rough
-    // material).
-    assert_eq!(
-        csv.lines().count(),
-        1 + 4 + 3 + 2 + 1 + 4 + 3 + 1 + 1 + 2,
-        "{csv}"
-    );
-    assert!(
-        csv.lines()
-            .any(|l| l.starts_with("antialiasing,auto 4 spp,")),
-        "{csv}"
-    );
-    assert!(
-        csv.lines()
-            .any(|l| l.starts_with("adaptive,0.1 to 16 spp,")),
-        "{csv}"
-    );
-    assert!(
-        csv.lines().any(|l| l.starts_with("min_weight,auto (")),
-        "the automatic cut has a row: {csv}"
-    );
-    assert!(
-        csv.lines().any(|l| l.ends_with(",true")),
-        "a Pareto front exists"
-    );
-    let json: serde_json::Value =
-        serde_json::from_slice(&std::fs::read(d.join("rep/cost.json")).unwrap()).unwrap();
-    assert_eq!(json["reference"]["max_depth"], 32);
-    assert!(image::open(d.join("rep/cost.png")).is_ok());
-    // An image compared with itself has zero error; different images do not.
-    for args in [
-        ["render", "-o", "a.png", "--size", "32x18"],
-        ["render", "-o", "b.png", "--size", "32x18"],
-    ] {
-        assert!(raytree(&args, d).status.success());
-    }
-    assert!(
-        raytree(
-            &[
-                "render",
-                "-o",
-                "c.png",
-                "--size",
-                "32x18",
-                "--max-depth",
-                "0"
-            ],
-            d
-        )
-        .status
-        .success()
-    );
-    let o = raytree(&["compare", "a.png", "b.png", "-o", "map.png"], d);
-    assert!(o.status.success(), "{}", stderr(&o));
-    assert!(String::from_utf8_lossy(&o.stdout).contains("RMSE 0.000000e0  max error 0.000000"));
-    let o = raytree(&["compare", "a.png", "c.png"], d);
-    assert!(!String::from_utf8_lossy(&o.stdout).contains("RMSE 0.000000e0"));
-    assert!(
-        raytree(&["render", "-o", "small.png", "--size", "8x8"], d)
-            .status
-            .success()
-    );
-    let err = fails(&raytree(
-        &["compare", "a.png", "small.png", "-o", "map2.png"],
-        d,
-    ));
-    assert!(err.contains("sizes differ"), "{err}");
-    assert!(!d.join("map2.png").exists());
 }
 
 /// A negative number in exponent form reaches validation (clap's own negative-number test

@@ -2,7 +2,7 @@
 //! every helper).
 #![allow(dead_code)]
 
-use std::path::Path;
+use std::path::{Path, PathBuf};
 use std::process::{Command, Output};
 
 /// Run the `raytree` binary with `args` in `dir`.
@@ -12,6 +12,32 @@ pub fn raytree(args: &[&str], dir: &Path) -> Output {
         .current_dir(dir)
         .output()
         .expect("the raytree binary runs")
+}
+
+/// The path of `fixtures/NAME`, as an argument for the binary.
+pub fn fixture(name: &str) -> String {
+    PathBuf::from(env!("CARGO_MANIFEST_DIR"))
+        .join("fixtures")
+        .join(name)
+        .display()
+        .to_string()
+}
+
+/// The process's standard error as text.
+pub fn stderr(o: &Output) -> String {
+    String::from_utf8_lossy(&o.stderr).into_owned()
+}
+
+/// Assert exit code 2 and return stderr.
+pub fn fails(o: &Output) -> String {
+    assert_eq!(
+        o.status.code(),
+        Some(2),
+        "stdout: {}\nstderr: {}",
+        String::from_utf8_lossy(&o.stdout),
+        stderr(o)
+    );
+    stderr(o)
 }
 
 /// `raytree args` in `dir` exits 2 with `text` in its error and leaves no file in `dir` besides

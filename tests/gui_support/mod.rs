@@ -4,7 +4,8 @@
 #![allow(dead_code)]
 
 use egui_kittest::Harness;
-use raytree::gui::{Files, InspectorApp};
+use egui_kittest::kittest::Queryable;
+use raytree::gui::{Files, InspectorApp, Session};
 use std::collections::HashMap;
 use std::path::{Path, PathBuf};
 use std::sync::{Arc, Mutex};
@@ -126,4 +127,43 @@ pub fn read_only_inspector(
     let mut h = inspector(session);
     settle(&mut h);
     h
+}
+
+/// The classic scene (`fixtures/classic.json`).
+pub const CLASSIC: &str = include_str!("../../fixtures/classic.json");
+
+/// A glass-ball pixel at 320x180 (400,200 at 640x360): a deep tree with a blocked shadow ray.
+pub const GLASS: (u32, u32) = (200, 100);
+
+/// The classic scene at 320x180 (pixel (150, 100) hits the mirror ball), its render finished.
+pub fn classic_harness(files: &MemFiles) -> Harness<'static, InspectorApp> {
+    classic_harness_with(files, CLASSIC, |_| {})
+}
+
+/// `scene` (the classic scene or an edit of it) as `scenes/classic.json` at 320x180 with
+/// `adjust` applied too, its render finished.
+pub fn classic_harness_with(
+    files: &MemFiles,
+    scene: &str,
+    adjust: impl Fn(&mut raytree::Scene) + Send + 'static,
+) -> Harness<'static, InspectorApp> {
+    files.put("scenes/classic.json", scene);
+    let session = Session::new(
+        Some("scenes/classic.json".into()),
+        Box::new(files.clone()),
+        Box::new(move |s: &mut raytree::Scene| {
+            s.camera = s.camera.with_size(320, 180);
+            adjust(s);
+            Ok(())
+        }),
+        Arc::new(|| {}),
+    );
+    let mut h = inspector(session);
+    settle(&mut h);
+    h
+}
+
+/// Whether a widget's label contains `text`.
+pub fn has(h: &Harness<'static, InspectorApp>, text: &str) -> bool {
+    h.query_all_by_label_contains(text).next().is_some()
 }
