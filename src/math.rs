@@ -62,13 +62,24 @@ pub struct Refraction {
 #[must_use]
 pub fn refract(d: DVec3, n: DVec3, eta: f64) -> Option<Refraction> {
     let cos_i = (-n.dot(d)).clamp(0.0, 1.0);
-    let sin2_t = eta * eta * (1.0 - cos_i * cos_i);
+    let mut sin2_t = eta * eta * (1.0 - cos_i * cos_i);
+    if sin2_t.is_nan() {
+        // eta * eta overflowed to infinity (eta above 1e154) at normal incidence, where
+        // 1 - cos_i^2 is 0: squared after the product, sin_t is eta * 0 = 0 as it should be.
+        let sin_t = eta * (1.0 - cos_i * cos_i).sqrt();
+        sin2_t = sin_t * sin_t;
+    }
     let k = 1.0 - sin2_t;
     if k < 0.0 {
         return None;
     }
     let cos_t = k.sqrt();
-    let direction = (eta * d + (eta * cos_i - cos_t) * n).normalize();
+    let mut direction = (eta * d + (eta * cos_i - cos_t) * n).normalize();
+    if !direction.is_finite() {
+        // A huge eta cancels eta d against eta cos_i n: the same vector grouped as
+        // eta (d + cos_i n) - cos_t n keeps the tangential part exact.
+        direction = ((d + cos_i * n) * eta - cos_t * n).normalize();
+    }
     Some(Refraction { direction, cos_t })
 }
 
@@ -237,6 +248,20 @@ mod tests {
     fn incident(theta_deg: f64) -> DVec3 {
         let t = theta_deg.to_radians();
         DVec3::new(t.sin(), -t.cos(), 0.0)
+    }
+
+    /// An index ratio whose square overflows (eta = 1e300, from n1 = 1e300 into air): at
+    /// normal incidence the ray goes straight through with cos_t 1 (it was NaN, and a diagram
+    /// label read "θt = NaN°"); off normal it is total internal reflection.
+    #[test]
+    fn a_huge_index_ratio_refracts_at_normal_incidence_and_reflects_otherwise() {
+        let n = DVec3::Y;
+        let t = refract(-DVec3::Y, n, 1e300).unwrap();
+        assert_eq!(t.cos_t, 1.0);
+        assert!(t.direction.is_finite() && (t.direction + DVec3::Y).length() < 1e-12);
+        assert!(refract(incident(10.0), n, 1e300).is_none());
+        // Ordinary ratios are untouched.
+        assert_eq!(refract(-DVec3::Y, n, 1.0 / GLASS).unwrap().cos_t, 1.0);
     }
 
     #[test]

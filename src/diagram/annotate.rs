@@ -134,7 +134,9 @@ pub(super) fn hits(
                 .iter()
                 .map(|c| tree.node(*c))
                 .find(|c| c.kind == RayKind::Refracted);
-            if let (Some(i), Some(t)) = (&n.interface, refracted) {
+            if let (Some(i), Some(t)) = (&n.interface, refracted)
+                && i.cos_t.is_none_or(f64::is_finite)
+            {
                 let theta_t = i.cos_t.unwrap_or(1.0).clamp(-1.0, 1.0).acos().to_degrees();
                 let tc = frame.dir_to_canvas(t.direction).try_normalize();
                 let before = arcs.len();

@@ -49,15 +49,60 @@ pub(super) fn hatch(shape: &SliceShape, spacing: f64) -> Vec<(Point, Point)> {
             let proj: Vec<f64> = p.iter().map(|q| q.dot(n)).collect();
             let lo = proj.iter().copied().fold(f64::INFINITY, f64::min);
             let hi = proj.iter().copied().fold(f64::NEG_INFINITY, f64::max);
+            // At most 4001 lines, counted as steps: a polygon more than 4000 spacings across
+            // (a 1e300 box) is hatched more coarsely, and far from the origin, where adding
+            // `spacing` may not move `s` at all, the step count still ends the loop.
+            let spacing = spacing.max(hi / 4000.0 - lo / 4000.0);
             let mut s = (lo / spacing).ceil() * spacing;
-            while s < hi && out.len() < 4000 {
+            let mut steps = 0;
+            while s < hi && steps <= 4000 {
                 if let Some(seg) = clip_line_convex(p, n * s, d) {
                     out.push(seg);
                 }
                 s += spacing;
+                steps += 1;
             }
         }
         _ => {}
     }
     out
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn square(lo: f64, hi: f64) -> SliceShape {
+        SliceShape::Polygon(vec![
+            DVec2::new(lo, lo),
+            DVec2::new(hi, lo),
+            DVec2::new(hi, hi),
+            DVec2::new(lo, hi),
+        ])
+    }
+
+    /// A unit square at spacing 0.1: lines 0.1 apart across it, all inside it.
+    #[test]
+    fn a_square_is_hatched_inside() {
+        let lines = hatch(&square(0.0, 1.0), 0.1);
+        // Its projection on the hatch normal spans sqrt(2): about 14 lines.
+        assert!((13..=15).contains(&lines.len()), "{}", lines.len());
+        for (a, b) in lines {
+            for q in [a, b] {
+                assert!((-1e-9..=1.0 + 1e-9).contains(&q.x) && (-1e-9..=1.0 + 1e-9).contains(&q.y));
+            }
+        }
+    }
+
+    /// A 1e300 square, or a small one 1e300 from the origin (where adding the spacing does not
+    /// move the line), ends with at most 4001 lines instead of looping (a hostile-input hang of
+    /// `raytree diagram`, found by `tests/hostile`). A 1e300 square gets no lines: its edges'
+    /// cross products overflow, so the clip finds no finite segment.
+    #[test]
+    fn huge_or_far_polygons_end() {
+        assert!(hatch(&square(-1e300, 0.0), 0.05).len() <= 4001);
+        assert_eq!(hatch(&square(-1e150, 1e150), 0.05).len(), 4001);
+        assert!(hatch(&square(1e300, 1e300 + 1e290), 0.05).len() <= 4001);
+        assert!(hatch(&square(-f64::MAX, f64::MAX), 0.05).len() <= 4001);
+    }
 }
