@@ -311,19 +311,27 @@ fn render_reports_auto_and_uniform_turns_it_off() {
 }
 
 /// The inspector's image path, bands of rows (`render_rows`), gives the render's pixels under
-/// auto: each band takes the first passes of the rows beside it for the decisions at its edges.
+/// auto and under an explicit `settings.adaptive` (stratified passes): each band takes the
+/// first passes of the rows beside it for the decisions at its edges.
 #[test]
 fn bands_of_rows_equal_the_render_under_auto() {
-    let scene = glass_emitters(40, 23, 8);
-    let integrator = SceneIntegrator::new(&scene);
-    assert!(plan(&scene).is_some_and(|p| p.auto));
-    let mut pixels = Vec::new();
-    for y0 in (0..23).step_by(7) {
-        let (band, _) = raytree::render::render_rows(&integrator, y0..(y0 + 7).min(23));
-        assert_eq!(band.len(), 40 * ((y0 + 7).min(23) - y0) as usize);
-        pixels.extend(band);
+    let auto = glass_emitters(40, 23, 8);
+    assert!(plan(&auto).is_some_and(|p| p.auto));
+    let mut explicit = glass_emitters(40, 23, 2);
+    explicit.settings.adaptive = Some(AdaptiveDesc {
+        threshold: 0.05,
+        max_spp: Some(12),
+    });
+    for scene in [auto, explicit] {
+        let integrator = SceneIntegrator::new(&scene);
+        let mut pixels = Vec::new();
+        for y0 in (0..23).step_by(7) {
+            let (band, _) = raytree::render::render_rows(&integrator, y0..(y0 + 7).min(23));
+            assert_eq!(band.len(), 40 * ((y0 + 7).min(23) - y0) as usize);
+            pixels.extend(band);
+        }
+        assert_eq!(pixels, render(&scene, &|_| {}).0.pixels);
     }
-    assert_eq!(pixels, render(&scene, &|_| {}).0.pixels);
 }
 
 mod random_scenes {

@@ -43,9 +43,10 @@ impl Antialiasing {
 }
 
 /// The contrast above which automatic antialiasing refines a pixel. Chosen on
-/// `benches/mitsuba-scenes/glass-emitters.json` (docs/cost.md): 0.02, 0.05, 0.1 and 0.2 give
-/// rel-RMSE 0.0071-0.0091 at 16 spp; 0.05 is the lowest error before the refined pixels grow
-/// faster than the error falls.
+/// `benches/mitsuba-scenes/glass-emitters.json` at 320x180 (docs/cost.md), measured with a
+/// one-sample first pass: 0.02, 0.05, 0.1 and 0.2 gave rel-RMSE 0.0071-0.0091 at 16 spp, 0.05
+/// the lowest error before the refined pixels grow faster than the error falls; with the
+/// two-point Sobol first pass 0.05 gives 0.0070.
 pub const AUTO_THRESHOLD: f64 = 0.05;
 
 /// Adaptive antialiasing (`settings.adaptive`, after Whitted 1980 and Mitchell 1987): a pixel's
