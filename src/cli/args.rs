@@ -119,8 +119,8 @@ pub struct Overrides {
     )]
     pub filter: Option<String>,
     /// What --spp means: auto (the default: where the image depends on the film position
-    /// alone, pixels on an edge take --spp samples, the others one) or uniform (every pixel
-    /// takes --spp samples).
+    /// alone, every pixel takes max(2, spp/16) samples and only pixels on an edge go on to
+    /// --spp) or uniform (every pixel takes --spp samples).
     #[arg(long, value_name = "auto|uniform")]
     pub antialiasing: Option<String>,
     /// Adaptive antialiasing: pixels whose first --spp samples (and their 8 neighbours' means)

@@ -1,6 +1,6 @@
 //! [`diff_text`]: a [`TreeDiff`] as text, one changed field a line.
 
-use super::TreeDiff;
+use super::{FieldChange, TreeDiff};
 use crate::math::Rgb;
 use crate::tree::{NodeId, RayTree};
 use serde_json::Value;
@@ -11,6 +11,11 @@ fn value_text(v: &Value) -> String {
         Value::Null => "none".into(),
         v => v.to_string(),
     }
+}
+
+/// `field: a -> b`, as the settings and the changed rays list their fields.
+fn change_text(f: &FieldChange) -> String {
+    format!("{}: {} -> {}", f.field, value_text(&f.a), value_text(&f.b))
 }
 
 fn rgb(c: Rgb) -> String {
@@ -37,13 +42,7 @@ pub fn diff_text(d: &TreeDiff, a: &RayTree, b: &RayTree) -> String {
     use std::fmt::Write;
     let mut s = String::new();
     for f in &d.settings {
-        let _ = writeln!(
-            s,
-            "setting {}: {} -> {}",
-            f.field,
-            value_text(&f.a),
-            value_text(&f.b)
-        );
+        let _ = writeln!(s, "setting {}", change_text(f));
     }
     if d.trees_equal() {
         let _ = writeln!(
@@ -91,13 +90,7 @@ pub fn diff_text(d: &TreeDiff, a: &RayTree, b: &RayTree) -> String {
                 c.level
             );
             for f in &c.fields {
-                let _ = writeln!(
-                    s,
-                    "    {}: {} -> {}",
-                    f.field,
-                    value_text(&f.a),
-                    value_text(&f.b)
-                );
+                let _ = writeln!(s, "    {}", change_text(f));
             }
         }
         for (side, t, list) in [("a", a, &d.only_a), ("b", b, &d.only_b)] {

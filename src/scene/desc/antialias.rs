@@ -15,7 +15,8 @@ use serde::{Deserialize, Serialize};
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
 #[serde(rename_all = "lowercase")]
 pub enum Antialiasing {
-    /// Edge pixels take `spp` samples, the others one, where the image allows it.
+    /// Edge pixels take `spp` samples, the others a first pass of `max(2, spp / 16)`, where
+    /// the image allows it.
     #[default]
     Auto,
     /// Every pixel takes `spp` samples.
