@@ -234,6 +234,10 @@ impl EffectPlan {
                     format!("max_depth {}", s.max_depth)
                 },
             ),
+            {
+                let (on, why) = crate::trace::bound::carried::roulette_note(scene);
+                line("glass roulette", on, why)
+            },
             line(
                 "supersampling",
                 self.supersampling,

@@ -133,9 +133,13 @@ pub fn trace_pixel(scene: &Scene, x: u32, y: u32) -> Option<RayTree> {
     let edge = adaptive_plan(&integrator)
         .filter(|p| p.auto)
         .map(|p| samples.len() > p.first as usize);
-    // The settings as traced: the automatic cut is recorded as the value it took.
+    // The settings as traced: the automatic cut and roulette weight are recorded as the values
+    // they took (an automatic roulette that is off stays absent).
+    let roulette = crate::trace::bound::carried::effective_roulette_below(scene);
     let settings = crate::scene::Settings {
         min_weight: Some(crate::trace::bound::effective_min_weight(scene)),
+        roulette_below: (roulette > 0.0 || scene.settings.roulette_below.is_some())
+            .then_some(roulette),
         ..scene.settings
     };
     Some(RayTree {

@@ -253,6 +253,18 @@ fn node_summary(n: &RayNode) -> String {
             None => s.push_str(" TIR"),
         }
         let _ = write!(s, " R={} T={}", num(i.fresnel.r, 4), num(i.fresnel.t, 4));
+        if let Some(c) = i.roulette {
+            let _ = write!(
+                s,
+                "  roulette: the {} ray only (p {}, weight / p)",
+                if c.reflected {
+                    "reflected"
+                } else {
+                    "refracted"
+                },
+                num(c.probability, 4)
+            );
+        }
     }
     if let Some(a) = &n.attenuation {
         let _ = write!(

@@ -79,10 +79,26 @@ fn explain_tir_and_max_depth() {
         "--pixel",
         "320,230",
     ]));
+    // By default a weak branch plays roulette: one of its TIR rays' parents followed one ray.
+    assert!(
+        text.contains("total internal reflection at 2 rays inside the glass block"),
+        "{text}"
+    );
+    assert!(text.contains("- Russian roulette at "), "{text}");
+    assert!(text.contains("where the throughput was below "), "{text}");
+    let text = ok(&run(&[
+        "explain",
+        &fixture("tir-block.json"),
+        "--pixel",
+        "320,230",
+        "--roulette-below",
+        "0",
+    ]));
     assert!(
         text.contains("total internal reflection at 3 rays inside the glass block"),
         "{text}"
     );
+    assert!(!text.contains("Russian roulette"), "{text}");
     let text = ok(&run(&[
         "explain",
         &fixture("nested.json"),

@@ -21,6 +21,21 @@ fn glass(depth: u32) -> Scene {
 /// far fewer rays.
 #[test]
 fn the_roulette_is_exact_in_expectation() {
+    exact_in_expectation(|s| s.settings.dielectric_roulette = Some(0), 0.5);
+}
+
+/// The same for the roulette below a weight (`settings.roulette_below`, here 0.3 so that most
+/// hits below the camera ray's play it): weak branches follow one ray, exact in expectation,
+/// and the strong ones still split (0.53 of the split's rays here, against 0.5 and less when
+/// every hit plays).
+#[test]
+fn the_roulette_below_a_weight_is_exact_in_expectation() {
+    exact_in_expectation(|s| s.settings.roulette_below = Some(0.3), 0.6);
+}
+
+/// Mean over 300 seeds against the exhaustive split (see above); the roulette traces less than
+/// `max_ratio` of the split's rays.
+fn exact_in_expectation(roulette: impl Fn(&mut Scene), max_ratio: f64) {
     let exhaustive = glass(8);
     let (exact, split) = render(&exhaustive, &|_| {});
     let n = 300;
@@ -30,7 +45,7 @@ fn the_roulette_is_exact_in_expectation() {
     let mut rays = 0;
     for seed in 1..=n {
         let mut s = exhaustive.clone();
-        s.settings.dielectric_roulette = Some(0);
+        roulette(&mut s);
         s.settings.seed = seed;
         let (img, stats) = render(&s, &|_| {});
         rays += stats.rays.total();
@@ -66,7 +81,8 @@ fn the_roulette_is_exact_in_expectation() {
     let want: f64 = exact.pixels.iter().map(sum3).sum();
     let t = (mean - want) / se;
     assert!(t.abs() < 5.0, "image sum {mean} against {want}, t = {t}");
-    assert!(rays as f64 / n < 0.5 * split.rays.total() as f64);
+    let ratio = rays as f64 / n / split.rays.total() as f64;
+    assert!(ratio < max_ratio, "{ratio} of the split's rays");
 }
 
 /// A recorded pixel makes the same choices as the render: its tree equals the pixel, and it
@@ -83,4 +99,47 @@ fn trees_equal_pixels_with_the_roulette() {
             assert_eq!(trace_pixel(&scene, x, y).unwrap().radiance, image.get(x, y));
         }
     }
+}
+
+/// The default: the automatic roulette weight of glass-emitters (brightest emitter 1: 0.01)
+/// leaves the split where it is visible and plays roulette below; trees equal pixels, some
+/// record a roulette choice, and an explicit `min_weight` (the exhaustive tree of `min_weight
+/// 0`) splits everywhere.
+#[test]
+fn the_default_plays_roulette_only_below_its_weight() {
+    use raytree::trace::bound::carried::{auto_roulette_below, carried_bound};
+    let src = include_str!("../benches/mitsuba-scenes/glass-emitters.json");
+    let mut scene = Scene::from_json(src).unwrap();
+    scene.camera = scene.camera.with_size(32, 18);
+    let bound = carried_bound(&scene, scene.settings.max_depth, scene.settings.shadows);
+    assert_eq!(bound, 1.0);
+    assert_eq!(auto_roulette_below(&scene), 0.01);
+    let image = render(&scene, &|_| {}).0;
+    let mut choices = 0;
+    for y in 0..18 {
+        for x in 0..32 {
+            let tree = trace_pixel(&scene, x, y).unwrap();
+            assert_eq!(tree.radiance, image.get(x, y));
+            for n in &tree.nodes {
+                if let Some(c) = n.interface.as_ref().and_then(|i| i.roulette) {
+                    choices += 1;
+                    assert!(n.throughput.max_element() < 0.01, "{n:?}");
+                    assert!(c.probability > 0.0 && c.probability < 1.0);
+                    // The followed ray's weight is its split weight over its probability.
+                    let kids: Vec<_> = tree
+                        .nodes
+                        .iter()
+                        .filter(|k| k.parent == Some(n.id))
+                        .collect();
+                    let followed = kids
+                        .iter()
+                        .filter(|k| k.kind != raytree::tree::RayKind::Shadow);
+                    assert!(followed.count() <= 1, "one ray followed");
+                }
+            }
+        }
+    }
+    assert!(choices > 0);
+    scene.settings.min_weight = Some(0.0);
+    assert_eq!(auto_roulette_below(&scene), 0.0);
 }

@@ -216,6 +216,32 @@ pub fn explain(tree: &RayTree, scene: &Scene) -> Explanation {
         });
     }
 
+    // Russian roulette instead of the split at weak dielectric hits.
+    let rouletted: Vec<&RayNode> = tree
+        .nodes
+        .iter()
+        .filter(|n| n.interface.as_ref().is_some_and(|i| i.roulette.is_some()))
+        .collect();
+    if !rouletted.is_empty() {
+        let why = match (
+            tree.settings.roulette_below,
+            tree.settings.dielectric_roulette,
+        ) {
+            (_, Some(d)) => format!("from depth {d} (settings.dielectric_roulette)"),
+            (Some(w), None) => format!("where the throughput was below {w:.2e}"),
+            (None, None) => String::new(),
+        };
+        sentences.push(Sentence {
+            kind: SentenceKind::Event,
+            text: format!(
+                "Russian roulette at {} glass hit{} {why}: one of the reflected and refracted rays followed, its weight divided by its probability (exact in expectation; the other ray is not traced)",
+                rouletted.len(),
+                if rouletted.len() == 1 { "" } else { "s" },
+            ),
+            nodes: rouletted.iter().map(|n| n.id).collect(),
+        });
+    }
+
     // Where energy went: weight cut.
     let st = &tree.settings;
     for (reason, what) in [

@@ -127,6 +127,16 @@ pub fn weight_factors(scene: &Scene, tree: &RayTree, id: NodeId) -> Option<Strin
         ),
         _ => return None,
     };
+    let (want, text) = match parent.interface.as_ref().and_then(|i| i.roulette) {
+        Some(c) => (
+            want / c.probability,
+            format!(
+                "({text}) / {:.4}, its Russian-roulette probability",
+                c.probability
+            ),
+        ),
+        None => (want, text),
+    };
     close(want, n.weight).then(|| format!("{w} = {text}"))
 }
 
@@ -200,16 +210,24 @@ mod tests {
             text.starts_with("0.0380 = R 0.0400 x transmissivity 0.9500"),
             "{text}"
         );
-        let mut refracted = 0;
+        let (mut refracted, mut rouletted) = (0, 0);
         for n in &tree.nodes {
             let f = weight_factors(&scene, &tree, n.id);
             assert_eq!(f.is_some(), n.parent.is_some(), "#{}: {f:?}", n.id.0);
             refracted += usize::from(n.kind == RayKind::Refracted);
+            let f = f.unwrap_or_default();
             if n.kind == RayKind::Refracted {
-                assert!(f.unwrap().contains("= T 0.9600 x transmissivity 0.9500"));
+                assert!(f.contains("T 0.9600 x transmissivity 0.9500"), "{f}");
+            }
+            // Deep, weak hits follow one ray: its weight is divided by its probability.
+            if f.contains("Russian-roulette probability") {
+                rouletted += 1;
+                let i = tree.node(n.parent.unwrap()).interface.as_ref().unwrap();
+                let p = i.roulette.unwrap().probability;
+                assert!(f.contains(&format!("/ {p:.4}")), "{f}");
             }
         }
-        assert!(refracted > 0);
+        assert!(refracted > 0 && rouletted > 0, "{refracted} {rouletted}");
         // A tampered weight no longer matches its factors: nothing is claimed.
         let mut bad = tree.clone();
         bad.nodes[2].weight = Rgb::splat(0.5);

@@ -135,6 +135,11 @@ pub struct Overrides {
     /// refraction chosen by Russian roulette instead of both (exact in expectation, noisy).
     #[arg(long, value_name = "DEPTH")]
     pub dielectric_roulette: Option<u32>,
+    /// A glass hit whose throughput is below this weight follows reflection or refraction
+    /// chosen by Russian roulette instead of both (0: always both; default: chosen from the
+    /// scene's brightest radiance, see `raytree effects`).
+    #[arg(long, value_name = "WEIGHT")]
+    pub roulette_below: Option<f64>,
 }
 
 /// `raytree render`.

@@ -192,6 +192,9 @@ pub fn apply(scene: &mut Scene, o: &Overrides) -> Result<()> {
     if let Some(v) = o.dielectric_roulette {
         s.dielectric_roulette = Some(v);
     }
+    if let Some(v) = o.roulette_below {
+        s.roulette_below = Some(v);
+    }
     if let Some(v) = &o.antialiasing {
         s.antialiasing = match v.as_str() {
             "auto" => raytree::scene::Antialiasing::Auto,

@@ -34,7 +34,7 @@
 
 use crate::geometry::Shape;
 use crate::math::Rgb;
-use crate::scene::{LightKind, Scene, Settings, ShadowMode, Texture};
+use crate::scene::{LightKind, Material, Scene, Settings, ShadowMode, Texture};
 use glam::DVec3;
 
 /// The steepest slope of the linear-to-sRGB curve (its linear segment at black).
@@ -65,74 +65,130 @@ pub fn auto_min_weight(scene: &Scene, settings: &Settings) -> f64 {
 }
 
 /// The most linear radiance (any channel) a ray can carry with up to `max_depth` bounces left
-/// (see the module notes); may be infinite.
+/// (see the module notes); may be infinite. One bound for every hit: the largest of each
+/// material quantity, whichever materials they come from ([`carried::carried_bound`] bounds
+/// each material's hits apart, tighter).
 #[must_use]
 pub fn radiance_bound(scene: &Scene, max_depth: u32, shadows: ShadowMode) -> f64 {
-    let used = || scene.objects.iter().map(|o| &scene.materials[o.material]);
-    let max = |c: Rgb| c.max_element().max(0.0);
-    let albedo = used()
-        .map(|m| match m.diffuse {
-            Texture::Solid(c) => max(c),
-            Texture::Checker { even, odd, .. } => max(even).max(max(odd)),
-        })
-        .fold(0.0, f64::max);
-    let specular = used().map(|m| max(m.specular)).fold(0.0, f64::max);
-    let emission = used().map(|m| max(m.emission)).fold(0.0, f64::max);
-    let split = used()
-        .map(|m| max(m.reflectivity + m.transmissivity))
-        .fold(0.0, f64::max);
-    let irradiance: f64 = scene
-        .lights
-        .iter()
-        .map(|l| match l.kind {
-            LightKind::Directional { irradiance, .. } => max(irradiance),
-            LightKind::Point {
-                position,
-                intensity,
-            } => {
-                let d = surface_distance(scene, position);
-                if d > 0.0 {
-                    max(intensity) / (d * d)
-                } else {
-                    f64::INFINITY
-                }
-            }
-        })
-        .sum();
-    let through = used().map(|m| max(m.transmissivity)).fold(0.0, f64::max);
-    if shadows == ShadowMode::Translucent && through > 1.0 {
+    let Some(irradiance) = light_irradiance(scene, shadows) else {
         return f64::INFINITY;
-    }
-    // A rough lobe's reflection lit by a point or directional light: `f cos_i = weight D G F /
-    // (4 cos_o) <= weight D_max G1(wo) / (4 cos_o)`, with `D_max = 1 / (pi a^2)` and
-    // `G1(wo) / cos_o = 2 / (cos_o + sqrt(cos_o^2 + a^2 sin_o^2)) <= 2 / a` (the denominator
-    // grows with cos_o from a), so at most `weight / (2 pi a^3)` (Walter et al. 2007 eq. 20,
-    // 33, 34). Strict, and large for small alpha.
-    let glossy = used()
-        .filter(|m| m.is_rough())
-        .map(|m| {
-            let a = m.roughness;
-            max(m.reflectivity + m.transmissivity) / (2.0 * std::f64::consts::PI * a * a * a)
-        })
+    };
+    let terms: Vec<Terms> = scene.used_materials().map(Terms::of).collect();
+    let most = |f: fn(&Terms) -> f64| terms.iter().map(f).fold(0.0, f64::max);
+    let all = Terms {
+        albedo: Rgb::splat(most(|t| t.albedo.max_element())),
+        specular: Rgb::splat(most(|t| t.specular.max_element())),
+        glossy: most(|t| t.glossy),
+        emission: Rgb::splat(most(|t| t.emission.max_element())),
+        split: Rgb::splat(most(|t| t.split.max_element())),
+    };
+    let ambient = Rgb::splat(scene.ambient.max_element().max(0.0));
+    let local = all.local(ambient, irradiance, area_emission(scene)).x;
+    let one = local.max(scene.background.max_element().max(0.0));
+    one * geometric_sum(all.split.x, max_depth)
+}
+
+/// The brightest emission (max channel) when area lights are sampled (`light_samples`).
+fn area_emission(scene: &Scene) -> Option<f64> {
+    let emission = scene
+        .used_materials()
+        .map(|m| m.emission.max_element().max(0.0))
         .fold(0.0, f64::max);
-    let direct = if irradiance > 0.0 {
-        (albedo * std::f64::consts::FRAC_1_PI + specular + glossy) * irradiance
-    } else {
-        0.0
-    };
-    // Area lights (emissive objects sampled for direct light, on with `light_samples`): the
-    // radiance arriving over the hemisphere is at most `max(emission)` (shadow rays stop at the
-    // first emitter), so their expected direct light is at most `(albedo / pi + specular) x pi x
-    // max(emission)`. A single sample's estimate can exceed its expectation (`f cos L / pdf`):
-    // like a point light near a surface, this part of the bound is not strict per sample.
-    let area = if scene.settings.light_samples.is_some() && emission > 0.0 {
-        (albedo + std::f64::consts::PI * specular) * emission
-    } else {
-        0.0
-    };
-    let local = emission + max(scene.ambient) * albedo + direct + area;
-    let one = local.max(max(scene.background));
-    one * geometric_sum(split, max_depth)
+    (scene.settings.light_samples.is_some() && emission > 0.0).then_some(emission)
+}
+
+/// The point and directional lights' irradiance bound `sum_l E_l` (max channels; infinite for a
+/// point light on a surface); `None` when translucent shadows through materials with
+/// transmissivity above 1 leave the radiance unbounded.
+fn light_irradiance(scene: &Scene, shadows: ShadowMode) -> Option<f64> {
+    let max = |c: Rgb| c.max_element().max(0.0);
+    let through = scene
+        .used_materials()
+        .map(|m| max(m.transmissivity))
+        .fold(0.0, f64::max);
+    if shadows == ShadowMode::Translucent && through > 1.0 {
+        return None;
+    }
+    Some(
+        scene
+            .lights
+            .iter()
+            .map(|l| match l.kind {
+                LightKind::Directional { irradiance, .. } => max(irradiance),
+                LightKind::Point {
+                    position,
+                    intensity,
+                } => {
+                    let d = surface_distance(scene, position);
+                    if d > 0.0 {
+                        max(intensity) / (d * d)
+                    } else {
+                        f64::INFINITY
+                    }
+                }
+            })
+            .sum(),
+    )
+}
+
+/// One material's quantities in the bound, per channel and clamped at 0.
+#[derive(Clone, Copy, Debug)]
+struct Terms {
+    albedo: Rgb,
+    specular: Rgb,
+    /// The rough lobe's highlight bound `weight / (2 pi a^3)` (0 for smooth materials).
+    glossy: f64,
+    emission: Rgb,
+    /// `reflectivity + transmissivity`: the secondary rays' weights sum to at most this.
+    split: Rgb,
+}
+
+impl Terms {
+    fn of(m: &Material) -> Self {
+        let pos = |c: Rgb| c.max(Rgb::ZERO);
+        // A rough lobe's reflection lit by a point or directional light: `f cos_i = weight D G
+        // F / (4 cos_o) <= weight D_max G1(wo) / (4 cos_o)`, with `D_max = 1 / (pi a^2)` and
+        // `G1(wo) / cos_o = 2 / (cos_o + sqrt(cos_o^2 + a^2 sin_o^2)) <= 2 / a` (the
+        // denominator grows with cos_o from a), so at most `weight / (2 pi a^3)` (Walter et
+        // al. 2007 eq. 20, 33, 34). Strict, and large for small alpha.
+        let glossy = if m.is_rough() {
+            let a = m.roughness;
+            (m.reflectivity + m.transmissivity).max_element().max(0.0)
+                / (2.0 * std::f64::consts::PI * a * a * a)
+        } else {
+            0.0
+        };
+        Self {
+            albedo: match m.diffuse {
+                Texture::Solid(c) => pos(c),
+                Texture::Checker { even, odd, .. } => pos(even).max(pos(odd)),
+            },
+            specular: pos(m.specular),
+            glossy,
+            emission: pos(m.emission),
+            split: pos(m.reflectivity + m.transmissivity),
+        }
+    }
+
+    /// The local term's bound `B` of the module notes, per channel.
+    fn local(&self, ambient: Rgb, irradiance: f64, area: Option<f64>) -> Rgb {
+        let direct = if irradiance > 0.0 {
+            (self.albedo * std::f64::consts::FRAC_1_PI + self.specular + Rgb::splat(self.glossy))
+                * irradiance
+        } else {
+            Rgb::ZERO
+        };
+        // Area lights (emissive objects sampled for direct light, on with `light_samples`): the
+        // radiance arriving over the hemisphere is at most `max(emission)` (shadow rays stop at
+        // the first emitter), so their expected direct light is at most `(albedo / pi +
+        // specular) x pi x max(emission)`. A single sample's estimate can exceed its
+        // expectation (`f cos L / pdf`): like a point light near a surface, this part of the
+        // bound is not strict per sample.
+        let area = area.map_or(Rgb::ZERO, |e| {
+            (self.albedo + std::f64::consts::PI * self.specular) * e
+        });
+        self.emission + ambient * self.albedo + direct + area
+    }
 }
 
 /// `1 + s + ... + s^k`, without cancellation (infinite when it overflows).
@@ -208,5 +264,6 @@ fn box_surface_distance(min: DVec3, max: DVec3, p: DVec3) -> f64 {
     (p - min).min(max - p).min_element().max(0.0)
 }
 
+pub mod carried;
 #[cfg(test)]
 mod tests;

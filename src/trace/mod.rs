@@ -170,6 +170,9 @@ pub struct Tracer<'a> {
     film: Film<'a>,
     /// The cut in use: `settings.min_weight`, or the automatic one ([`bound`]).
     min_weight: f64,
+    /// Dielectric hits of a throughput below this play Russian roulette between their two
+    /// rays: `settings.roulette_below`, or the automatic weight ([`bound::carried`]).
+    roulette_below: f64,
 }
 
 impl<'a> Tracer<'a> {
@@ -190,6 +193,7 @@ impl<'a> Tracer<'a> {
             direct_only,
             film: scene.camera.film(),
             min_weight: bound::effective_min_weight(scene),
+            roulette_below: bound::carried::effective_roulette_below(scene),
         }
     }
 
@@ -198,6 +202,14 @@ impl<'a> Tracer<'a> {
     #[must_use]
     pub fn min_weight(&self) -> f64 {
         self.min_weight
+    }
+
+    /// The throughput below which a dielectric hit follows one of its rays, chosen by Russian
+    /// roulette, instead of both: `settings.roulette_below`, or when absent the automatic
+    /// weight ([`bound::carried::auto_roulette_below`]); 0 under the path integrator.
+    #[must_use]
+    pub fn roulette_below(&self) -> f64 {
+        self.roulette_below
     }
 
     /// The scene camera's image plane ([`crate::scene::Camera::film`]): its camera rays, the

@@ -174,15 +174,27 @@ impl Tracer<'_> {
             if let Some(dir) = dir {
                 refraction = Some((dir, m.transmissivity * f.t));
             }
-            rec.update(id, |node| node.interface = Some(event));
-            if let (Some(from), Some((dir, t))) = (scene.settings.dielectric_roulette, refraction)
-                && state.depth >= from
+            let mut choice = None;
+            // Russian roulette instead of the split: from a depth, or below a weight.
+            if let Some((dir, t)) = refraction
+                && (scene
+                    .settings
+                    .dielectric_roulette
+                    .is_some_and(|from| state.depth >= from)
+                    || throughput.max_element() < self.roulette_below)
             {
                 let u = super::roulette::choice(scene.settings.seed, p, d);
-                let (r, t) = super::roulette::play(reflect_w, t, u);
+                let (r, t, c) = super::roulette::decide(reflect_w, t, u);
                 reflect_w = r;
                 refraction = Some((dir, t));
+                choice = c;
             }
+            rec.update(id, |node| {
+                node.interface = Some(Interface {
+                    roulette: choice,
+                    ..event
+                });
+            });
         }
         let at = Spawn {
             kind: RayKind::Reflected,
@@ -354,6 +366,7 @@ impl Tracer<'_> {
                     cos_t: Some(t.cos_t),
                     fresnel,
                     tir: false,
+                    roulette: None,
                 };
                 (event, Some(t.direction))
             }
@@ -365,6 +378,7 @@ impl Tracer<'_> {
                     cos_t: None,
                     fresnel: math::fresnel_tir(model),
                     tir: true,
+                    roulette: None,
                 };
                 (event, None)
             }

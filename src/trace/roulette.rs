@@ -15,6 +15,7 @@
 
 use crate::math::Rgb;
 use crate::sampling::{splitmix64, unit};
+use crate::tree::SplitRoulette;
 use glam::DVec3;
 
 /// The uniform number in `[0, 1)` of the choice at hit point `p` for incident direction `d`.
@@ -31,15 +32,30 @@ pub fn choice(seed: u64, p: DVec3, d: DVec3) -> f64 {
 /// uniform number `u`: the weights of the ray to follow (the other is zero).
 #[must_use]
 pub fn play(reflect: Rgb, refract: Rgb, u: f64) -> (Rgb, Rgb) {
+    let (r, t, _) = decide(reflect, refract, u);
+    (r, t)
+}
+
+/// [`play`], with the choice made (`None` when one weight is zero: nothing to choose).
+#[must_use]
+pub fn decide(reflect: Rgb, refract: Rgb, u: f64) -> (Rgb, Rgb, Option<SplitRoulette>) {
     let (a, b) = (reflect.max_element(), refract.max_element());
     if a <= 0.0 || b <= 0.0 {
-        return (reflect, refract);
+        return (reflect, refract, None);
     }
     let p = a / (a + b);
     if u < p {
-        (reflect / p, Rgb::ZERO)
+        let choice = SplitRoulette {
+            reflected: true,
+            probability: p,
+        };
+        (reflect / p, Rgb::ZERO, Some(choice))
     } else {
-        (Rgb::ZERO, refract / (1.0 - p))
+        let choice = SplitRoulette {
+            reflected: false,
+            probability: 1.0 - p,
+        };
+        (Rgb::ZERO, refract / (1.0 - p), Some(choice))
     }
 }
 

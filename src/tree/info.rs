@@ -48,6 +48,20 @@ pub struct Interface {
     pub fresnel: Fresnel,
     /// Total internal reflection happened.
     pub tir: bool,
+    /// Russian roulette followed one of the reflected and refracted rays instead of both
+    /// (`settings.roulette_below` or `settings.dielectric_roulette`).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub roulette: Option<SplitRoulette>,
+}
+
+/// A Russian-roulette choice between a dielectric hit's reflected and refracted rays: the ray
+/// followed and the probability it had; its weight was divided by that probability.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+pub struct SplitRoulette {
+    /// Whether the reflected ray was followed (else the refracted one).
+    pub reflected: bool,
+    /// The probability of that choice.
+    pub probability: f64,
 }
 
 /// Beer's law on the segment of this ray.

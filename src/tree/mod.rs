@@ -17,7 +17,7 @@ mod tests;
 
 pub use info::{
     AreaSample, Attenuation, Blocker, GlossyLobe, GlossySample, HitInfo, Interface, Leak,
-    ShadowInfo,
+    ShadowInfo, SplitRoulette,
 };
 pub use path::{DeltaTag, PathInfo, Pdf, Roulette};
 

@@ -60,7 +60,24 @@ fn deep_recursion_ends_quickly_with_the_default_cut() {
     );
     r.assert_clean();
     assert_eq!(r.code, Some(0), "{r:#?}");
+    assert!(r.stdout.contains("roulette: the"), "{r:#?}");
+    // The cut alone (no roulette below a weight) ends it too.
+    let r = run(
+        &[
+            "trace",
+            "--pixel",
+            "329,189",
+            "--max-depth",
+            "1024",
+            "--roulette-below",
+            "0",
+        ],
+        dir.path(),
+    );
+    r.assert_clean();
+    assert_eq!(r.code, Some(0), "{r:#?}");
     assert!(r.stdout.contains("cut by min_weight"), "{r:#?}");
+    assert!(!r.stdout.contains("roulette: the"), "{r:#?}");
     // Did not finish in a minute at depth 1024.
     let args = [
         "render",

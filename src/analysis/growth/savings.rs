@@ -1,6 +1,7 @@
 //! What the bounded-error cut saves, measured on a grid of pixels.
 
 use crate::scene::{Scene, Settings};
+use crate::trace::bound::carried::effective_roulette_below;
 use crate::trace::bound::effective_min_weight;
 use crate::trace::{NoopRecorder, RayCounts};
 
@@ -12,6 +13,8 @@ pub struct CutSavings {
     pub grid: [u32; 2],
     /// The automatic cut used.
     pub min_weight: f64,
+    /// The automatic roulette weight used (0: every dielectric hit split).
+    pub roulette_below: f64,
     /// Rays of every kind with the cut.
     pub cut_rays: u64,
     /// Rays of every kind with `min_weight` 0 (bounded per sample by `settings.max_rays`).
@@ -51,10 +54,21 @@ impl CutSavings {
         } else {
             format!("{at_least}{ratio:.1}x fewer")
         };
+        let what = if self.roulette_below > 0.0 {
+            format!(
+                "the automatic cut (min_weight {:.2e}) and roulette (below weight {:.2e}) trace",
+                self.min_weight, self.roulette_below
+            )
+        } else {
+            format!(
+                "the automatic cut (min_weight {:.2e}) traces",
+                self.min_weight
+            )
+        };
         format!(
-            "the automatic cut (min_weight {:.2e}) traces {} rays where the exhaustive tree \
-             would trace {at_least}{} ({fewer}) on a {}x{} sample of pixel centres{budget}",
-            self.min_weight, self.cut_rays, self.exhaustive_rays, self.grid[0], self.grid[1]
+            "{what} {} rays where the exhaustive tree would trace {at_least}{} ({fewer}) on a \
+             {}x{} sample of pixel centres{budget}",
+            self.cut_rays, self.exhaustive_rays, self.grid[0], self.grid[1]
         )
     }
 }
@@ -74,9 +88,9 @@ pub fn grid_pixels(w: u32, h: u32, cols: u32, rows: u32) -> Vec<(u32, u32)> {
         .collect()
 }
 
-/// Trace the grid's pixels (one sample at each centre) with the scene's automatic cut and with
-/// the exhaustive tree, and count the rays. `min_weight` set in the scene is ignored: the
-/// question is what the default saves. `cancelled` is polled between pixels; `None` if it said
+/// Trace the grid's pixels (one sample at each centre) with the scene's automatic cut and
+/// roulette and with the exhaustive tree, and count the rays. `min_weight` and `roulette_below`
+/// set in the scene are ignored: the question is what the default saves. `cancelled` is polled between pixels; `None` if it said
 /// so.
 #[must_use]
 pub fn cut_savings(
@@ -85,15 +99,16 @@ pub fn cut_savings(
     rows: u32,
     cancelled: &dyn Fn() -> bool,
 ) -> Option<CutSavings> {
-    let with = |min_weight| Scene {
+    let with = |min_weight, roulette_below| Scene {
         settings: Settings {
             min_weight,
+            roulette_below,
             spp: 1,
             ..scene.settings
         },
         ..scene.clone()
     };
-    let (cut, full) = (with(None), with(Some(0.0)));
+    let (cut, full) = (with(None, None), with(Some(0.0), Some(0.0)));
     let pixels = grid_pixels(scene.camera.width, scene.camera.height, cols, rows);
     let count = |s: &Scene| {
         let tracer = crate::trace::Tracer::new(s);
@@ -111,6 +126,7 @@ pub fn cut_savings(
     Some(CutSavings {
         grid: [cols, rows],
         min_weight: effective_min_weight(&cut),
+        roulette_below: effective_roulette_below(&cut),
         cut_rays: a.total(),
         exhaustive_rays: b.total(),
         budget_samples: b.budget_samples,

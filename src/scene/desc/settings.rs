@@ -325,6 +325,12 @@ pub struct Settings {
     /// absent: always both.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub dielectric_roulette: Option<u32>,
+    /// Whitted integrator: a smooth dielectric hit whose throughput (max channel) is below this
+    /// weight follows one of reflection and refraction, chosen by Russian roulette, instead of
+    /// both (`0`: always both); absent: chosen from the scene ([`crate::trace::roulette`]'s
+    /// automatic weight, off for an explicit `min_weight` or a tolerance of 0).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub roulette_below: Option<f64>,
 }
 
 impl Settings {
@@ -378,6 +384,7 @@ impl Default for Settings {
             antialiasing: Antialiasing::Auto,
             adaptive: None,
             dielectric_roulette: None,
+            roulette_below: None,
         }
     }
 }

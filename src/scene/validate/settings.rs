@@ -35,6 +35,14 @@ pub fn check_settings(s: &Settings) -> Result<Settings, (String, String)> {
             format!("must be a finite number >= 0, got {w}"),
         ));
     }
+    if let Some(w) = s.roulette_below
+        && !(w.is_finite() && w >= 0.0)
+    {
+        return Err((
+            "settings.roulette_below".into(),
+            format!("must be a finite number >= 0, got {w}"),
+        ));
+    }
     if !(s.tolerance.is_finite() && s.tolerance >= 0.0) {
         return Err((
             "settings.tolerance".into(),

@@ -170,7 +170,9 @@ mod nested_dielectrics {
             r in 0.0f64..0.1,
             depth in 4u32..14,
         ) {
-            let cut = scene(ior, t, r, depth);
+            let mut cut = scene(ior, t, r, depth);
+            // The cut alone (the roulette below a weight has tests of its own).
+            cut.settings.roulette_below = Some(0.0);
             let mut full = cut.clone();
             full.settings.min_weight = Some(0.0);
             let bound = radiance_bound(&cut, depth, cut.settings.shadows);
@@ -241,4 +243,52 @@ fn the_rough_lobes_highlight_bound_holds_and_is_tight() {
         }
         assert!(most > 0.3 * bound, "alpha {a}: at most {most} of {bound}");
     }
+}
+
+/// The material-by-material bound: the plane's local term `0.5 / pi x 2` at every depth, since
+/// the glass (split 0.9) has no local term and the plane passes nothing on; the shared bound
+/// multiplies it by `1 + 0.9 + ... + 0.9^16`.
+#[test]
+fn the_carried_bound_follows_each_material() {
+    use super::carried::carried_bound;
+    let s = scene("");
+    let local = 0.5 / std::f64::consts::PI * 2.0;
+    for depth in [0, 1, 16, 1024] {
+        let b = carried_bound(&s, depth, ShadowMode::Opaque);
+        assert!((b - local).abs() < 1e-15, "depth {depth}: {b}");
+    }
+    // A glass that also glows: L_k = 0.2 + 0.9 L_(k-1) from L_0 = 0.318 (the plane).
+    let mut s = scene("");
+    let g = s.materials.iter().position(|m| m.name == "g").unwrap();
+    s.materials[g].emission = Rgb::splat(0.2);
+    let mut want = local;
+    for _ in 0..5 {
+        want = (0.2 + 0.9 * want).max(local);
+    }
+    let b = carried_bound(&s, 5, ShadowMode::Opaque);
+    assert!((b - want).abs() < 1e-12, "{b} vs {want}");
+    assert!(b <= radiance_bound(&s, 5, ShadowMode::Opaque));
+    // Translucent shadows through a material that amplifies: unbounded, as the shared bound.
+    s.materials[g].transmissivity = Rgb::splat(1.5);
+    assert_eq!(carried_bound(&s, 5, ShadowMode::Translucent), f64::INFINITY);
+}
+
+/// The automatic roulette weight: 0.01 over the carried bound, off where the tree is asked to
+/// be exhaustive or the integrator samples anyway.
+#[test]
+fn the_automatic_roulette_weight_and_when_it_is_off() {
+    use super::carried::{ROULETTE_RADIANCE, auto_roulette_below, effective_roulette_below};
+    let s = scene("");
+    let local = 0.5 / std::f64::consts::PI * 2.0;
+    assert!((auto_roulette_below(&s) - ROULETTE_RADIANCE / local).abs() < 1e-15);
+    for extra in [
+        r#", "settings": {"min_weight": 0}"#,
+        r#", "settings": {"tolerance": 0}"#,
+        r#", "settings": {"dielectric_roulette": 3}"#,
+        r#", "settings": {"integrator": "path"}"#,
+    ] {
+        assert_eq!(auto_roulette_below(&scene(extra)), 0.0, "{extra}");
+    }
+    let s = scene(r#", "settings": {"roulette_below": 0.25, "min_weight": 0}"#);
+    assert_eq!(effective_roulette_below(&s), 0.25);
 }

@@ -1,0 +1,162 @@
+//! A tighter bound on the radiance a ray carries, material by material, and the automatic
+//! roulette weight it sets (`settings.roulette_below`).
+//!
+//! [`super::radiance_bound`] takes the largest local term and the largest split of any
+//! material together, as if one material could emit like the brightest lamp and pass on all
+//! light like clear glass; between glass objects its `1 + s + ... + s^k` then grows with the
+//! depth. Each hit is on one material, so the recursion of the lecture's `trace` bounds, per
+//! colour channel,
+//!
+//! - `L_0 = max(background, max_m B_m)`: a ray at the depth limit carries its hit's local term
+//!   (its secondary rays are cut) or the background;
+//! - `L_k = max(background, max_m (B_m + s_m L_(k-1)))`: a hit on material `m` adds its local
+//!   term `B_m` and its secondary rays, whose weights sum to at most `s_m`, each carrying at most
+//!   `L_(k-1)`,
+//!
+//! with `B_m` and `s_m` as in the module notes of [`super`], for material `m` alone. `L_k` grows
+//! with `k` and stops growing as soon as no material both shines and passes light on: a scene
+//! of lamps, mirrors and clear glass has `L_k = ` its brightest lamp (or background) at every
+//! depth, where the shared bound is `k + 1` times that.
+
+use super::{Terms, area_emission, light_irradiance};
+use crate::math::Rgb;
+use crate::scene::{IntegratorKind, Scene, ShadowMode};
+
+/// The radiance (linear, display range 1) one roulette decision may move a sample by at most,
+/// under the automatic `roulette_below`: a hit of throughput `tau` below the weight
+/// `ROULETTE_RADIANCE / L` (`L` the [`carried_bound`]) carries at most `tau L <
+/// ROULETTE_RADIANCE`, so following one of its two rays (weight divided by its probability)
+/// instead of both changes the sample by less than that. Measured on
+/// `benches/mitsuba-scenes/mirror-corridor.json`, `glass-emitters.json` and
+/// `fixtures/nested.json` at 1 spp (docs/cost.md): RMSE against the split of at most 3e-4, and
+/// no visible change, where the exponential tree below it cost 2-5x the rays.
+pub const ROULETTE_RADIANCE: f64 = 0.01;
+
+/// The most linear radiance (any channel) a ray can carry with up to `max_depth` bounces left,
+/// material by material (module notes); may be infinite. At most [`super::radiance_bound`].
+#[must_use]
+pub fn carried_bound(scene: &Scene, max_depth: u32, shadows: ShadowMode) -> f64 {
+    let Some(irradiance) = light_irradiance(scene, shadows) else {
+        return f64::INFINITY;
+    };
+    let ambient = scene.ambient.max(Rgb::ZERO);
+    let area = area_emission(scene);
+    let roulette = scene.settings.dielectric_roulette.is_some();
+    let terms: Vec<(Rgb, Rgb)> = scene
+        .used_materials()
+        .map(|m| {
+            let t = Terms::of(m);
+            // Roulette divides the chosen ray's weight by its probability: each channel stays
+            // below max(reflectivity + R transmissivity) + max(T transmissivity).
+            let split = if roulette {
+                let max = |c: Rgb| c.max_element().max(0.0);
+                Rgb::splat(max(m.reflectivity) + max(m.transmissivity))
+            } else {
+                t.split
+            };
+            (t.local(ambient, irradiance, area), split)
+        })
+        .collect();
+    let background = scene.background.max(Rgb::ZERO);
+    let step = |carried: Rgb| {
+        terms.iter().fold(background, |acc, &(local, split)| {
+            acc.max(local + split * carried)
+        })
+    };
+    let mut bound = step(Rgb::ZERO);
+    for _ in 0..max_depth {
+        let next = step(bound);
+        let settled = next == bound || !next.is_finite();
+        bound = next;
+        if settled {
+            break;
+        }
+    }
+    bound.max_element()
+}
+
+/// The roulette weight the Whitted tracer uses: `settings.roulette_below` when given, else
+/// [`auto_roulette_below`].
+#[must_use]
+pub fn effective_roulette_below(scene: &Scene) -> f64 {
+    scene
+        .settings
+        .roulette_below
+        .unwrap_or_else(|| auto_roulette_below(scene))
+}
+
+/// The automatic roulette weight: [`ROULETTE_RADIANCE`] over the [`carried_bound`], in
+/// `[0, 1]`; 0 (always split) for the path integrator, an explicit `min_weight` (the
+/// exhaustive tree of `min_weight 0` stays exhaustive), a tolerance of 0, the depth roulette
+/// (`dielectric_roulette`) or an unbounded radiance.
+#[must_use]
+pub fn auto_roulette_below(scene: &Scene) -> f64 {
+    let s = &scene.settings;
+    if s.integrator != IntegratorKind::Whitted
+        || s.min_weight.is_some()
+        || s.tolerance <= 0.0
+        || s.dielectric_roulette.is_some()
+    {
+        return 0.0;
+    }
+    let bound = carried_bound(scene, s.max_depth, s.shadows);
+    if !bound.is_finite() {
+        return 0.0;
+    }
+    if bound <= 0.0 {
+        return 1.0;
+    }
+    (ROULETTE_RADIANCE / bound).clamp(0.0, 1.0)
+}
+
+/// Whether some dielectric hits play Russian roulette instead of splitting, and why, in words
+/// (`raytree effects`).
+#[must_use]
+pub fn roulette_note(scene: &Scene) -> (bool, String) {
+    let s = &scene.settings;
+    let glass = scene.used_materials().any(|m| m.is_transmissive());
+    if !glass {
+        return (false, "no transmissive material: nothing splits".into());
+    }
+    if s.integrator != IntegratorKind::Whitted {
+        return (false, "the path integrator samples one ray per hit".into());
+    }
+    if let Some(d) = s.dielectric_roulette {
+        return (
+            true,
+            format!(
+                "settings.dielectric_roulette: from depth {d}, one of reflection and refraction"
+            ),
+        );
+    }
+    let w = effective_roulette_below(scene);
+    let what = format!(
+        "glass hits of throughput below {w:.2e} follow one of reflection and refraction, weight / \
+         probability (exact in expectation)"
+    );
+    match s.roulette_below {
+        Some(0.0) => (
+            false,
+            "settings.roulette_below 0: every glass hit splits".into(),
+        ),
+        Some(_) => (true, format!("{what}; settings.roulette_below")),
+        None if w > 0.0 => (
+            true,
+            format!(
+                "{what}; automatic: {ROULETTE_RADIANCE} / the radiance a ray can carry ({:.3}); \
+                 settings.roulette_below 0 splits every hit",
+                carried_bound(scene, s.max_depth, s.shadows)
+            ),
+        ),
+        None if s.min_weight.is_some() => (
+            false,
+            "settings.min_weight given: every glass hit splits (settings.roulette_below to add \
+             the roulette)"
+                .into(),
+        ),
+        None => (
+            false,
+            "tolerance 0 or unbounded radiance: every glass hit splits".into(),
+        ),
+    }
+}
