@@ -81,6 +81,20 @@ pub fn details_ui(ui: &mut egui::Ui, doc: &Document) {
                     format!("{} / {}", num(i.fresnel.r), num(i.fresnel.t)),
                 );
                 row("TIR", i.tir.to_string());
+                if let Some(c) = i.roulette {
+                    row(
+                        "roulette",
+                        format!(
+                            "followed the {} ray only, p {} (its weight / p)",
+                            if c.reflected {
+                                "reflected"
+                            } else {
+                                "refracted"
+                            },
+                            num(c.probability)
+                        ),
+                    );
+                }
             }
             if let Some(a) = &n.attenuation {
                 row(

@@ -30,10 +30,15 @@ pub fn node_name(n: &RayNode) -> String {
         .interface
         .as_ref()
         .map(|i| {
+            let roulette = if i.roulette.is_some() {
+                " roulette"
+            } else {
+                ""
+            };
             if i.tir {
                 "  TIR".to_string()
             } else {
-                format!("  R={:.3} T={:.3}", i.fresnel.r, i.fresnel.t)
+                format!("  R={:.3} T={:.3}{roulette}", i.fresnel.r, i.fresnel.t)
             }
         })
         .unwrap_or_default();
