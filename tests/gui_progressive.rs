@@ -90,3 +90,60 @@ fn unticking_antialias_edges_only_gives_the_uniform_render() {
     assert_ne!(uniform, auto);
     assert_eq!(h.state().session.doc.image, uniform);
 }
+
+/// The roulette below a weight (automatic by default, shown for glass scenes): unticking its
+/// "auto" starts the slider at the automatic weight; dragging it to 0 splits every glass hit,
+/// and the inspector's image is then the render of `roulette_below: 0`.
+#[test]
+fn the_roulette_weight_is_automatic_and_can_be_turned_off() {
+    let src = include_str!("../benches/mitsuba-scenes/glass-emitters.json");
+    let adjust = Box::new(|s: &mut raytree::Scene| {
+        s.camera = s.camera.with_size(40, 24);
+        Ok(())
+    });
+    let mut h = read_only_inspector(src, adjust);
+    h.state_mut().session.wait_render();
+    h.run();
+    let mut scene: raytree::Scene = (*h.state().session.doc.scene).clone();
+    assert_eq!(scene.settings.roulette_below, None);
+    assert!(has(&h, "roulette below"));
+    let auto = raytree::render(&scene, &|_| {}).0;
+    assert_eq!(h.state().session.doc.image, auto);
+    // The "auto" box on the roulette slider's row (the min weight and the diagram's plane have
+    // one too).
+    // (The slider and its text both carry the label, on one row.)
+    let row = h
+        .query_all_by_label("roulette below")
+        .next()
+        .unwrap()
+        .rect()
+        .center()
+        .y;
+    let theirs = h
+        .query_all_by_label("auto")
+        .min_by(|a, b| {
+            let (da, db) = (a.rect().center().y - row, b.rect().center().y - row);
+            da.abs().total_cmp(&db.abs())
+        })
+        .unwrap();
+    assert!((theirs.rect().center().y - row).abs() < 4.0);
+    theirs.click();
+    h.run();
+    h.state_mut().session.wait_render();
+    h.run();
+    assert_eq!(
+        h.state().session.doc.scene.settings.roulette_below,
+        Some(0.01),
+        "the slider starts at the automatic weight"
+    );
+    let mut s = h.state().session.doc.scene.settings;
+    s.roulette_below = Some(0.0);
+    h.state_mut().session.apply(Command::SetSettings(s));
+    h.run();
+    h.state_mut().session.wait_render();
+    h.run();
+    scene.settings.roulette_below = Some(0.0);
+    let split = raytree::render(&scene, &|_| {}).0;
+    assert_ne!(split, auto);
+    assert_eq!(h.state().session.doc.image, split);
+}

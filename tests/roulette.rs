@@ -113,7 +113,7 @@ fn the_default_plays_roulette_only_below_its_weight() {
     scene.camera = scene.camera.with_size(32, 18);
     let bound = carried_bound(&scene, scene.settings.max_depth, scene.settings.shadows);
     assert_eq!(bound, 1.0);
-    assert_eq!(auto_roulette_below(&scene), 0.01);
+    assert_eq!(auto_roulette_below(&scene, &scene.settings), 0.01);
     let image = render(&scene, &|_| {}).0;
     let mut choices = 0;
     for y in 0..18 {
@@ -141,5 +141,5 @@ fn the_default_plays_roulette_only_below_its_weight() {
     }
     assert!(choices > 0);
     scene.settings.min_weight = Some(0.0);
-    assert_eq!(auto_roulette_below(&scene), 0.0);
+    assert_eq!(auto_roulette_below(&scene, &scene.settings), 0.0);
 }

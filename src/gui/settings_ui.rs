@@ -119,6 +119,7 @@ pub fn settings_ui(ui: &mut egui::Ui, doc: &Document, cmds: &mut Vec<Command>) {
     });
     stochastic_ui(ui, doc, &mut s);
     min_weight_ui(ui, doc, &mut s);
+    roulette_ui(ui, doc, &mut s);
     if s != old {
         cmds.push(Command::SetSettings(s));
     }
@@ -175,6 +176,34 @@ fn min_weight_ui(ui: &mut egui::Ui, doc: &Document, s: &mut crate::scene::Settin
             .on_hover_text("cut branches that could add less than the tolerance (1/510)");
     });
     s.min_weight = if auto { None } else { Some(w) };
+}
+
+/// The roulette below a weight at glass (Whitted scenes with a transmissive material): "auto"
+/// shows the weight chosen from the scene ([`crate::trace::bound::carried`]); 0 splits every
+/// glass hit.
+fn roulette_ui(ui: &mut egui::Ui, doc: &Document, s: &mut crate::scene::Settings) {
+    if s.integrator != IntegratorKind::Whitted
+        || !doc.scene.used_materials().any(|m| m.is_transmissive())
+    {
+        return;
+    }
+    let auto_value = crate::trace::bound::carried::auto_roulette_below(&doc.scene, s);
+    let mut auto = s.roulette_below.is_none();
+    let mut w = s.roulette_below.unwrap_or(auto_value);
+    ui.horizontal(|ui| {
+        ui.add_enabled(
+            !auto,
+            Slider::new(&mut w, 0.0..=1.0)
+                .logarithmic(true)
+                .smallest_positive(1e-9)
+                .text("roulette below"),
+        );
+        ui.checkbox(&mut auto, "auto").on_hover_text(
+            "glass hits weaker than this follow one of their two rays (Russian roulette, exact \
+             in expectation); 0 splits every hit",
+        );
+    });
+    s.roulette_below = if auto { None } else { Some(w) };
 }
 
 /// Debug view, overlay and zoom.

@@ -20,7 +20,7 @@
 
 use super::{Terms, area_emission, light_irradiance};
 use crate::math::Rgb;
-use crate::scene::{IntegratorKind, Scene, ShadowMode};
+use crate::scene::{IntegratorKind, Scene, Settings, ShadowMode};
 
 /// The radiance (linear, display range 1) one roulette decision may move a sample by at most,
 /// under the automatic `roulette_below`: a hit of throughput `tau` below the weight
@@ -82,16 +82,16 @@ pub fn effective_roulette_below(scene: &Scene) -> f64 {
     scene
         .settings
         .roulette_below
-        .unwrap_or_else(|| auto_roulette_below(scene))
+        .unwrap_or_else(|| auto_roulette_below(scene, &scene.settings))
 }
 
-/// The automatic roulette weight: [`ROULETTE_RADIANCE`] over the [`carried_bound`], in
+/// The automatic roulette weight for `s` (max depth, shadows and what turns it off) on `scene`:
+/// [`ROULETTE_RADIANCE`] over the [`carried_bound`], in
 /// `[0, 1]`; 0 (always split) for the path integrator, an explicit `min_weight` (the
 /// exhaustive tree of `min_weight 0` stays exhaustive), a tolerance of 0, the depth roulette
 /// (`dielectric_roulette`) or an unbounded radiance.
 #[must_use]
-pub fn auto_roulette_below(scene: &Scene) -> f64 {
-    let s = &scene.settings;
+pub fn auto_roulette_below(scene: &Scene, s: &Settings) -> f64 {
     if s.integrator != IntegratorKind::Whitted
         || s.min_weight.is_some()
         || s.tolerance <= 0.0

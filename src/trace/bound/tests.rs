@@ -280,14 +280,15 @@ fn the_automatic_roulette_weight_and_when_it_is_off() {
     use super::carried::{ROULETTE_RADIANCE, auto_roulette_below, effective_roulette_below};
     let s = scene("");
     let local = 0.5 / std::f64::consts::PI * 2.0;
-    assert!((auto_roulette_below(&s) - ROULETTE_RADIANCE / local).abs() < 1e-15);
+    assert!((auto_roulette_below(&s, &s.settings) - ROULETTE_RADIANCE / local).abs() < 1e-15);
     for extra in [
         r#", "settings": {"min_weight": 0}"#,
         r#", "settings": {"tolerance": 0}"#,
         r#", "settings": {"dielectric_roulette": 3}"#,
         r#", "settings": {"integrator": "path"}"#,
     ] {
-        assert_eq!(auto_roulette_below(&scene(extra)), 0.0, "{extra}");
+        let s = scene(extra);
+        assert_eq!(auto_roulette_below(&s, &s.settings), 0.0, "{extra}");
     }
     let s = scene(r#", "settings": {"roulette_below": 0.25, "min_weight": 0}"#);
     assert_eq!(effective_roulette_below(&s), 0.25);
