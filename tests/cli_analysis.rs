@@ -53,11 +53,15 @@ fn effects_cost_and_compare() {
     assert!(o.status.success(), "{}", stderr(&o));
     let csv = std::fs::read_to_string(d.join("rep/cost.csv")).unwrap();
     // Header, depth, Fresnel, spp, automatic antialiasing (at 4 spp; at 1 it is uniform),
-    // offset, min weight, dielectric roulette, adaptive, filter (no area light, no rough
-    // material).
+    // offset, min weight, dielectric roulette, roulette below (auto), adaptive, filter (no area
+    // light, no rough material).
     assert_eq!(
         csv.lines().count(),
-        1 + 4 + 3 + 2 + 1 + 4 + 3 + 1 + 1 + 2,
+        1 + 4 + 3 + 2 + 1 + 4 + 3 + 1 + 1 + 1 + 2,
+        "{csv}"
+    );
+    assert!(
+        csv.lines().any(|l| l.starts_with("roulette_below,auto (")),
         "{csv}"
     );
     assert!(

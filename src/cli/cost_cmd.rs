@@ -64,7 +64,7 @@ pub fn run(a: &CostArgs) -> Result<()> {
 
 fn markdown(r: &CostReport, label: &str) -> String {
     let mut s = format!(
-        "Cost sweep of {label} at {}x{}. Reference: max depth {}, exact Fresnel, offset {}, no min weight (the exhaustive tree); 1 spp (pixel centres) for every axis but spp, {} spp for the spp axis. Each row changes one setting of the base, the default settings at depth 16 (exact Fresnel, 1 spp, the automatic min weight {:.1e}, robust offset); the offset rows use the scene's epsilon {:e}.\n\n",
+        "Cost sweep of {label} at {}x{}. Reference: max depth {}, exact Fresnel, offset {}, no min weight (the exhaustive tree); 1 spp (pixel centres) for every axis but spp, {} spp for the spp axis. Each row changes one setting of the base, the default settings at depth 16 (exact Fresnel, 1 spp, the automatic min weight {:.1e} and, with glass, the automatic roulette below a weight, robust offset); the min_weight rows are the cut alone (no roulette); the offset rows use the scene's epsilon {:e}.\n\n",
         r.size[0],
         r.size[1],
         r.reference.max_depth,
@@ -77,7 +77,7 @@ fn markdown(r: &CostReport, label: &str) -> String {
     );
     let _ = write!(
         s,
-        "Stochastic axes: light_samples rows (only for scenes with an area light) against {} light samples, glossy_samples rows (only for scenes with a rough material) against {} glossy samples, both at the pixel centres; filter rows at {} spp against the same filter at {} spp; adaptive rows (threshold to max spp, first pass {} spp; camera rays = samples taken) against {} spp; dielectric_roulette rows (only for scenes with glass: reflection or refraction chosen by Russian roulette from that depth on, exact in expectation) against the pixel-centre reference, their error the roulette's noise beside the automatic cut's bounded error.\n\n",
+        "Stochastic axes: light_samples rows (only for scenes with an area light) against {} light samples, glossy_samples rows (only for scenes with a rough material) against {} glossy samples, both at the pixel centres; filter rows at {} spp against the same filter at {} spp; adaptive rows (threshold to max spp, first pass {} spp; camera rays = samples taken) against {} spp; dielectric_roulette rows (only for scenes with glass: reflection or refraction chosen by Russian roulette from that depth on, exact in expectation) against the pixel-centre reference, their error the roulette's noise beside the automatic cut's bounded error; roulette_below rows (glass only: hits of a throughput below that weight play the roulette, with the automatic cut) against the same reference.\n\n",
         r.reference_light_samples,
         r.reference_glossy_samples,
         r.rows

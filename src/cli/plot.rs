@@ -18,7 +18,7 @@ pub(super) fn register_font() {
     });
 }
 
-const AXES: [(&str, RGBColor); 8] = [
+const AXES: [(&str, RGBColor); 9] = [
     ("max_depth", RGBColor(31, 119, 180)),
     ("fresnel", RGBColor(255, 127, 14)),
     ("spp", RGBColor(44, 160, 44)),
@@ -27,6 +27,7 @@ const AXES: [(&str, RGBColor); 8] = [
     ("light_samples", RGBColor(140, 86, 75)),
     ("glossy_samples", RGBColor(227, 119, 194)),
     ("filter", RGBColor(23, 190, 207)),
+    ("roulette_below", RGBColor(188, 189, 34)),
 ];
 
 /// Draw RMSE (log) against median time (log) as RGB bytes of `w x h`; Pareto points ringed

@@ -43,6 +43,10 @@ pub struct Sweep {
     /// when the scene has a transmissive material), against the exhaustive reference like the
     /// min-weight rows: the roulette's noise beside the automatic cut's bounded error.
     pub dielectric_roulette: Vec<u32>,
+    /// Weights below which dielectric hits play Russian roulette (`None`: the automatic weight,
+    /// the default), with the automatic cut, against the exhaustive reference (rows only when
+    /// the scene has a transmissive material); the min-weight rows are the cut alone.
+    pub roulette_below: Vec<Option<f64>>,
     /// Light samples of the light-samples axis's reference.
     pub reference_light_samples: u32,
     /// Glossy samples of the glossy-samples axis's reference.
@@ -85,6 +89,7 @@ impl Sweep {
             adaptive: vec![(0.1, 16), (0.05, 32), (0.02, 64)],
             adaptive_spp: 2,
             dielectric_roulette: vec![0, 2, 4],
+            roulette_below: vec![None, Some(1.0e-3), Some(1.0e-2), Some(1.0e-1)],
             reference_depth: 32,
             reference_spp: 64,
             reference_light_samples: 1024,
@@ -105,6 +110,7 @@ impl Sweep {
             filters: vec!["box".into(), "gaussian:0.5".into()],
             adaptive: vec![(0.1, 16)],
             dielectric_roulette: vec![2],
+            roulette_below: vec![None],
             reference_spp: 16,
             reference_light_samples: 256,
             reference_glossy_samples: 64,
@@ -161,8 +167,10 @@ impl Sweep {
             push("offset", o.name().to_string(), s);
         }
         for &w in &self.min_weights {
+            // The cut alone: no roulette below a weight (an explicit min_weight has none).
             let s = Settings {
                 min_weight: w,
+                roulette_below: Some(0.0),
                 ..*base
             };
             let label = match w {
@@ -199,6 +207,21 @@ impl Sweep {
                 ..*base
             };
             push("dielectric_roulette", format!("from depth {d}"), s);
+        }
+        for &w in self.roulette_below.iter().filter(|_| glass) {
+            let s = Settings {
+                min_weight: None,
+                roulette_below: w,
+                ..*base
+            };
+            let label = match w {
+                Some(w) => format!("{w:e}"),
+                None => format!(
+                    "auto ({:.1e})",
+                    crate::trace::bound::carried::auto_roulette_below(scene, &s)
+                ),
+            };
+            push("roulette_below", label, s);
         }
         for &(threshold, max_spp) in &self.adaptive {
             let s = Settings {

@@ -33,6 +33,7 @@ fn the_sweep_has_an_auto_min_weight_row_and_an_exhaustive_reference() {
         filters: vec![],
         adaptive: vec![],
         dielectric_roulette: vec![],
+        roulette_below: vec![],
         repeats: 1,
         reference_spp: 1,
         ..Sweep::quick()
@@ -89,6 +90,7 @@ fn stochastic_axes_are_measured_against_their_references() {
         filter_spp: 4,
         adaptive: vec![],
         dielectric_roulette: vec![],
+        roulette_below: vec![],
         reference_spp: 16,
         reference_light_samples: 256,
         reference_glossy_samples: 256,
@@ -156,6 +158,7 @@ fn adaptive_rows_take_more_samples_at_edges_and_have_less_error() {
         adaptive: vec![(0.0, 16)],
         adaptive_spp: 2,
         dielectric_roulette: vec![],
+        roulette_below: vec![],
         reference_spp: 64,
         repeats: 1,
         ..Sweep::quick()
