@@ -13,7 +13,9 @@
 //!   term `B_m` and its secondary rays, whose weights sum to at most `s_m`, each carrying at most
 //!   `L_(k-1)`,
 //!
-//! with `B_m` and `s_m` as in the module notes of [`super`], for material `m` alone. `L_k` grows
+//! with `B_m` as in the module notes of [`super`] for material `m` alone, and `s_m =
+//! max(reflectivity) + max(transmissivity)` (max channels), which also bounds the weight of the
+//! one ray a Russian-roulette choice follows (its split weight over its probability). `L_k` grows
 //! with `k` and stops growing as soon as no material both shines and passes light on: a scene
 //! of lamps, mirrors and clear glass has `L_k = ` its brightest lamp (or background) at every
 //! depth, where the shared bound is `k + 1` times that.
@@ -41,20 +43,17 @@ pub fn carried_bound(scene: &Scene, max_depth: u32, shadows: ShadowMode) -> f64 
     };
     let ambient = scene.ambient.max(Rgb::ZERO);
     let area = area_emission(scene);
-    let roulette = scene.settings.dielectric_roulette.is_some();
     let terms: Vec<(Rgb, Rgb)> = scene
         .used_materials()
         .map(|m| {
-            let t = Terms::of(m);
-            // Roulette divides the chosen ray's weight by its probability: each channel stays
-            // below max(reflectivity + R transmissivity) + max(T transmissivity).
-            let split = if roulette {
-                let max = |c: Rgb| c.max_element().max(0.0);
-                Rgb::splat(max(m.reflectivity) + max(m.transmissivity))
-            } else {
-                t.split
-            };
-            (t.local(ambient, irradiance, area), split)
+            // The split's weights sum to at most `reflectivity + transmissivity` per channel;
+            // where the roulette follows one ray instead, it divides that ray's weight by its
+            // probability, `max(w_r) / (max(w_r) + max(w_t))` or the complement, so each
+            // channel stays below `max(w_r) + max(w_t) <= max(reflectivity) +
+            // max(transmissivity)`: the bound of both, since it is never below the first.
+            let max = |c: Rgb| c.max_element().max(0.0);
+            let split = Rgb::splat(max(m.reflectivity) + max(m.transmissivity));
+            (Terms::of(m).local(ambient, irradiance, area), split)
         })
         .collect();
     let background = scene.background.max(Rgb::ZERO);
