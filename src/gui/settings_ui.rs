@@ -162,20 +162,13 @@ fn stochastic_ui(ui: &mut egui::Ui, doc: &Document, s: &mut crate::scene::Settin
 /// ([`crate::trace::bound`]); unticking starts the slider there; 0 is the exhaustive tree.
 fn min_weight_ui(ui: &mut egui::Ui, doc: &Document, s: &mut crate::scene::Settings) {
     let auto_value = crate::trace::bound::auto_min_weight(&doc.scene, s);
-    let mut auto = s.min_weight.is_none();
-    let mut w = s.min_weight.unwrap_or(auto_value);
-    ui.horizontal(|ui| {
-        ui.add_enabled(
-            !auto,
-            Slider::new(&mut w, 0.0..=1.0)
-                .logarithmic(true)
-                .smallest_positive(1e-9)
-                .text("min weight"),
-        );
-        ui.checkbox(&mut auto, "auto")
-            .on_hover_text("cut branches that could add less than the tolerance (1/510)");
-    });
-    s.min_weight = if auto { None } else { Some(w) };
+    s.min_weight = auto_weight_ui(
+        ui,
+        s.min_weight,
+        auto_value,
+        "min weight",
+        "cut branches that could add less than the tolerance (1/510)",
+    );
 }
 
 /// The roulette below a weight at glass (Whitted scenes with a transmissive material): "auto"
@@ -188,22 +181,39 @@ fn roulette_ui(ui: &mut egui::Ui, doc: &Document, s: &mut crate::scene::Settings
         return;
     }
     let auto_value = crate::trace::bound::carried::auto_roulette_below(&doc.scene, s);
-    let mut auto = s.roulette_below.is_none();
-    let mut w = s.roulette_below.unwrap_or(auto_value);
+    s.roulette_below = auto_weight_ui(
+        ui,
+        s.roulette_below,
+        auto_value,
+        "roulette below",
+        "glass hits weaker than this follow one of their two rays (Russian roulette, exact in \
+         expectation); 0 splits every hit",
+    );
+}
+
+/// A weight in `[0, 1]` on a log slider beside an "auto" box: `None` (automatic, the slider
+/// showing `auto_value` and disabled) or the chosen weight (unticking starts it at
+/// `auto_value`).
+fn auto_weight_ui(
+    ui: &mut egui::Ui,
+    value: Option<f64>,
+    auto_value: f64,
+    label: &str,
+    auto_hover: &str,
+) -> Option<f64> {
+    let mut auto = value.is_none();
+    let mut w = value.unwrap_or(auto_value);
     ui.horizontal(|ui| {
         ui.add_enabled(
             !auto,
             Slider::new(&mut w, 0.0..=1.0)
                 .logarithmic(true)
                 .smallest_positive(1e-9)
-                .text("roulette below"),
+                .text(label),
         );
-        ui.checkbox(&mut auto, "auto").on_hover_text(
-            "glass hits weaker than this follow one of their two rays (Russian roulette, exact \
-             in expectation); 0 splits every hit",
-        );
+        ui.checkbox(&mut auto, "auto").on_hover_text(auto_hover);
     });
-    s.roulette_below = if auto { None } else { Some(w) };
+    (!auto).then_some(w)
 }
 
 /// Debug view, overlay and zoom.
