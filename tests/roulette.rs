@@ -1,6 +1,7 @@
 //! Russian-roulette splitting at dielectrics (`settings.dielectric_roulette`, issue 18): exact
 //! in expectation against the exhaustive tree, at linear cost.
 
+mod common;
 use raytree::{Scene, render, trace_pixel};
 
 fn glass(depth: u32) -> Scene {
@@ -142,4 +143,56 @@ fn the_default_plays_roulette_only_below_its_weight() {
     assert!(choices > 0);
     scene.settings.min_weight = Some(0.0);
     assert_eq!(auto_roulette_below(&scene, &scene.settings), 0.0);
+}
+
+/// `raytree render` says how many glass hits played the roulette and below which weight;
+/// `--roulette-below 0` splits every hit (and says nothing); a negative weight is refused
+/// with its setting's path.
+#[test]
+fn render_reports_the_roulette_and_it_can_be_turned_off() {
+    let dir = tempfile::tempdir().unwrap();
+    let scene = concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/benches/mitsuba-scenes/mirror-corridor.json"
+    );
+    let run = |extra: &[&str]| {
+        let mut args = vec!["render", scene, "--size", "64x36", "-o", "a.png"];
+        args.extend_from_slice(extra);
+        common::raytree(&args, dir.path())
+    };
+    let o = run(&[]);
+    assert!(o.status.success(), "{}", common::stderr(&o));
+    let text = String::from_utf8_lossy(&o.stdout);
+    assert!(
+        text.contains(
+            "glass hits where the throughput was below 2.50e-3 followed one of their two rays"
+        ),
+        "{text}"
+    );
+    let o = run(&["--roulette-below", "0"]);
+    assert!(o.status.success(), "{}", common::stderr(&o));
+    assert!(!String::from_utf8_lossy(&o.stdout).contains("roulette:"));
+    let empty = tempfile::tempdir().unwrap();
+    common::fails_with(
+        empty.path(),
+        &["render", scene, "--roulette-below=-1", "-o", "b.png"],
+        "--roulette-below: must be a finite number >= 0, got -1",
+    );
+    // In a scene file: the setting's JSON path and its line:column.
+    let text = std::fs::read_to_string(scene).unwrap().replace(
+        r#""max_depth": 32"#,
+        r#""max_depth": 32, "roulette_below": -0.5"#,
+    );
+    std::fs::write(empty.path().join("s.json"), text).unwrap();
+    common::fails_with(
+        empty.path(),
+        &["render", "s.json", "-o", "b.png"],
+        "settings.roulette_below",
+    );
+    let o = common::raytree(&["render", "s.json", "-o", "b.png"], empty.path());
+    let err = common::stderr(&o);
+    assert!(
+        err.contains("s.json:") && err.contains("must be a finite number >= 0"),
+        "{err}"
+    );
 }

@@ -121,6 +121,19 @@ pub fn run(a: &RenderArgs) -> Result<()> {
             )?;
         }
     }
+    if r.roulette > 0 {
+        let why = match scene.settings.dielectric_roulette {
+            Some(d) => format!("from depth {d}"),
+            None => format!(
+                "where the throughput was below {:.2e}",
+                raytree::trace::bound::carried::effective_roulette_below(scene)
+            ),
+        };
+        sayln!(
+            "roulette: {} glass hits {why} followed one of their two rays (exact in expectation; --roulette-below 0 splits every hit)",
+            r.roulette
+        )?;
+    }
     if let Some(p) = &a.spp_map {
         sayln!(
             "wrote {} (samples per pixel, white = the most)",

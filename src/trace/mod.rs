@@ -57,6 +57,9 @@ pub struct RayCounts {
     pub leaks: u64,
     /// Secondary rays not traced because their sample reached `settings.max_rays`.
     pub budget_cuts: u64,
+    /// Dielectric hits that followed one of their reflected and refracted rays, chosen by
+    /// Russian roulette (`settings.roulette_below`, `settings.dielectric_roulette`).
+    pub roulette: u64,
     /// Samples that reached `settings.max_rays` (their trees were cut).
     pub budget_samples: u64,
     /// Samples whose radiance was not finite (NaN or infinite), dropped from their pixel's
@@ -109,6 +112,7 @@ impl std::ops::AddAssign for RayCounts {
         self.self_hits += o.self_hits;
         self.leaks += o.leaks;
         self.budget_cuts += o.budget_cuts;
+        self.roulette += o.roulette;
         self.budget_samples += o.budget_samples;
         self.dropped_samples += o.dropped_samples;
         self.first_dropped = match (self.first_dropped, o.first_dropped) {

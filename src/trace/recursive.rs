@@ -187,6 +187,7 @@ impl Tracer<'_> {
                 let (r, t, c) = super::roulette::decide(reflect_w, t, u);
                 reflect_w = r;
                 refraction = Some((dir, t));
+                counts.roulette += u64::from(c.is_some());
                 choice = c;
             }
             rec.update(id, |node| {
