@@ -184,6 +184,18 @@ pub fn matched_children(
     out
 }
 
+/// A tree's settings as JSON, with the defaults its serialization leaves out written in:
+/// `antialiasing` "auto", and `roulette_below` 0 (a tree records the weight whenever the
+/// roulette was on), so that a diff does not read an omitted default as "none".
+fn settings_value(s: &crate::scene::Settings) -> Value {
+    let mut v = serde_json::to_value(s).unwrap_or(Value::Null);
+    if let Value::Object(m) = &mut v {
+        m.entry("antialiasing").or_insert_with(|| "auto".into());
+        m.entry("roulette_below").or_insert_with(|| 0.0.into());
+    }
+    v
+}
+
 /// Compare trees `a` and `b` (normally of one pixel under two settings).
 #[must_use]
 pub fn diff(a: &RayTree, b: &RayTree) -> TreeDiff {
@@ -196,8 +208,8 @@ pub fn diff(a: &RayTree, b: &RayTree) -> TreeDiff {
     );
     compare(
         "settings",
-        &serde_json::to_value(a.settings).unwrap_or(Value::Null),
-        &serde_json::to_value(b.settings).unwrap_or(Value::Null),
+        &settings_value(&a.settings),
+        &settings_value(&b.settings),
         &mut settings,
     );
     let mut changed = Vec::new();
@@ -268,6 +280,31 @@ mod tests {
         assert_eq!(d.matched, t.nodes.len());
         assert_eq!(d.difference, Rgb::ZERO);
         assert!(diff_text(&d, &t, &t).starts_with("no difference"));
+    }
+
+    /// Defaults a tree leaves out read as their values: auto antialiasing is "auto", not
+    /// "none"; a roulette turned off is 0.
+    #[test]
+    fn omitted_defaults_read_as_their_values() {
+        let mut scene = Scene::default_scene();
+        let a = trace_pixel(&scene, 400, 200).unwrap();
+        scene.settings.antialiasing = crate::scene::Antialiasing::Uniform;
+        scene.settings.roulette_below = Some(0.0);
+        let b = trace_pixel(&scene, 400, 200).unwrap();
+        let d = diff(&a, &b);
+        let text = |f: &str| {
+            let c = d.settings.iter().find(|c| c.field == f).expect(f);
+            (c.a.to_string(), c.b.to_string())
+        };
+        assert_eq!(
+            text("settings.antialiasing"),
+            ("\"auto\"".into(), "\"uniform\"".into())
+        );
+        let (was, now) = text("settings.roulette_below");
+        assert!(
+            was.parse::<f64>().unwrap() > 0.0 && now == "0.0",
+            "{was} -> {now}"
+        );
     }
 
     #[test]
