@@ -324,3 +324,31 @@ fn the_plane_follows_a_chosen_ray() {
     assert_eq!(PlaneSpec::parse("ray=7"), Ok(PlaneSpec::Ray(NodeId(7))));
     assert!(PlaneSpec::parse("ray=x").is_err());
 }
+
+/// The legend says how many drawn glass hits followed one ray by Russian roulette (the default
+/// below a weight), and says nothing when every hit splits.
+#[test]
+fn the_legend_counts_roulette_choices() {
+    let line = |s: &raytree::Scene| {
+        let tree = trace_pixel(s, 320, 230).unwrap();
+        let d = build(
+            s,
+            &tree,
+            DiagramOptions {
+                min_share: 0.0,
+                ..DiagramOptions::default()
+            },
+        );
+        d.legend
+            .iter()
+            .find(|e| e.text.contains("followed one ray"))
+            .map(|e| e.text.clone())
+    };
+    let mut s = scene("tir-block.json");
+    assert_eq!(
+        line(&s).as_deref(),
+        Some("1 weak glass hit followed one ray (Russian roulette, weight / probability).")
+    );
+    s.settings.roulette_below = Some(0.0);
+    assert_eq!(line(&s), None);
+}

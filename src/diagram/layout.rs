@@ -246,6 +246,19 @@ pub(super) fn legend(
             format!("{off} rays leave the plane: projected, dotted, fainter with distance (up to {max_d:.2})"),
         ));
     }
+    let rouletted = segs
+        .iter()
+        .filter(|s| (s.node.interface.as_ref()).is_some_and(|i| i.roulette.is_some()))
+        .count();
+    if rouletted > 0 {
+        items.push((
+            LegendKey::Note,
+            format!(
+                "{rouletted} weak glass hit{} followed one ray (Russian roulette, weight / probability).",
+                if rouletted == 1 { "" } else { "s" }
+            ),
+        ));
+    }
     if kept.dropped > 0 {
         items.push((
             LegendKey::Note,
