@@ -62,16 +62,24 @@ pub fn carried_bound(scene: &Scene, max_depth: u32, shadows: ShadowMode) -> f64 
             acc.max(local + split * carried)
         })
     };
+    // An infinite term (a point light on a lit surface) is infinite at once; checked before it
+    // is carried on, where a material that passes nothing on (`0 x inf`, NaN) would drop it.
     let mut bound = step(Rgb::ZERO);
     for _ in 0..max_depth {
-        let next = step(bound);
-        let settled = next == bound || !next.is_finite();
-        bound = next;
-        if settled {
+        if !bound.is_finite() {
             break;
         }
+        let next = step(bound);
+        if next == bound {
+            break;
+        }
+        bound = next;
     }
-    bound.max_element()
+    if bound.is_finite() {
+        bound.max_element()
+    } else {
+        f64::INFINITY
+    }
 }
 
 /// The roulette weight the Whitted tracer uses: `settings.roulette_below` when given, else

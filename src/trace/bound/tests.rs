@@ -64,6 +64,15 @@ fn exhaustive_and_unbounded_cases_cut_nothing() {
     };
     assert_eq!(radiance_bound(&s, 4, ShadowMode::Opaque), f64::INFINITY);
     assert_eq!(effective_min_weight(&s), 0.0);
+    // The carried bound too, at every depth (the glass passes light on, the lit plane does
+    // not: its infinite term must not be lost to `0 x inf`), so no roulette below a weight.
+    for depth in [0, 1, 4, 1024] {
+        assert_eq!(
+            super::carried::carried_bound(&s, depth, ShadowMode::Opaque),
+            f64::INFINITY
+        );
+    }
+    assert_eq!(super::carried::effective_roulette_below(&s), 0.0);
 }
 
 #[test]
