@@ -210,6 +210,61 @@ mod nested_dielectrics {
                 }
             }
         }
+
+        /// The default, roulette below a weight included: each outermost roulette choice
+        /// (no choice above it) at a hit of throughput `tau` moves the pixel by less than
+        /// `tau L <= 0.01`, with `L` the carried bound (both its subtree's values, split and
+        /// followed, lie in `[0, tau L)`), and the cut branches by what they could carry.
+        #[test]
+        fn the_default_changes_pixels_by_less_than_its_roulette_and_cut_bounds(
+            ior in (1.05f64..2.4, 1.05f64..2.4),
+            t in (0.5f64..1.0, 0.3f64..0.9),
+            r in 0.0f64..0.1,
+            depth in 4u32..14,
+        ) {
+            use super::super::carried::{carried_bound, effective_roulette_below};
+            let default = scene(ior, t, r, depth);
+            let mut full = default.clone();
+            full.settings.min_weight = Some(0.0);
+            let weight = effective_roulette_below(&default);
+            prop_assert!(weight > 0.0);
+            let carried = carried_bound(&default, depth, default.settings.shadows);
+            prop_assert!((weight * carried - 0.01).abs() < 1e-12);
+            let bound = radiance_bound(&default, depth, default.settings.shadows);
+            for y in 0..8 {
+                for x in 0..12 {
+                    let a = trace_pixel(&default, x, y).unwrap();
+                    let b = trace_pixel(&full, x, y).unwrap();
+                    prop_assert!(tree_violations(&a, default.background).is_empty());
+                    let played = |n: &crate::tree::RayNode| {
+                        n.interface.as_ref().is_some_and(|i| i.roulette.is_some())
+                    };
+                    let outermost = |n: &crate::tree::RayNode| {
+                        let mut p = n.parent;
+                        while let Some(id) = p {
+                            if played(a.node(id)) {
+                                return false;
+                            }
+                            p = a.node(id).parent;
+                        }
+                        true
+                    };
+                    let mut could = 0.0;
+                    for n in &a.nodes {
+                        if played(n) && outermost(n) {
+                            prop_assert!(n.throughput.max_element() < weight);
+                            could += n.throughput.max_element() * carried;
+                        }
+                        if n.end == EndReason::MinWeight {
+                            could += (n.throughput * n.truncated).max_element() * bound;
+                        }
+                    }
+                    let diff = (a.radiance - b.radiance).abs().max_element();
+                    prop_assert!(diff <= could * (1.0 + 1e-9) + 1e-15,
+                        "pixel {x},{y}: {diff} > {could}");
+                }
+            }
+        }
     }
 }
 
