@@ -31,6 +31,12 @@
 //! bounded irradiance, and translucent shadows through materials with transmissivity above 1
 //! can grow: both give an infinite bound, so the cut is 0 (the exhaustive tree, bounded by
 //! `settings.max_rays`).
+//!
+//! [`carried`] bounds the same radiance material by material (tighter: between lamps, mirrors
+//! and clear glass it does not grow with depth) and sets the automatic weight below which glass
+//! hits play Russian roulette instead of splitting. The cut keeps this shared bound: with the
+//! carried one as its per-branch threshold, the cut branches of a pixel added up to more than
+//! half an 8-bit step (0.066% of the mirror corridor's pixels off by more than 1/255).
 
 use crate::geometry::Shape;
 use crate::math::Rgb;
