@@ -69,7 +69,8 @@ pub struct SplitRoulette {
 pub struct Attenuation {
     /// The absorbing object the segment lies in.
     pub medium: usize,
-    /// Distance travelled inside it (may be infinite for a miss).
+    /// Distance travelled inside it (infinite for a miss: `null` in JSON).
+    #[serde(with = "infinite_as_null")]
     pub distance: f64,
     /// Absorption coefficients.
     pub absorption: Rgb,
@@ -110,7 +111,8 @@ pub struct ShadowInfo {
     pub light: usize,
     /// Light name.
     pub light_name: String,
-    /// Distance to the light (infinite for directional).
+    /// Distance to the light (infinite for directional: `null` in JSON).
+    #[serde(with = "infinite_as_null")]
     pub distance: f64,
     /// `N.L` at the shaded point.
     pub cos_theta: f64,
@@ -190,4 +192,23 @@ pub struct GlossySample {
     pub cos: f64,
     /// The direction crosses the surface (refraction through the sampled microfacet).
     pub transmitted: bool,
+}
+
+/// An `f64` that may be `+infinity` by design (a directional light's distance, a miss inside an
+/// absorbing medium), written as JSON `null` and read back as infinity; NaN and `-infinity`
+/// stay numbers, which `crate::finite::first_nonfinite` still refuses to write.
+mod infinite_as_null {
+    use serde::{Deserialize, Deserializer, Serializer};
+
+    pub fn serialize<S: Serializer>(v: &f64, s: S) -> Result<S::Ok, S::Error> {
+        if *v == f64::INFINITY {
+            s.serialize_none()
+        } else {
+            s.serialize_f64(*v)
+        }
+    }
+
+    pub fn deserialize<'de, D: Deserializer<'de>>(d: D) -> Result<f64, D::Error> {
+        Ok(Option::<f64>::deserialize(d)?.unwrap_or(f64::INFINITY))
+    }
 }
