@@ -257,11 +257,7 @@ fn node_summary(n: &RayNode) -> String {
             let _ = write!(
                 s,
                 "  roulette: the {} ray only (p {}, weight / p)",
-                if c.reflected {
-                    "reflected"
-                } else {
-                    "refracted"
-                },
+                c.ray(),
                 num(c.probability, 4)
             );
         }

@@ -86,11 +86,7 @@ pub fn details_ui(ui: &mut egui::Ui, doc: &Document) {
                         "roulette",
                         format!(
                             "followed the {} ray only, p {} (its weight / p)",
-                            if c.reflected {
-                                "reflected"
-                            } else {
-                                "refracted"
-                            },
+                            c.ray(),
                             num(c.probability)
                         ),
                     );

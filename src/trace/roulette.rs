@@ -29,14 +29,8 @@ pub fn choice(seed: u64, p: DVec3, d: DVec3) -> f64 {
 }
 
 /// Play the roulette between reflection weight `reflect` and refraction weight `refract` with
-/// uniform number `u`: the weights of the ray to follow (the other is zero).
-#[must_use]
-pub fn play(reflect: Rgb, refract: Rgb, u: f64) -> (Rgb, Rgb) {
-    let (r, t, _) = decide(reflect, refract, u);
-    (r, t)
-}
-
-/// [`play`], with the choice made (`None` when one weight is zero: nothing to choose).
+/// uniform number `u`: the weights of the ray to follow (the other is zero) and the choice made
+/// (`None`, both weights unchanged, when one weight is zero: nothing to choose).
 #[must_use]
 pub fn decide(reflect: Rgb, refract: Rgb, u: f64) -> (Rgb, Rgb, Option<SplitRoulette>) {
     let (a, b) = (reflect.max_element(), refract.max_element());
@@ -68,14 +62,18 @@ mod tests {
     fn the_expectation_is_the_split() {
         let (r, t) = (Rgb::new(0.04, 0.05, 0.06), Rgb::new(0.96, 0.9, 0.94));
         let p = 0.06 / (0.06 + 0.96);
-        let (r1, t1) = play(r, t, p * 0.5);
-        let (r2, t2) = play(r, t, p + (1.0 - p) * 0.5);
+        let (r1, t1, c1) = decide(r, t, p * 0.5);
+        let (r2, t2, c2) = decide(r, t, p + (1.0 - p) * 0.5);
         assert_eq!(t1, Rgb::ZERO);
         assert_eq!(r2, Rgb::ZERO);
+        let c1 = c1.expect("a choice");
+        let c2 = c2.expect("a choice");
+        assert!(c1.reflected && !c2.reflected);
+        assert_eq!((c1.probability, c2.probability), (p, 1.0 - p));
         assert!((r1 * p + r2 * (1.0 - p) - r).abs().max_element() < 1e-15);
         assert!((t1 * p + t2 * (1.0 - p) - t).abs().max_element() < 1e-15);
         // One branch only (TIR, or nothing transmitted): no roulette.
-        assert_eq!(play(r, Rgb::ZERO, 0.3), (r, Rgb::ZERO));
+        assert_eq!(decide(r, Rgb::ZERO, 0.3), (r, Rgb::ZERO, None));
         let u = choice(1, DVec3::ONE, DVec3::X);
         assert!((0.0..1.0).contains(&u) && u != choice(2, DVec3::ONE, DVec3::X));
     }

@@ -64,6 +64,18 @@ pub struct SplitRoulette {
     pub probability: f64,
 }
 
+impl SplitRoulette {
+    /// "reflected" or "refracted": the ray followed.
+    #[must_use]
+    pub fn ray(&self) -> &'static str {
+        if self.reflected {
+            "reflected"
+        } else {
+            "refracted"
+        }
+    }
+}
+
 /// Beer's law on the segment of this ray.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 pub struct Attenuation {

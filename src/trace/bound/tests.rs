@@ -137,7 +137,7 @@ mod nested_dielectrics {
     use crate::analysis::invariants::tree_violations;
     use crate::math::linear_to_srgb;
     use crate::render::trace_pixel;
-    use crate::tree::EndReason;
+    use crate::tree::{EndReason, RayTree};
     use proptest::prelude::*;
 
     fn scene(ior: (f64, f64), t: (f64, f64), r: f64, depth: u32) -> Scene {
@@ -170,6 +170,30 @@ mod nested_dielectrics {
         Scene::from_json(&src).unwrap()
     }
 
+    /// Every pixel `(x, y)` of the 12x8 image: its tree under `s` and under `s` with the
+    /// exhaustive tree (`min_weight` 0).
+    fn against_exhaustive(s: &Scene) -> impl Iterator<Item = (u32, u32, RayTree, RayTree)> {
+        let mut full = s.clone();
+        full.settings.min_weight = Some(0.0);
+        (0..8).flat_map(move |y| {
+            let full = full.clone();
+            (0..12).map(move |x| {
+                let a = trace_pixel(s, x, y).unwrap();
+                (x, y, a, trace_pixel(&full, x, y).unwrap())
+            })
+        })
+    }
+
+    /// What the cut branches of `tree` could have carried: their throughput (at most the
+    /// parent's times the weight cut) times the radiance `bound`.
+    fn cut_could_carry(tree: &RayTree, bound: f64) -> f64 {
+        tree.nodes
+            .iter()
+            .filter(|n| n.end == EndReason::MinWeight)
+            .map(|n| (n.throughput * n.truncated).max_element() * bound)
+            .sum()
+    }
+
     proptest! {
         #![proptest_config(ProptestConfig::with_cases(24))]
         #[test]
@@ -182,31 +206,20 @@ mod nested_dielectrics {
             let mut cut = scene(ior, t, r, depth);
             // The cut alone (the roulette below a weight has tests of its own).
             cut.settings.roulette_below = Some(0.0);
-            let mut full = cut.clone();
-            full.settings.min_weight = Some(0.0);
             let bound = radiance_bound(&cut, depth, cut.settings.shadows);
             let w = effective_min_weight(&cut);
             prop_assert!(w > 0.0);
-            for y in 0..8 {
-                for x in 0..12 {
-                    let a = trace_pixel(&cut, x, y).unwrap();
-                    let b = trace_pixel(&full, x, y).unwrap();
-                    prop_assert!(tree_violations(&a, cut.background).is_empty());
-                    // What the cut branches could have carried: their throughput (at most
-                    // the parent's times the weight cut) times the radiance bound.
-                    let mut could = 0.0;
-                    for n in a.nodes.iter().filter(|n| n.end == EndReason::MinWeight) {
-                        could += (n.throughput * n.truncated).max_element() * bound;
-                    }
-                    let diff = (a.radiance - b.radiance).abs().max_element();
-                    prop_assert!(diff <= could * (1.0 + 1e-9) + 1e-15,
-                        "pixel {x},{y}: {diff} > {could}");
-                    let enc = |c: Rgb| c.to_array().map(linear_to_srgb);
-                    let (ea, eb) = (enc(a.radiance), enc(b.radiance));
-                    for k in 0..3 {
-                        prop_assert!((ea[k] - eb[k]).abs() <= 1.0 / 255.0,
-                            "pixel {x},{y}: {ea:?} vs {eb:?}");
-                    }
+            for (x, y, a, b) in against_exhaustive(&cut) {
+                prop_assert!(tree_violations(&a, cut.background).is_empty());
+                let could = cut_could_carry(&a, bound);
+                let diff = (a.radiance - b.radiance).abs().max_element();
+                prop_assert!(diff <= could * (1.0 + 1e-9) + 1e-15,
+                    "pixel {x},{y}: {diff} > {could}");
+                let enc = |c: Rgb| c.to_array().map(linear_to_srgb);
+                let (ea, eb) = (enc(a.radiance), enc(b.radiance));
+                for k in 0..3 {
+                    prop_assert!((ea[k] - eb[k]).abs() <= 1.0 / 255.0,
+                        "pixel {x},{y}: {ea:?} vs {eb:?}");
                 }
             }
         }
@@ -224,45 +237,34 @@ mod nested_dielectrics {
         ) {
             use super::super::carried::{carried_bound, effective_roulette_below};
             let default = scene(ior, t, r, depth);
-            let mut full = default.clone();
-            full.settings.min_weight = Some(0.0);
             let weight = effective_roulette_below(&default);
             prop_assert!(weight > 0.0);
             let carried = carried_bound(&default, depth, default.settings.shadows);
             prop_assert!((weight * carried - 0.01).abs() < 1e-12);
             let bound = radiance_bound(&default, depth, default.settings.shadows);
-            for y in 0..8 {
-                for x in 0..12 {
-                    let a = trace_pixel(&default, x, y).unwrap();
-                    let b = trace_pixel(&full, x, y).unwrap();
-                    prop_assert!(tree_violations(&a, default.background).is_empty());
-                    let played = |n: &crate::tree::RayNode| {
-                        n.interface.as_ref().is_some_and(|i| i.roulette.is_some())
-                    };
-                    let outermost = |n: &crate::tree::RayNode| {
-                        let mut p = n.parent;
-                        while let Some(id) = p {
-                            if played(a.node(id)) {
-                                return false;
-                            }
-                            p = a.node(id).parent;
+            for (x, y, a, b) in against_exhaustive(&default) {
+                prop_assert!(tree_violations(&a, default.background).is_empty());
+                let played = |n: &crate::tree::RayNode| {
+                    n.interface.as_ref().is_some_and(|i| i.roulette.is_some())
+                };
+                let outermost = |n: &crate::tree::RayNode| {
+                    let mut p = n.parent;
+                    while let Some(id) = p {
+                        if played(a.node(id)) {
+                            return false;
                         }
-                        true
-                    };
-                    let mut could = 0.0;
-                    for n in &a.nodes {
-                        if played(n) && outermost(n) {
-                            prop_assert!(n.throughput.max_element() < weight);
-                            could += n.throughput.max_element() * carried;
-                        }
-                        if n.end == EndReason::MinWeight {
-                            could += (n.throughput * n.truncated).max_element() * bound;
-                        }
+                        p = a.node(id).parent;
                     }
-                    let diff = (a.radiance - b.radiance).abs().max_element();
-                    prop_assert!(diff <= could * (1.0 + 1e-9) + 1e-15,
-                        "pixel {x},{y}: {diff} > {could}");
+                    true
+                };
+                let mut could = cut_could_carry(&a, bound);
+                for n in a.nodes.iter().filter(|n| played(n) && outermost(n)) {
+                    prop_assert!(n.throughput.max_element() < weight);
+                    could += n.throughput.max_element() * carried;
                 }
+                let diff = (a.radiance - b.radiance).abs().max_element();
+                prop_assert!(diff <= could * (1.0 + 1e-9) + 1e-15,
+                    "pixel {x},{y}: {diff} > {could}");
             }
         }
     }
