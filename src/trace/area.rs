@@ -147,12 +147,13 @@ pub(crate) fn emitter_shadow_length(
     seg: f64,
     p: glam::DVec3,
 ) -> f64 {
-    let shape = &scene.objects[object].shape;
-    let own = shape.intersect(ray, seg);
-    let hidden = matches!(shape, Shape::Mesh(_))
-        && own.is_some_and(|h| h.t < seg * (1.0 - HIDDEN_BY_ITSELF) - 2.0 * ray.origin.distance(p));
+    // The distance alone (the prepared object's test, without the normal `Shape::intersect`
+    // would compute): the same bits.
+    let own = scene.object_t(object, ray, seg);
+    let hidden = matches!(scene.objects[object].shape, Shape::Mesh(_))
+        && own.is_some_and(|t| t < seg * (1.0 - HIDDEN_BY_ITSELF) - 2.0 * ray.origin.distance(p));
     if hidden {
         return seg;
     }
-    own.map_or(seg, |h| h.t) * (1.0 - SHADOW_EPSILON)
+    own.unwrap_or(seg) * (1.0 - SHADOW_EPSILON)
 }

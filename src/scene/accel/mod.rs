@@ -213,6 +213,20 @@ impl Scene {
         best.map(|b| q.hit(b))
     }
 
+    /// The distance of [`Shape::intersect`]`(ray, t_max)` on object `i` alone, bit for bit,
+    /// without the normal: the prepared object's test (a scene edited without
+    /// [`Scene::rebuild_accel`]: the shape's own).
+    #[must_use]
+    pub fn object_t(&self, i: usize, ray: &Ray, t_max: f64) -> Option<f64> {
+        if self.accel.objects != self.objects.len() {
+            return self.objects[i].shape.intersect(ray, t_max).map(|h| h.t);
+        }
+        let mut cost = TraversalCost::default();
+        Query::new(self, ray)
+            .test(i, t_max, &mut cost)
+            .map(|(t, _)| t)
+    }
+
     /// Whether anything lies on the ray in `(ray.t_min, t_max)`: any-hit, stops at the first.
     #[must_use]
     pub fn occluded(&self, ray: &Ray, t_max: f64, cost: &mut TraversalCost) -> bool {

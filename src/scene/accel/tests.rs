@@ -214,6 +214,40 @@ fn queries_equal_the_linear_scan() {
     assert!(hits > 20_000 && ties > 1_000, "{hits} hits, {ties} ties");
 }
 
+/// `Scene::object_t` (the emitter's own test that shortens a shadow ray) is the distance of
+/// `Shape::intersect` on that object alone, bit for bit, with and without a prepared scene.
+#[test]
+fn object_t_is_the_shapes_own_distance() {
+    let mut r = Rng(11);
+    let mut hits = 0;
+    for k in 0..100 {
+        let mut s = scene(&mut r, 1 + k % 40);
+        for _ in 0..100 {
+            let (ray, t_max) = ray(&mut r, &s);
+            for (i, o) in s.objects.iter().enumerate() {
+                let want = o.shape.intersect(&ray, t_max).map(|h| h.t.to_bits());
+                assert_eq!(
+                    s.object_t(i, &ray, t_max).map(f64::to_bits),
+                    want,
+                    "{k} {i}"
+                );
+                hits += usize::from(want.is_some());
+            }
+        }
+        // An edited scene (no rebuild): the shapes' own tests.
+        if s.objects.len() < 2 {
+            continue;
+        }
+        s.objects.pop();
+        let (ray, t_max) = ray(&mut r, &s);
+        for (i, o) in s.objects.iter().enumerate() {
+            let want = o.shape.intersect(&ray, t_max).map(|h| h.t.to_bits());
+            assert_eq!(s.object_t(i, &ray, t_max).map(f64::to_bits), want);
+        }
+    }
+    assert!(hits > 1_000, "{hits}");
+}
+
 /// The point of the bounds: in a small scene most rays run far fewer exact tests than there
 /// are objects (a linear scan runs all of them).
 #[test]
