@@ -31,6 +31,17 @@ fn effects_cost_and_compare() {
             && text.contains("x fewer) on a 16x9 sample of pixel centres"),
         "{text}"
     );
+    // Whitted scenes have no per-sample note; a path-traced one says its samples are paths,
+    // and labels the tree and the cut as Whitted's.
+    assert!(!text.contains("rays per sample"), "{text}");
+    let o = raytree(&["effects", &fixture("caustic.json")], d);
+    let text = String::from_utf8_lossy(&o.stdout);
+    assert!(
+        text.contains("rays per sample: path integrator: each sample is one path")
+            && text.contains("ray tree (whitted): linear")
+            && text.contains("what the cut saves (whitted): "),
+        "{text}"
+    );
     let o = raytree(&["effects", &fixture("diffuse.json")], d);
     let text = String::from_utf8_lossy(&o.stdout);
     assert!(

@@ -94,6 +94,22 @@ impl TreeGrowth {
     }
 }
 
+/// What the rays of a scene rendered by the path integrator do instead of a tree, or `None`
+/// under the Whitted integrator. The growth verdict ([`tree_growth`]) and the cut
+/// ([`cut_savings`]) describe the Whitted integrator's tree: a path-traced sample never splits.
+#[must_use]
+pub fn path_note(scene: &Scene) -> Option<String> {
+    (scene.settings.integrator == crate::scene::IntegratorKind::Path).then(|| {
+        format!(
+            "path integrator: each sample is one path, a continuation ray and a light sample \
+             at each bounce, so its rays grow at most linearly with max depth (Russian \
+             roulette from bounce {}); no split, no cut. The tree below is that of \
+             --integrator whitted",
+            scene.settings.rr_depth
+        )
+    })
+}
+
 /// Scenes with more specular objects than this are not analysed pair by pair (the graph has
 /// up to `2n` states and `n^2` edges); the verdict is then "exponential", conservatively.
 pub const MAX_ANALYSED: usize = 256;

@@ -5,7 +5,7 @@ use super::args::EffectsArgs;
 use super::load::load;
 use super::say::sayln;
 use anyhow::Result;
-use raytree::analysis::growth::{Growth, cut_savings, tree_growth};
+use raytree::analysis::growth::{Growth, cut_savings, path_note, tree_growth};
 use raytree::effects::EffectPlan;
 
 /// Print which effects the tracer will run for the scene and why, then the tree's growth.
@@ -22,14 +22,22 @@ pub fn run(a: &EffectsArgs) -> Result<()> {
         )?;
     }
     let growth = tree_growth(&loaded.scene);
-    sayln!("ray tree: {}", growth.summary())?;
+    // Under the path integrator the tree and the cut are Whitted's: said first, then labelled.
+    let whitted = match path_note(&loaded.scene) {
+        Some(note) => {
+            sayln!("rays per sample: {note}")?;
+            " (whitted)"
+        }
+        None => "",
+    };
+    sayln!("ray tree{whitted}: {}", growth.summary())?;
     for r in &growth.reasons {
         sayln!("  - {r}")?;
     }
     if growth.growth != Growth::Bounded
         && let Some(s) = cut_savings(&loaded.scene, 16, 9, &|| false)
     {
-        sayln!("what the cut saves: {}", s.sentence())?;
+        sayln!("what the cut saves{whitted}: {}", s.sentence())?;
     }
     Ok(())
 }
