@@ -42,6 +42,30 @@ fn effects_cost_and_compare() {
             && text.contains("what the cut saves (whitted): "),
         "{text}"
     );
+    // `cost` on a path-traced scene: its own header and axes, not Whitted's.
+    let o = raytree(
+        &[
+            "cost",
+            &fixture("caustic.json"),
+            "--quick",
+            "--size",
+            "16x9",
+            "--repeats",
+            "1",
+            "-o",
+            "path-rep",
+        ],
+        d,
+    );
+    assert!(o.status.success(), "{}", stderr(&o));
+    let md = std::fs::read_to_string(d.join("path-rep/cost.md")).unwrap();
+    assert!(
+        md.contains(", path integrator. Reference:")
+            && md.contains("| rr_depth | from bounce 5 |")
+            && !md.contains("| fresnel |")
+            && !md.contains("| min_weight |"),
+        "{md}"
+    );
     let o = raytree(&["effects", &fixture("diffuse.json")], d);
     let text = String::from_utf8_lossy(&o.stdout);
     assert!(

@@ -8,6 +8,7 @@ use super::say::{out, sayln};
 use anyhow::Result;
 use indicatif::{ProgressBar, ProgressStyle};
 use raytree::analysis::cost::{self, CostReport, Sweep};
+use raytree::scene::IntegratorKind;
 use std::fmt::Write;
 
 /// Run the sweep and write `cost.md`, `cost.csv`, `cost.json` and `cost.png` into the output
@@ -63,34 +64,11 @@ pub fn run(a: &CostArgs) -> Result<()> {
 }
 
 fn markdown(r: &CostReport, label: &str) -> String {
-    let mut s = format!(
-        "Cost sweep of {label} at {}x{}. Reference: max depth {}, exact Fresnel, offset {}, no min weight (the exhaustive tree); 1 spp (pixel centres) for every axis but spp, {} spp for the spp axis. Each row changes one setting of the base, the default settings at depth 16 (exact Fresnel, 1 spp, the automatic min weight {:.1e} and, with glass, the automatic roulette below a weight, robust offset); the min_weight rows are the cut alone (no roulette); the offset rows use the scene's epsilon {:e}.\n\n",
-        r.size[0],
-        r.size[1],
-        r.reference.max_depth,
-        r.reference.offset.strategy.name(),
-        r.reference_spp,
-        r.base_min_weight,
-        r.rows
-            .first()
-            .map_or(0.0, |row| row.settings.offset.epsilon),
-    );
-    let _ = write!(
-        s,
-        "Stochastic axes: light_samples rows (only for scenes with an area light) against {} light samples, glossy_samples rows (only for scenes with a rough material) against {} glossy samples, both at the pixel centres; filter rows at {} spp against the same filter at {} spp; adaptive rows (threshold to max spp, first pass {} spp; camera rays = samples taken) against {} spp; dielectric_roulette rows (only for scenes with glass: reflection or refraction chosen by Russian roulette from that depth on, exact in expectation) against the pixel-centre reference, their error the roulette's noise beside the automatic cut's bounded error; roulette_below rows (glass only: hits of a throughput below that weight play the roulette, with the automatic cut) against the same reference.\n\n",
-        r.reference_light_samples,
-        r.reference_glossy_samples,
-        r.rows
-            .iter()
-            .find(|row| row.axis == "filter")
-            .map_or(0, |row| row.settings.spp),
-        r.reference_spp,
-        r.rows
-            .iter()
-            .find(|row| row.axis == "adaptive")
-            .map_or(0, |row| row.settings.spp),
-        r.reference_spp,
-    );
+    let mut s = if r.reference.integrator == IntegratorKind::Path {
+        path_header(r, label)
+    } else {
+        whitted_header(r, label)
+    };
     s.push_str("| axis | value | median ms | rays | camera | reflected | refracted | shadow | diffuse | RMSE | max err | pixels off >1/255 | Pareto |\n");
     s.push_str(
         "| --- | --- | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | :---: |\n",
@@ -121,6 +99,66 @@ fn markdown(r: &CostReport, label: &str) -> String {
         );
     }
     s
+}
+
+/// The header of a Whitted scene's sweep: its axes and references.
+fn whitted_header(r: &CostReport, label: &str) -> String {
+    let mut s = format!(
+        "Cost sweep of {label} at {}x{}. Reference: max depth {}, exact Fresnel, offset {}, no min weight (the exhaustive tree); 1 spp (pixel centres) for every axis but spp, {} spp for the spp axis. Each row changes one setting of the base, the default settings at depth 16 (exact Fresnel, 1 spp, the automatic min weight {:.1e} and, with glass, the automatic roulette below a weight, robust offset); the min_weight rows are the cut alone (no roulette); the offset rows use the scene's epsilon {:e}.\n\n",
+        r.size[0],
+        r.size[1],
+        r.reference.max_depth,
+        r.reference.offset.strategy.name(),
+        r.reference_spp,
+        r.base_min_weight,
+        r.rows
+            .first()
+            .map_or(0.0, |row| row.settings.offset.epsilon),
+    );
+    let _ = write!(
+        s,
+        "Stochastic axes: light_samples rows (only for scenes with an area light) against {} light samples, glossy_samples rows (only for scenes with a rough material) against {} glossy samples, both at the pixel centres; filter rows at {} spp against the same filter at {} spp; adaptive rows (threshold to max spp, first pass {} spp; camera rays = samples taken) against {} spp; dielectric_roulette rows (only for scenes with glass: reflection or refraction chosen by Russian roulette from that depth on, exact in expectation) against the pixel-centre reference, their error the roulette's noise beside the automatic cut's bounded error; roulette_below rows (glass only: hits of a throughput below that weight play the roulette, with the automatic cut) against the same reference.\n\n",
+        r.reference_light_samples,
+        r.reference_glossy_samples,
+        r.rows
+            .iter()
+            .find(|row| row.axis == "filter")
+            .map_or(0, |row| row.settings.spp),
+        r.reference_spp,
+        r.rows
+            .iter()
+            .find(|row| row.axis == "adaptive")
+            .map_or(0, |row| row.settings.spp),
+        r.reference_spp,
+    );
+    s
+}
+
+/// The spp of the first row of `axis` (0 without one).
+fn spp_of(r: &CostReport, axis: &str) -> u32 {
+    r.rows
+        .iter()
+        .find(|row| row.axis == axis)
+        .map_or(0, |row| row.settings.spp)
+}
+
+/// The header of a path-traced scene's sweep: its axes and references, and the Whitted axes
+/// it leaves out.
+fn path_header(r: &CostReport, label: &str) -> String {
+    format!(
+        "Cost sweep of {label} at {}x{}, path integrator. Reference: max depth {}, offset {}; 1 spp for the max_depth and offset axes (the same random numbers as each row, so a row's error is what its setting changes), {} spp for the spp axis. Each row changes one setting of the base, the scene's settings at depth 16 (1 spp, robust offset). Not swept: the Fresnel model, min_weight, light_samples, glossy_samples and the glass roulettes, which the path integrator does not read (it always uses exact Fresnel, one light sample and one BSDF sample per bounce, and Russian roulette instead of a cut).\n\nStochastic axes: rr_depth rows (Russian roulette from that bounce on; off from the max depth on) at {} spp against {} spp; filter rows at {} spp against the same filter at {} spp; adaptive rows (threshold to max spp, first pass {} spp; camera rays = samples taken) against {} spp.\n\n",
+        r.size[0],
+        r.size[1],
+        r.reference.max_depth,
+        r.reference.offset.strategy.name(),
+        r.reference_spp,
+        spp_of(r, "rr_depth"),
+        r.reference_spp,
+        spp_of(r, "filter"),
+        r.reference_spp,
+        spp_of(r, "adaptive"),
+        r.reference_spp,
+    )
 }
 
 fn csv(r: &CostReport) -> String {

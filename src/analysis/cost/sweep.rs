@@ -5,7 +5,9 @@ use super::with_settings;
 use crate::effects::EffectPlan;
 use crate::math::FresnelModel;
 use crate::render::adaptive_plan;
-use crate::scene::{AdaptiveDesc, Antialiasing, FilterDesc, OffsetStrategy, Scene, Settings};
+use crate::scene::{
+    AdaptiveDesc, Antialiasing, FilterDesc, IntegratorKind, OffsetStrategy, Scene, Settings,
+};
 use crate::trace::SceneIntegrator;
 use crate::trace::bound::auto_min_weight;
 
@@ -47,6 +49,10 @@ pub struct Sweep {
     /// the default), with the automatic cut, against the exhaustive reference (rows only when
     /// the scene has a transmissive material); the min-weight rows are the cut alone.
     pub roulette_below: Vec<Option<f64>>,
+    /// Depths from which the path integrator plays Russian roulette (`settings.rr_depth`;
+    /// rows only for a path-traced scene, at [`Sweep::filter_spp`] samples against the spp
+    /// reference: the roulette saves rays and adds noise, not bias).
+    pub rr_depths: Vec<u32>,
     /// Light samples of the light-samples axis's reference.
     pub reference_light_samples: u32,
     /// Glossy samples of the glossy-samples axis's reference.
@@ -90,6 +96,7 @@ impl Sweep {
             adaptive_spp: 2,
             dielectric_roulette: vec![0, 2, 4],
             roulette_below: vec![None, Some(1.0e-3), Some(1.0e-2), Some(1.0e-1)],
+            rr_depths: vec![1, 2, 5, 10, 16],
             reference_depth: 32,
             reference_spp: 64,
             reference_light_samples: 1024,
@@ -111,6 +118,7 @@ impl Sweep {
             adaptive: vec![(0.1, 16)],
             dielectric_roulette: vec![2],
             roulette_below: vec![None],
+            rr_depths: vec![2, 5, 16],
             reference_spp: 16,
             reference_light_samples: 256,
             reference_glossy_samples: 64,
@@ -121,8 +129,50 @@ impl Sweep {
 
     /// The settings of every row, as `(axis, value label, settings)`, from `base`. The
     /// automatic min_weight row is labelled `auto (w)` with the cut it takes on `scene`.
+    ///
+    /// Under the path integrator ([`Sweep::path_ignores`]) the axes it does not read are left
+    /// out (their rows would all equal the base), and the Russian-roulette depth is swept.
     #[must_use]
     pub fn settings(&self, scene: &Scene, base: &Settings) -> Vec<(String, String, Settings)> {
+        let path = base.integrator == IntegratorKind::Path;
+        let mut rows = self.rows(scene, base);
+        if path {
+            rows.retain(|(axis, _, _)| !Self::path_ignores(axis));
+            for &d in &self.rr_depths {
+                let s = Settings {
+                    rr_depth: d,
+                    spp: self.filter_spp,
+                    ..*base
+                };
+                let label = if d >= base.max_depth {
+                    format!("off ({d} >= max depth)")
+                } else {
+                    format!("from bounce {d}")
+                };
+                rows.push(("rr_depth".to_string(), label, s));
+            }
+        }
+        rows
+    }
+
+    /// Axes the path integrator does not read: it always uses exact Fresnel, one light sample
+    /// and one BSDF sample per bounce, and Russian roulette instead of the Whitted cut and the
+    /// glass roulette.
+    #[must_use]
+    pub fn path_ignores(axis: &str) -> bool {
+        matches!(
+            axis,
+            "fresnel"
+                | "min_weight"
+                | "light_samples"
+                | "glossy_samples"
+                | "dielectric_roulette"
+                | "roulette_below"
+        )
+    }
+
+    /// Every row of the Whitted sweep.
+    fn rows(&self, scene: &Scene, base: &Settings) -> Vec<(String, String, Settings)> {
         let mut out = Vec::new();
         let mut push =
             |axis: &str, value: String, s: Settings| out.push((axis.to_string(), value, s));
@@ -253,12 +303,13 @@ impl Sweep {
     /// `reference_spp` samples, `light_samples` against `reference_light_samples` light
     /// samples, `glossy_samples` against `reference_glossy_samples` glossy samples, and
     /// `filter` against the same filter at `reference_spp` samples; `adaptive` and
-    /// `antialiasing` (automatic) like `spp`. The base, and so every reference, is uniform.
+    /// `antialiasing` (automatic) and `rr_depth` (the path integrator's roulette) like `spp`.
+    /// The base, and so every reference, is uniform.
     #[must_use]
     pub fn reference_for(&self, axis: &str, settings: &Settings, reference: &Settings) -> Settings {
         let r = *reference;
         match axis {
-            "spp" | "adaptive" | "antialiasing" => Settings {
+            "spp" | "adaptive" | "antialiasing" | "rr_depth" => Settings {
                 spp: self.reference_spp,
                 ..r
             },

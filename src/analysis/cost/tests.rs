@@ -193,3 +193,57 @@ fn adaptive_rows_take_more_samples_at_edges_and_have_less_error() {
         uniform.error.rmse
     );
 }
+
+/// A path-traced scene's sweep leaves out the axes the path integrator does not read (every
+/// row would equal the base) and sweeps its Russian-roulette depth instead, against the spp
+/// reference; a Whitted scene's sweep has no roulette-depth rows.
+#[test]
+fn a_path_traced_sweep_has_its_own_axes() {
+    let scene = Scene::from_json(include_str!("../../../fixtures/caustic.json")).unwrap();
+    assert_eq!(
+        scene.settings.integrator,
+        crate::scene::IntegratorKind::Path
+    );
+    let sweep = Sweep::quick();
+    let base = Settings {
+        max_depth: 16,
+        ..scene.settings
+    };
+    let rows = sweep.settings(&scene, &base);
+    let axes: Vec<&str> = rows.iter().map(|(a, _, _)| a.as_str()).collect();
+    assert!(axes.iter().all(|a| !Sweep::path_ignores(a)), "{axes:?}");
+    assert!(
+        axes.contains(&"max_depth") && axes.contains(&"offset"),
+        "{axes:?}"
+    );
+    let rr: Vec<(&str, u32, u32)> = rows
+        .iter()
+        .filter(|(a, _, _)| a == "rr_depth")
+        .map(|(_, v, s)| (v.as_str(), s.rr_depth, s.spp))
+        .collect();
+    assert_eq!(
+        rr,
+        [
+            ("from bounce 2", 2, sweep.filter_spp),
+            ("from bounce 5", 5, sweep.filter_spp),
+            ("off (16 >= max depth)", 16, sweep.filter_spp),
+        ]
+    );
+    let reference = reference_settings(&base, &sweep);
+    assert_eq!(
+        sweep.reference_for("rr_depth", &rows[0].2, &reference).spp,
+        sweep.reference_spp
+    );
+    // The same scene under Whitted: the Whitted axes, no roulette depth.
+    let whitted = Settings {
+        integrator: crate::scene::IntegratorKind::Whitted,
+        ..base
+    };
+    let axes: Vec<String> = sweep
+        .settings(&scene, &whitted)
+        .into_iter()
+        .map(|(a, _, _)| a)
+        .collect();
+    assert!(axes.iter().any(|a| a == "fresnel") && axes.iter().any(|a| a == "min_weight"));
+    assert!(!axes.iter().any(|a| a == "rr_depth"), "{axes:?}");
+}
