@@ -3,7 +3,7 @@
 use clap::{Args, Parser, Subcommand};
 use std::path::PathBuf;
 
-/// raytree: a Whitted ray tracer that explains every pixel.
+/// raytree: a Whitted ray tracer and Monte Carlo path tracer that explains every pixel.
 #[derive(Debug, Parser)]
 #[command(name = "raytree", version, about)]
 pub struct Cli {
