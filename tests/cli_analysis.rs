@@ -42,22 +42,16 @@ fn effects_cost_and_compare() {
             && text.contains("what the cut saves (whitted): "),
         "{text}"
     );
+    // A quick cost sweep at 16x9, one repeat, of `scene` (the built-in one: none) into `out`.
+    let quick_cost = |scene: Option<&str>, out: &str| {
+        let mut args = vec!["cost"];
+        args.extend(scene);
+        args.extend(["--quick", "--size", "16x9", "--repeats", "1", "-o", out]);
+        let o = raytree(&args, d);
+        assert!(o.status.success(), "{}", stderr(&o));
+    };
     // `cost` on a path-traced scene: its own header and axes, not Whitted's.
-    let o = raytree(
-        &[
-            "cost",
-            &fixture("caustic.json"),
-            "--quick",
-            "--size",
-            "16x9",
-            "--repeats",
-            "1",
-            "-o",
-            "path-rep",
-        ],
-        d,
-    );
-    assert!(o.status.success(), "{}", stderr(&o));
+    quick_cost(Some(&fixture("caustic.json")), "path-rep");
     let md = std::fs::read_to_string(d.join("path-rep/cost.md")).unwrap();
     assert!(
         md.contains(", path integrator. Reference:")
@@ -72,20 +66,7 @@ fn effects_cost_and_compare() {
         text.contains("ray tree: bounded") && !text.contains("what the cut saves"),
         "{text}"
     );
-    let o = raytree(
-        &[
-            "cost",
-            "--quick",
-            "--size",
-            "16x9",
-            "--repeats",
-            "1",
-            "-o",
-            "rep",
-        ],
-        d,
-    );
-    assert!(o.status.success(), "{}", stderr(&o));
+    quick_cost(None, "rep");
     let csv = std::fs::read_to_string(d.join("rep/cost.csv")).unwrap();
     // Header, depth, Fresnel, spp, automatic antialiasing (at 4 spp; at 1 it is uniform),
     // offset, min weight, dielectric roulette, roulette below (auto), adaptive, filter (no area
