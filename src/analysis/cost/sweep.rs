@@ -6,7 +6,8 @@ use crate::effects::EffectPlan;
 use crate::math::FresnelModel;
 use crate::render::adaptive_plan;
 use crate::scene::{
-    AdaptiveDesc, Antialiasing, FilterDesc, IntegratorKind, OffsetStrategy, Scene, Settings,
+    AdaptiveDesc, Antialiasing, FilterDesc, IntegratorKind, OffsetStrategy, SamplerKind, Scene,
+    Settings,
 };
 use crate::trace::SceneIntegrator;
 use crate::trace::bound::auto_min_weight;
@@ -131,7 +132,8 @@ impl Sweep {
     /// automatic min_weight row is labelled `auto (w)` with the cut it takes on `scene`.
     ///
     /// Under the path integrator ([`Sweep::path_ignores`]) the axes it does not read are left
-    /// out (their rows would all equal the base), and the Russian-roulette depth is swept.
+    /// out (their rows would all equal the base), and the Russian-roulette depth and the
+    /// sampler are swept (at [`Sweep::filter_spp`] samples, against the spp reference).
     #[must_use]
     pub fn settings(&self, scene: &Scene, base: &Settings) -> Vec<(String, String, Settings)> {
         let path = base.integrator == IntegratorKind::Path;
@@ -150,6 +152,15 @@ impl Sweep {
                     format!("from bounce {d}")
                 };
                 rows.push(("rr_depth".to_string(), label, s));
+            }
+            // The sampler: stratified jitter against Owen-scrambled Sobol (the default).
+            for kind in SamplerKind::ALL {
+                let s = Settings {
+                    sampler: Some(kind),
+                    spp: self.filter_spp,
+                    ..*base
+                };
+                rows.push(("sampler".to_string(), kind.name().to_string(), s));
             }
         }
         rows
@@ -303,13 +314,13 @@ impl Sweep {
     /// `reference_spp` samples, `light_samples` against `reference_light_samples` light
     /// samples, `glossy_samples` against `reference_glossy_samples` glossy samples, and
     /// `filter` against the same filter at `reference_spp` samples; `adaptive` and
-    /// `antialiasing` (automatic) and `rr_depth` (the path integrator's roulette) like `spp`.
+    /// `antialiasing` (automatic), and the path integrator's `rr_depth` and `sampler`, like `spp`.
     /// The base, and so every reference, is uniform.
     #[must_use]
     pub fn reference_for(&self, axis: &str, settings: &Settings, reference: &Settings) -> Settings {
         let r = *reference;
         match axis {
-            "spp" | "adaptive" | "antialiasing" | "rr_depth" => Settings {
+            "spp" | "adaptive" | "antialiasing" | "rr_depth" | "sampler" => Settings {
                 spp: self.reference_spp,
                 ..r
             },

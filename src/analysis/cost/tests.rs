@@ -229,11 +229,33 @@ fn a_path_traced_sweep_has_its_own_axes() {
             ("off (16 >= max depth)", 16, sweep.filter_spp),
         ]
     );
-    let reference = reference_settings(&base, &sweep);
+    let samplers: Vec<(&str, Option<crate::scene::SamplerKind>, u32)> = rows
+        .iter()
+        .filter(|(a, _, _)| a == "sampler")
+        .map(|(_, v, s)| (v.as_str(), s.sampler, s.spp))
+        .collect();
     assert_eq!(
-        sweep.reference_for("rr_depth", &rows[0].2, &reference).spp,
-        sweep.reference_spp
+        samplers,
+        [
+            (
+                "stratified",
+                Some(crate::scene::SamplerKind::Stratified),
+                sweep.filter_spp
+            ),
+            (
+                "sobol",
+                Some(crate::scene::SamplerKind::Sobol),
+                sweep.filter_spp
+            ),
+        ]
     );
+    let reference = reference_settings(&base, &sweep);
+    for axis in ["rr_depth", "sampler"] {
+        assert_eq!(
+            sweep.reference_for(axis, &rows[0].2, &reference).spp,
+            sweep.reference_spp
+        );
+    }
     // The same scene under Whitted: the Whitted axes, no roulette depth.
     let whitted = Settings {
         integrator: crate::scene::IntegratorKind::Whitted,
@@ -245,5 +267,8 @@ fn a_path_traced_sweep_has_its_own_axes() {
         .map(|(a, _, _)| a)
         .collect();
     assert!(axes.iter().any(|a| a == "fresnel") && axes.iter().any(|a| a == "min_weight"));
-    assert!(!axes.iter().any(|a| a == "rr_depth"), "{axes:?}");
+    assert!(
+        !axes.iter().any(|a| a == "rr_depth" || a == "sampler"),
+        "{axes:?}"
+    );
 }
