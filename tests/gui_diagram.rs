@@ -4,7 +4,7 @@
 
 use egui::accesskit::Role;
 use egui_kittest::Harness;
-use egui_kittest::kittest::Queryable;
+use egui_kittest::kittest::{NodeT, Queryable};
 use raytree::RayKind;
 use raytree::diagram::{Diagram, PlaneSpec};
 use raytree::gui::diagram_ui::{diagram_options, export_options};
@@ -236,10 +236,24 @@ fn the_export_highlight_checkbox_sets_it() {
 fn the_path_integrator_is_chosen_in_the_panel_and_its_diffuse_rays_drawn() {
     let files = MemFiles::default();
     let mut h = harness(&files, 1);
+    // The Whitted integrator's own settings: enabled under Whitted, disabled under path.
+    // (The min weight's "auto" box; the roulette's, shown under Whitted only, comes after it.)
+    let disabled = |h: &Harness<'static, InspectorApp>| {
+        let auto = h.get_all_by_role_and_label(Role::CheckBox, "auto").next();
+        [
+            h.get_by_label("Fresnel").accesskit_node().is_disabled(),
+            h.get_by_label("translucent").accesskit_node().is_disabled(),
+            auto.expect("the min weight's auto box")
+                .accesskit_node()
+                .is_disabled(),
+        ]
+    };
+    assert_eq!(disabled(&h), [false, false, false]);
     h.get_by_label("integrator").click();
     h.run();
     h.get_by_label("path").click();
     settle(&mut h);
+    assert_eq!(disabled(&h), [true, true, true]);
     assert_eq!(
         h.state().session.doc.scene.settings.integrator,
         raytree::scene::IntegratorKind::Path

@@ -46,6 +46,11 @@ fn offset_label(o: OffsetStrategy) -> &'static str {
     }
 }
 
+/// Why the Whitted settings are disabled under the path integrator.
+const PATH_IGNORES: &str = "the path integrator does not read these: it always uses exact \
+    Fresnel, its shadow rays are visibility tests (light through glass arrives by BSDF \
+    sampling, as caustics), and Russian roulette ends its paths instead of a cut";
+
 /// Tracer settings; any change re-renders and re-traces the selected pixel.
 pub fn settings_ui(ui: &mut egui::Ui, doc: &Document, cmds: &mut Vec<Command>) {
     let old = doc.scene.settings;
@@ -101,24 +106,30 @@ pub fn settings_ui(ui: &mut egui::Ui, doc: &Document, cmds: &mut Vec<Command>) {
             })
             .text("epsilon"),
     );
-    egui::ComboBox::from_label("Fresnel")
-        .selected_text(format!("{:?}", s.fresnel))
-        .show_ui(ui, |ui| {
-            for m in [
-                FresnelModel::Exact,
-                FresnelModel::Schlick,
-                FresnelModel::None,
-            ] {
-                ui.selectable_value(&mut s.fresnel, m, format!("{m:?}"));
-            }
+    // The Whitted integrator's own settings: shown under the path integrator too (they are
+    // kept for a switch back) but disabled, as it does not read them.
+    ui.add_enabled_ui(s.integrator == IntegratorKind::Whitted, |ui| {
+        egui::ComboBox::from_label("Fresnel")
+            .selected_text(format!("{:?}", s.fresnel))
+            .show_ui(ui, |ui| {
+                for m in [
+                    FresnelModel::Exact,
+                    FresnelModel::Schlick,
+                    FresnelModel::None,
+                ] {
+                    ui.selectable_value(&mut s.fresnel, m, format!("{m:?}"));
+                }
+            });
+        ui.horizontal(|ui| {
+            ui.label("shadows");
+            ui.radio_value(&mut s.shadows, ShadowMode::Opaque, "opaque");
+            ui.radio_value(&mut s.shadows, ShadowMode::Translucent, "translucent");
         });
-    ui.horizontal(|ui| {
-        ui.label("shadows");
-        ui.radio_value(&mut s.shadows, ShadowMode::Opaque, "opaque");
-        ui.radio_value(&mut s.shadows, ShadowMode::Translucent, "translucent");
-    });
+        min_weight_ui(ui, doc, &mut s);
+    })
+    .response
+    .on_disabled_hover_text(PATH_IGNORES);
     stochastic_ui(ui, doc, &mut s);
-    min_weight_ui(ui, doc, &mut s);
     roulette_ui(ui, doc, &mut s);
     if s != old {
         cmds.push(Command::SetSettings(s));
