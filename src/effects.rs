@@ -275,6 +275,7 @@ impl EffectPlan {
             ),
         ];
         if s.integrator == crate::scene::IntegratorKind::Path {
+            path::restate(&mut out, scene);
             out.extend(path::lines(scene, &names));
         }
         let unused: Vec<&str> = (0..scene.materials.len())
@@ -382,6 +383,48 @@ mod tests {
             !p.explain(&s)
                 .iter()
                 .any(|l| l.reason.contains("glass, mirror"))
+        );
+    }
+
+    /// Under the path integrator the lines say what it does, not Whitted's settings: exact
+    /// Fresnel whatever `settings.fresnel`, area lights by next-event estimation, and no
+    /// Whitted translucent-shadow or Blinn-Phong line beside the path lines that say they are
+    /// ignored (they once stood side by side, one "on", one "off").
+    #[test]
+    fn path_lines_state_what_the_path_integrator_does() {
+        let mut s = Scene::from_json(include_str!("../fixtures/caustic.json")).unwrap();
+        s.settings.fresnel = FresnelModel::Schlick;
+        s.settings.shadows = ShadowMode::Translucent;
+        s.settings.light_samples = Some(4);
+        let find = |lines: &[EffectLine], e: &str| lines.iter().find(|l| l.effect == e).cloned();
+        let lines = EffectPlan::for_scene(&s).explain(&s);
+        let fresnel = find(&lines, "Fresnel").unwrap();
+        assert!(
+            fresnel.on && fresnel.reason.starts_with("exact"),
+            "{fresnel:?}"
+        );
+        let area = find(&lines, "area lights").unwrap();
+        assert!(
+            area.on && area.reason.contains("one light sample per bounce"),
+            "{area:?}"
+        );
+        assert!(find(&lines, "translucent shadows").is_none());
+        assert!(find(&lines, "Blinn-Phong highlights").is_none());
+        assert!(
+            !find(&lines, "translucent shadows (path integrator ignores them)")
+                .unwrap()
+                .on
+        );
+        // The same scene under Whitted: its own lines, as set.
+        s.settings.integrator = crate::scene::IntegratorKind::Whitted;
+        let lines = EffectPlan::for_scene(&s).explain(&s);
+        assert!(find(&lines, "Fresnel").unwrap().reason.contains("schlick"));
+        assert!(find(&lines, "translucent shadows").unwrap().on);
+        assert!(
+            find(&lines, "area lights")
+                .unwrap()
+                .reason
+                .contains("4 shadow rays")
         );
     }
 }

@@ -6,6 +6,44 @@ use crate::scene::{Material, Scene};
 /// The names of the used materials a predicate holds for (`EffectPlan::explain`'s `names`).
 type Names<'a> = &'a dyn Fn(&dyn Fn(&Material) -> bool) -> String;
 
+/// The Whitted lines the path integrator reads differently, restated for it: it always uses
+/// exact Fresnel, samples area lights by next-event estimation (one light sample per bounce,
+/// not `settings.light_samples`) and rough lobes by its one BSDF sample per bounce (not
+/// `settings.glossy_samples`); the translucent-shadow and Blinn-Phong lines are dropped, as
+/// [`lines`] says that it ignores them.
+pub(super) fn restate(out: &mut Vec<EffectLine>, scene: &Scene) {
+    let s = &scene.settings;
+    out.retain(|l| l.effect != "translucent shadows" && l.effect != "Blinn-Phong highlights");
+    for l in out.iter_mut() {
+        match l.effect.as_str() {
+            "Fresnel" if l.reason != "no transmissive material" => {
+                l.on = true;
+                l.reason = format!(
+                    "exact at transmissive surfaces (the path integrator's; settings.fresnel \
+                     {} is the Whitted integrator's)",
+                    format!("{:?}", s.fresnel).to_lowercase()
+                );
+            }
+            "area lights" => {
+                let list = l.reason.split(';').next().unwrap_or_default().to_string();
+                l.on = !list.starts_with("no emissive");
+                l.reason = format!(
+                    "{list}; next-event estimation, one light sample per bounce \
+                     (settings.light_samples is the Whitted integrator's)"
+                );
+            }
+            "glossy (rough lobes)" if l.on => {
+                l.reason = format!(
+                    "{}; GGX lobes sampled by each bounce's BSDF sample, exact Fresnel \
+                     (settings.glossy_samples is the Whitted integrator's)",
+                    l.reason.split(';').next().unwrap_or_default()
+                );
+            }
+            _ => {}
+        }
+    }
+}
+
 /// What the path integrator does with the scene, for `raytree effects`: it samples lights and
 /// BSDFs at every hit, and ignores Whitted's approximations (ambient, Blinn-Phong, translucent
 /// shadows).
