@@ -273,3 +273,34 @@ fn negative_exponent_values_reach_validation() {
         assert!(!dir.path().join("x.png").exists());
     }
 }
+
+/// Flags the path integrator does not read, given for a path-traced scene, get a note on
+/// stderr naming them (the render still runs); without them, or under Whitted, no note.
+#[test]
+fn flags_the_path_integrator_ignores_are_named() {
+    let dir = tempfile::tempdir().unwrap();
+    let d = dir.path();
+    let caustic = fixture("caustic.json");
+    let base = ["render", caustic.as_str(), "--size", "8x6", "--spp", "1"];
+    let run = |extra: &[&str]| {
+        let args: Vec<&str> = base.iter().chain(extra).copied().collect();
+        let o = raytree(&args, d);
+        assert!(o.status.success(), "{}", stderr(&o));
+        stderr(&o)
+    };
+    let err = run(&["--fresnel", "schlick", "--min-weight", "0", "-o", "a.png"]);
+    assert!(
+        err.contains("note: the path integrator ignores --fresnel, --min-weight:"),
+        "{err}"
+    );
+    assert!(!run(&["-o", "b.png"]).contains("ignores"));
+    let err = run(&[
+        "--integrator",
+        "whitted",
+        "--fresnel",
+        "schlick",
+        "-o",
+        "c.png",
+    ]);
+    assert!(!err.contains("ignores"), "{err}");
+}

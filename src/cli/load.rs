@@ -1,6 +1,7 @@
 //! Loading scenes and applying command-line overrides, with errors that name the file.
 
 use super::args::Overrides;
+use super::say::warnln;
 use anyhow::{Result, anyhow, bail};
 use raytree::Scene;
 use raytree::input::{MAX_OBJ_BYTES, MAX_SCENE_BYTES, escape_controls};
@@ -40,10 +41,40 @@ pub fn load(path: Option<&Path>, o: &Overrides) -> Result<Loaded> {
         }
     };
     apply(&mut scene, o)?;
+    if let Some(note) = path_ignores(&scene, o) {
+        warnln!("{note}");
+    }
     Ok(Loaded {
         scene,
         label,
         inputs,
+    })
+}
+
+/// A note when flags the path integrator does not read were given for a path-traced scene
+/// (they are the Whitted integrator's), naming them; `None` otherwise.
+pub fn path_ignores(scene: &Scene, o: &Overrides) -> Option<String> {
+    if scene.settings.integrator != raytree::scene::IntegratorKind::Path {
+        return None;
+    }
+    let given = [
+        ("--fresnel", o.fresnel.is_some()),
+        ("--shadows", o.shadows.is_some()),
+        ("--min-weight", o.min_weight.is_some()),
+        ("--tolerance", o.tolerance.is_some()),
+        ("--light-samples", o.light_samples.is_some()),
+        ("--glossy-samples", o.glossy_samples.is_some()),
+        ("--dielectric-roulette", o.dielectric_roulette.is_some()),
+        ("--roulette-below", o.roulette_below.is_some()),
+    ];
+    let flags: Vec<&str> = given.iter().filter(|g| g.1).map(|g| g.0).collect();
+    (!flags.is_empty()).then(|| {
+        format!(
+            "note: the path integrator ignores {}: they are the Whitted integrator's (it uses \
+             exact Fresnel, visibility-test shadow rays, one light sample and one BSDF sample \
+             per bounce, and Russian roulette instead of a cut)",
+            flags.join(", ")
+        )
     })
 }
 
