@@ -303,4 +303,9 @@ fn flags_the_path_integrator_ignores_are_named() {
         "c.png",
     ]);
     assert!(!err.contains("ignores"), "{err}");
+    let err = run(&["--integrator", "whitted", "--rr-depth", "3", "-o", "d.png"]);
+    assert!(
+        err.contains("note: the Whitted integrator ignores --rr-depth"),
+        "{err}"
+    );
 }

@@ -41,7 +41,7 @@ pub fn load(path: Option<&Path>, o: &Overrides) -> Result<Loaded> {
         }
     };
     apply(&mut scene, o)?;
-    if let Some(note) = path_ignores(&scene, o) {
+    if let Some(note) = ignored_flags(&scene, o) {
         warnln!("{note}");
     }
     Ok(Loaded {
@@ -51,11 +51,16 @@ pub fn load(path: Option<&Path>, o: &Overrides) -> Result<Loaded> {
     })
 }
 
-/// A note when flags the path integrator does not read were given for a path-traced scene
-/// (they are the Whitted integrator's), naming them; `None` otherwise.
-pub fn path_ignores(scene: &Scene, o: &Overrides) -> Option<String> {
+/// A note when flags the scene's integrator does not read were given, naming them: under the
+/// path integrator the Whitted integrator's own flags, under Whitted `--rr-depth`; `None`
+/// otherwise.
+pub fn ignored_flags(scene: &Scene, o: &Overrides) -> Option<String> {
     if scene.settings.integrator != raytree::scene::IntegratorKind::Path {
-        return None;
+        return o.rr_depth.is_some().then(|| {
+            "note: the Whitted integrator ignores --rr-depth: it is the path integrator's \
+             (add --integrator path)"
+                .to_string()
+        });
     }
     let given = [
         ("--fresnel", o.fresnel.is_some()),
