@@ -50,6 +50,28 @@ fn partitioning_aovs_sum_to_the_beauty_image_and_the_views_are_written() {
     let out = String::from_utf8_lossy(&o.stdout);
     assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
     assert!(out.contains("aov indirect: out.indirect.exr"), "{out}");
+    // Four samples a pixel: every spread is estimable, no note.
+    assert!(!String::from_utf8_lossy(&o.stderr).contains("cannot be estimated"));
+    // One sample a pixel: the noise view's black is not a measured zero, and the note says so.
+    let o = raytree(
+        &[
+            "render",
+            "s.json",
+            "--spp",
+            "1",
+            "-o",
+            "one.png",
+            "--debug-view",
+            "noise",
+        ],
+        d.path(),
+    );
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert!(o.status.success(), "{err}");
+    assert!(
+        err.contains("note: --debug-view noise:") && err.contains("took one sample"),
+        "{err}"
+    );
     let beauty = read_exr(&d.path().join("out.exr"));
     let parts: Vec<Vec<[f32; 3]>> = ["emit", "direct", "indirect", "glass"]
         .iter()

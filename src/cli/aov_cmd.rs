@@ -128,7 +128,17 @@ pub fn run(a: &RenderArgs) -> Result<()> {
     for (p, bytes) in pending.into_iter().zip(&files) {
         p.commit(bytes)?;
     }
-    report(a, &r, &paths, secs, &names)
+    report(a, &r, &paths, secs, &names)?;
+    if views.contains(&McView::Noise) {
+        let single = r.mc.iter().filter(|p| p.samples < 2).count();
+        if single > 0 {
+            warnln!(
+                "note: --debug-view noise: {single} of {} pixels took one sample, whose spread cannot be estimated: they show 0 (black), not a measured zero; render with --spp 2 or more",
+                r.mc.len()
+            );
+        }
+    }
+    Ok(())
 }
 
 /// What was written, the AOVs' shares of the image, dropped samples.

@@ -361,10 +361,16 @@ fn legend(painter: &egui::Painter, area: Rect, doc: &Document) {
         painter.rect_filled(cell, 0.0, Color32::from_rgb(r, g, b));
     }
     let font = FontId::proportional(12.0);
+    // A pixel of one sample has no spread to estimate: its 0 is not a measured zero.
+    let label = if view == DebugView::Noise && doc.stats.iter().any(|s| s.samples < 2) {
+        format!("{}; black: one sample, not estimable", view.label())
+    } else {
+        view.label().to_string()
+    };
     painter.text(
         bar.left_top() - vec2(0.0, 4.0),
         Align2::LEFT_BOTTOM,
-        view.label(),
+        label,
         font.clone(),
         Color32::WHITE,
     );
