@@ -74,11 +74,14 @@ pub fn ignored_flags(scene: &Scene, o: &Overrides) -> Option<String> {
     ];
     let flags: Vec<&str> = given.iter().filter(|g| g.1).map(|g| g.0).collect();
     (!flags.is_empty()).then(|| {
+        let (list, are) = (
+            flags.join(", "),
+            if flags.len() > 1 { "they are" } else { "it is" },
+        );
         format!(
-            "note: the path integrator ignores {}: they are the Whitted integrator's (it uses \
+            "note: the path integrator ignores {list}: {are} the Whitted integrator's (it uses \
              exact Fresnel, visibility-test shadow rays, one light sample and one BSDF sample \
-             per bounce, and Russian roulette instead of a cut)",
-            flags.join(", ")
+             per bounce, and Russian roulette instead of a cut)"
         )
     })
 }
