@@ -120,15 +120,9 @@ fn whitted_header(r: &CostReport, label: &str) -> String {
         "Stochastic axes: light_samples rows (only for scenes with an area light) against {} light samples, glossy_samples rows (only for scenes with a rough material) against {} glossy samples, both at the pixel centres; filter rows at {} spp against the same filter at {} spp; adaptive rows (threshold to max spp, first pass {} spp; camera rays = samples taken) against {} spp; dielectric_roulette rows (only for scenes with glass: reflection or refraction chosen by Russian roulette from that depth on, exact in expectation) against the pixel-centre reference, their error the roulette's noise beside the automatic cut's bounded error; roulette_below rows (glass only: hits of a throughput below that weight play the roulette, with the automatic cut) against the same reference.\n\n",
         r.reference_light_samples,
         r.reference_glossy_samples,
-        r.rows
-            .iter()
-            .find(|row| row.axis == "filter")
-            .map_or(0, |row| row.settings.spp),
+        spp_of(r, "filter"),
         r.reference_spp,
-        r.rows
-            .iter()
-            .find(|row| row.axis == "adaptive")
-            .map_or(0, |row| row.settings.spp),
+        spp_of(r, "adaptive"),
         r.reference_spp,
     );
     s

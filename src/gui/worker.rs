@@ -330,13 +330,14 @@ fn run_job(job: &Job, current: &AtomicU64, tx: &Sender<Delivery>, repaint: &Repa
     // exhaustive tree on a 16x9 sample (cancelled between pixels like the passes above).
     let growth = crate::analysis::growth::tree_growth(scene);
     // Under the path integrator the tree and the cut are Whitted's: the line says so.
-    let mut line = match crate::analysis::growth::path_note(scene) {
-        Some(_) => format!(
+    let mut line = if scene.settings.integrator == crate::scene::IntegratorKind::Path {
+        format!(
             "path integrator: one path per sample, no split, no cut; under Whitted the ray \
              tree would be {}",
             growth.growth.word()
-        ),
-        None => format!("ray tree {}", growth.growth.word()),
+        )
+    } else {
+        format!("ray tree {}", growth.growth.word())
     };
     if let Some(r) = growth.reasons.first() {
         line += &format!(" ({r})");
