@@ -5,7 +5,7 @@
 use super::breakdown::{Term, breakdown, pixel_contribution};
 use super::document::{Command, Document};
 use super::style::{SELECTED, amount, kind_colour, num, rgb, square, swatch, weight};
-use crate::tree::{NodeId, RayNode, RayTree};
+use crate::tree::{EndReason, NodeId, RayNode, RayTree};
 use egui::text::{LayoutJob, TextWrapping};
 use egui::{FontId, Rect, RichText, Sense, pos2, vec2};
 
@@ -22,7 +22,8 @@ const NUMBER_COLUMN: f32 = 84.0;
 #[must_use]
 pub fn node_name(n: &RayNode) -> String {
     let target = match (&n.hit, &n.shadow) {
-        (_, Some(s)) => format!("{} ({:?})", s.light_name, n.end).to_lowercase(),
+        // The light's name as the scene spells it, and how the shadow ray ended in words.
+        (_, Some(s)) => format!("{} ({})", s.light_name, shadow_end(n.end)),
         (Some(h), None) => format!("{} t={}", h.object_name, num(h.t)),
         (None, None) => "miss".to_string(),
     };
@@ -43,6 +44,15 @@ pub fn node_name(n: &RayNode) -> String {
         })
         .unwrap_or_default();
     format!("#{} {} -> {target}{rt}", n.id.0, n.kind.name())
+}
+
+/// How a shadow ray ended, in the tree's few words: `unblocked`, `attenuated`, `blocked`,
+/// `light behind`.
+fn shadow_end(end: EndReason) -> String {
+    match end {
+        EndReason::LightBehind => "light behind".to_string(),
+        e => format!("{e:?}").to_lowercase(),
+    }
 }
 
 /// The `w=` and `c=` columns: the weight relative to the parent (as `raytree trace` prints it)
@@ -365,4 +375,43 @@ fn node_row(
     let y = rect.center().y - galley.size().y / 2.0;
     painter.galley(pos2(name_left, y), galley, text_colour);
     toggle_clicked
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::Scene;
+
+    /// A shadow ray's line keeps the light's name as the scene spells it and says how the ray
+    /// ended in words (it once lowercased both: "key light (lightbehind)").
+    #[test]
+    fn shadow_lines_keep_the_light_name_and_say_how_they_ended() {
+        let scene = Scene::from_json(
+            r#"{"camera": {"position": [0, 2, 4], "look_at": [0, 0, 0], "fov_y": 40,
+                "width": 8, "height": 6},
+              "materials": {"m": {"diffuse": [0.5, 0.5, 0.5]}},
+              "objects": [{"type": "plane", "point": [0, 0, 0], "normal": [0, 1, 0],
+                "material": "m"}],
+              "lights": [
+                {"type": "point", "name": "Key Light", "position": [0, 5, 0],
+                  "intensity": [10, 10, 10]},
+                {"type": "point", "name": "Under Lamp", "position": [0, -5, 0],
+                  "intensity": [10, 10, 10]}]}"#,
+        )
+        .unwrap();
+        let tree = crate::render::trace_pixel(&scene, 4, 4).unwrap();
+        let names: Vec<String> = tree.nodes.iter().map(node_name).collect();
+        assert!(
+            names
+                .iter()
+                .any(|n| n.ends_with("-> Key Light (unblocked)")),
+            "{names:?}"
+        );
+        assert!(
+            names
+                .iter()
+                .any(|n| n.ends_with("-> Under Lamp (light behind)")),
+            "{names:?}"
+        );
+    }
 }
