@@ -31,6 +31,9 @@ fn clicking_a_pixel_shows_its_ray_tree() {
     h.get_by_label_contains("reflected -> floor").click();
     h.run();
     assert!(has(&h, "#2 reflected ray"));
+    // Its end in words (the details once showed the enum's name, e.g. `LightBehind`).
+    let end = raytree::text::end_text(h.state().session.doc.tree.as_ref().unwrap().nodes[2].end);
+    assert!(has(&h, end), "{end}");
     // Arrow keys move the selection.
     h.key_press(egui::Key::ArrowRight);
     h.run();

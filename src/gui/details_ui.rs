@@ -126,12 +126,12 @@ pub fn details_ui(ui: &mut egui::Ui, doc: &Document) {
             row("radiance", rgb(n.radiance));
             row("share of the pixel", rgb(pixel_contribution(tree, id)));
             row("truncated", rgb(n.truncated));
-            row("end", format!("{:?}", n.end));
+            row("end", crate::text::end_text(n.end).to_string());
             if let Some(pi) = &n.path {
                 // What the path integrator recorded (docs/path-tracing.md).
                 row("light path (LPE)", pi.lpe.clone());
                 if let Some(lobe) = pi.lobe {
-                    row("sampled lobe", format!("{lobe:?}"));
+                    row("sampled lobe", lobe.name().to_string());
                 }
                 if let Some(pdf) = &pi.pdf {
                     row(
