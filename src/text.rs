@@ -201,9 +201,11 @@ fn node_summary(n: &RayNode) -> String {
                 ),
                 None => format!("E {}", w(sh.irradiance)),
             };
+            // What this light adds to its hit's radiance ("adds ... at the hit"), not to the
+            // pixel: a path-traced line's own `contribution` after `|` is the pixel's share.
             let _ = write!(
                 s,
-                "  theta {} deg  {arrives}  brdf*cos {}  contribution {}",
+                "  theta {} deg  {arrives}  brdf*cos {}  adds {} at the hit",
                 deg(sh.cos_theta),
                 w(n.weight),
                 rgb(n.weight * n.radiance)
