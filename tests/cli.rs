@@ -275,7 +275,8 @@ fn negative_exponent_values_reach_validation() {
 }
 
 /// Flags the path integrator does not read, given for a path-traced scene, get a note on
-/// stderr naming them (the render still runs); without them, or under Whitted, no note.
+/// stderr naming them (the render still runs); without them, or under Whitted, no note; and
+/// `--rr-depth`, which the Whitted integrator does not read, gets one under Whitted.
 #[test]
 fn flags_the_path_integrator_ignores_are_named() {
     let dir = tempfile::tempdir().unwrap();
