@@ -140,12 +140,13 @@ fn spp_of(r: &CostReport, axis: &str) -> u32 {
 /// it leaves out.
 fn path_header(r: &CostReport, label: &str) -> String {
     format!(
-        "Cost sweep of {label} at {}x{}, path integrator. Reference: max depth {}, offset {}; 1 spp for the max_depth and offset axes (the same random numbers as each row, so a row's error is what its setting changes), {} spp for the spp axis. Each row changes one setting of the base, the scene's settings at depth 16 (1 spp, robust offset). Not swept: the Fresnel model, min_weight, light_samples, glossy_samples and the glass roulettes, which the path integrator does not read (it always uses exact Fresnel, one light sample and one BSDF sample per bounce, and Russian roulette instead of a cut).\n\nStochastic axes: rr_depth rows (Russian roulette from that bounce on; off from the max depth on) and sampler rows (stratified jitter, Owen-scrambled Sobol) at {} spp against {} spp; filter rows at {} spp against the same filter at {} spp; adaptive rows (threshold to max spp, first pass {} spp; camera rays = samples taken) against {} spp.\n\n",
+        "Cost sweep of {label} at {}x{}, path integrator. Reference: max depth {}, offset {}; 1 spp for the max_depth and offset axes (the same random numbers as each row, so a row's error is what its setting changes), {} spp for the spp axis. Each row changes one setting of the base, the scene's settings at depth 16 (1 spp, robust offset). Not swept: the Fresnel model, min_weight, light_samples, glossy_samples and the glass roulettes, which the path integrator does not read ({}).\n\nStochastic axes: rr_depth rows (Russian roulette from that bounce on; off from the max depth on) and sampler rows (stratified jitter, Owen-scrambled Sobol) at {} spp against {} spp; filter rows at {} spp against the same filter at {} spp; adaptive rows (threshold to max spp, first pass {} spp; camera rays = samples taken) against {} spp.\n\n",
         r.size[0],
         r.size[1],
         r.reference.max_depth,
         r.reference.offset.strategy.name(),
         r.reference_spp,
+        IntegratorKind::WHITTED_ONLY_WHY,
         spp_of(r, "rr_depth"),
         r.reference_spp,
         spp_of(r, "filter"),

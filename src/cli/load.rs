@@ -5,6 +5,7 @@ use super::say::warnln;
 use anyhow::{Result, anyhow, bail};
 use raytree::Scene;
 use raytree::input::{MAX_OBJ_BYTES, MAX_SCENE_BYTES, escape_controls};
+use raytree::scene::IntegratorKind;
 use serde::de::DeserializeOwned;
 use std::io::Read;
 use std::path::Path;
@@ -55,33 +56,38 @@ pub fn load(path: Option<&Path>, o: &Overrides) -> Result<Loaded> {
 /// path integrator the Whitted integrator's own flags, under Whitted `--rr-depth`; `None`
 /// otherwise.
 pub fn ignored_flags(scene: &Scene, o: &Overrides) -> Option<String> {
-    if scene.settings.integrator != raytree::scene::IntegratorKind::Path {
+    if scene.settings.integrator != IntegratorKind::Path {
         return o.rr_depth.is_some().then(|| {
             "note: the Whitted integrator ignores --rr-depth: it is the path integrator's \
              (add --integrator path)"
                 .to_string()
         });
     }
-    let given = [
-        ("--fresnel", o.fresnel.is_some()),
-        ("--shadows", o.shadows.is_some()),
-        ("--min-weight", o.min_weight.is_some()),
-        ("--tolerance", o.tolerance.is_some()),
-        ("--light-samples", o.light_samples.is_some()),
-        ("--glossy-samples", o.glossy_samples.is_some()),
-        ("--dielectric-roulette", o.dielectric_roulette.is_some()),
-        ("--roulette-below", o.roulette_below.is_some()),
-    ];
-    let flags: Vec<&str> = given.iter().filter(|g| g.1).map(|g| g.0).collect();
+    // Each setting the path integrator ignores, and whether its flag was given.
+    let given = |setting: &str| match setting {
+        "fresnel" => o.fresnel.is_some(),
+        "shadows" => o.shadows.is_some(),
+        "min_weight" => o.min_weight.is_some(),
+        "tolerance" => o.tolerance.is_some(),
+        "light_samples" => o.light_samples.is_some(),
+        "glossy_samples" => o.glossy_samples.is_some(),
+        "dielectric_roulette" => o.dielectric_roulette.is_some(),
+        "roulette_below" => o.roulette_below.is_some(),
+        _ => false,
+    };
+    let flags: Vec<String> = IntegratorKind::WHITTED_ONLY
+        .iter()
+        .filter(|s| given(s))
+        .map(|s| format!("--{}", s.replace('_', "-")))
+        .collect();
     (!flags.is_empty()).then(|| {
         let (list, are) = (
             flags.join(", "),
             if flags.len() > 1 { "they are" } else { "it is" },
         );
         format!(
-            "note: the path integrator ignores {list}: {are} the Whitted integrator's (it uses \
-             exact Fresnel, visibility-test shadow rays, one light sample and one BSDF sample \
-             per bounce, and Russian roulette instead of a cut)"
+            "note: the path integrator ignores {list}: {are} the Whitted integrator's ({})",
+            IntegratorKind::WHITTED_ONLY_WHY
         )
     })
 }
@@ -288,6 +294,35 @@ pub fn apply(scene: &mut Scene, o: &Overrides) -> Result<()> {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// Every setting the path integrator ignores has its flag recognised: all given, the note
+    /// names them all, in the shared list's order.
+    #[test]
+    fn the_note_names_every_flag_the_path_integrator_ignores() {
+        let mut scene = Scene::default_scene();
+        scene.settings.integrator = IntegratorKind::Path;
+        let o = Overrides {
+            fresnel: Some("schlick".into()),
+            shadows: Some("translucent".into()),
+            min_weight: Some(0.0),
+            tolerance: Some(0.01),
+            light_samples: Some(2),
+            glossy_samples: Some(2),
+            dielectric_roulette: Some(2),
+            roulette_below: Some(0.0),
+            ..Overrides::default()
+        };
+        let note = ignored_flags(&scene, &o).unwrap();
+        let want: Vec<String> = IntegratorKind::WHITTED_ONLY
+            .iter()
+            .map(|s| format!("--{}", s.replace('_', "-")))
+            .collect();
+        assert!(
+            note.contains(&format!("ignores {}: they are", want.join(", "))),
+            "{note}"
+        );
+        assert!(ignored_flags(&scene, &Overrides::default()).is_none());
+    }
 
     #[test]
     fn only_regular_files_within_the_limit_are_read() {

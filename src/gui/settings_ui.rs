@@ -46,11 +46,6 @@ fn offset_label(o: OffsetStrategy) -> &'static str {
     }
 }
 
-/// Why the Whitted settings are disabled under the path integrator.
-const PATH_IGNORES: &str = "the path integrator does not read these: it always uses exact \
-    Fresnel, its shadow rays are visibility tests (light through glass arrives by BSDF \
-    sampling, as caustics), and Russian roulette ends its paths instead of a cut";
-
 /// Tracer settings; any change re-renders and re-traces the selected pixel.
 pub fn settings_ui(ui: &mut egui::Ui, doc: &Document, cmds: &mut Vec<Command>) {
     let old = doc.scene.settings;
@@ -128,7 +123,10 @@ pub fn settings_ui(ui: &mut egui::Ui, doc: &Document, cmds: &mut Vec<Command>) {
         min_weight_ui(ui, doc, &mut s);
     })
     .response
-    .on_disabled_hover_text(PATH_IGNORES);
+    .on_disabled_hover_text(format!(
+        "the path integrator does not read these: {}",
+        IntegratorKind::WHITTED_ONLY_WHY
+    ));
     stochastic_ui(ui, doc, &mut s);
     roulette_ui(ui, doc, &mut s);
     if s != old {

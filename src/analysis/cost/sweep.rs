@@ -166,20 +166,11 @@ impl Sweep {
         rows
     }
 
-    /// Axes the path integrator does not read: it always uses exact Fresnel, one light sample
-    /// and one BSDF sample per bounce, and Russian roulette instead of the Whitted cut and the
-    /// glass roulette.
+    /// Whether `axis` sweeps a setting the path integrator does not read
+    /// ([`IntegratorKind::WHITTED_ONLY`]; the axes are named after their settings).
     #[must_use]
     pub fn path_ignores(axis: &str) -> bool {
-        matches!(
-            axis,
-            "fresnel"
-                | "min_weight"
-                | "light_samples"
-                | "glossy_samples"
-                | "dielectric_roulette"
-                | "roulette_below"
-        )
+        IntegratorKind::WHITTED_ONLY.contains(&axis)
     }
 
     /// Every row of the Whitted sweep.

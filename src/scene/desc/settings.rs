@@ -98,6 +98,26 @@ impl IntegratorKind {
     /// Every integrator, in documentation order.
     pub const ALL: [IntegratorKind; 2] = [IntegratorKind::Whitted, IntegratorKind::Path];
 
+    /// The settings (field names) only the Whitted integrator reads: the path integrator
+    /// ignores them ([`IntegratorKind::WHITTED_ONLY_WHY`]). `raytree cost` leaves out their axes
+    /// under the path integrator and the CLI names them when they are given for it.
+    pub const WHITTED_ONLY: [&'static str; 8] = [
+        "fresnel",
+        "shadows",
+        "min_weight",
+        "tolerance",
+        "light_samples",
+        "glossy_samples",
+        "dielectric_roulette",
+        "roulette_below",
+    ];
+
+    /// Why the path integrator ignores [`IntegratorKind::WHITTED_ONLY`], in one clause.
+    pub const WHITTED_ONLY_WHY: &'static str = "it always uses exact Fresnel, its shadow rays \
+        are visibility tests, so light through glass arrives by BSDF sampling, it takes one \
+        light sample and one BSDF sample per bounce, and Russian roulette ends its paths instead of a \
+        cut";
+
     /// The name used in JSON and on the command line.
     #[must_use]
     pub fn name(self) -> &'static str {
