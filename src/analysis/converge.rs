@@ -84,7 +84,9 @@ impl Series {
             "stratified" => Self::Stratified,
             "denoise" => Self::Denoised,
             _ => match s.strip_prefix("rr:").map(str::parse::<u32>) {
-                Some(Ok(n)) => Self::RrDepth(n),
+                Some(Ok(n)) => Self::RrDepth(
+                    crate::scene::check_rr_depth(n).map_err(|e| format!("{s}: the depth {e}"))?,
+                ),
                 _ => {
                     return Err(format!(
                         "unknown series {s:?}: expected default, light-only, bsdf-only, sobol, stratified, rr:N or denoise"

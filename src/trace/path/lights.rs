@@ -75,8 +75,15 @@ impl<'a> LightTable<'a> {
     fn with_power(objects: usize, sources: Vec<Source<'a>>, power: &[f64]) -> Self {
         let n = sources.len();
         let total: f64 = power.iter().sum();
+        // Powers near f64::MAX (clamped there by `power`) whose sum overflows: the same
+        // proportions from powers scaled by the largest (the plain division otherwise, bit for
+        // bit as before).
+        let top = power.iter().copied().fold(0.0, f64::max);
         let pmf: Vec<f64> = if total > 0.0 && total.is_finite() {
             power.iter().map(|p| p / total).collect()
+        } else if top > 0.0 && top.is_finite() {
+            let scaled: f64 = power.iter().map(|p| p / top).sum();
+            power.iter().map(|p| p / top / scaled).collect()
         } else {
             vec![1.0 / n as f64; n]
         };
@@ -154,10 +161,11 @@ fn scene_radius(scene: &Scene) -> f64 {
     if r.is_finite() && r > 0.0 { r } else { 1.0 }
 }
 
-/// The mean over RGB of the flux of `s` (see the module doc).
-fn power(scene: &Scene, s: &Source<'_>, radius: f64) -> f64 {
+/// The mean over RGB of the flux of `s` (see the module doc), as computed: infinite when it
+/// overflows.
+fn raw_power(scene: &Scene, s: &Source<'_>, radius: f64) -> f64 {
     let mean = |c: Rgb| (c.x + c.y + c.z) / 3.0;
-    let phi = match *s {
+    match *s {
         Source::Delta(k) => match scene.lights[k].kind {
             LightKind::Point { intensity, .. } => 4.0 * PI * mean(intensity),
             LightKind::Directional { irradiance, .. } => PI * radius * radius * mean(irradiance),
@@ -172,8 +180,37 @@ fn power(scene: &Scene, s: &Source<'_>, radius: f64) -> f64 {
             };
             PI * area * mean(emission)
         }
-    };
-    if phi.is_finite() { phi.max(0.0) } else { 0.0 }
+    }
+}
+
+/// The selection power of `s`: [`raw_power`], where a flux that overflows (a point light of
+/// 1.7e308: 4 pi I = inf) is the brightest there is, not nothing: clamped to the largest finite
+/// power (issue 27; [`overflowing`] names such lights for a warning). NaN cannot come from
+/// validated lights; it would count as 0.
+fn power(scene: &Scene, s: &Source<'_>, radius: f64) -> f64 {
+    let phi = raw_power(scene, s, radius);
+    if phi.is_nan() {
+        0.0
+    } else {
+        phi.clamp(0.0, f64::MAX)
+    }
+}
+
+/// The names of the lights (point, directional, emissive objects) whose flux overflows a
+/// 64-bit float, so that light sampling chooses them by a clamped power.
+#[must_use]
+pub fn overflowing(scene: &Scene) -> Vec<String> {
+    let table = LightTable::new(scene);
+    let radius = scene_radius(scene);
+    table
+        .sources
+        .iter()
+        .filter(|s| raw_power(scene, s, radius).is_infinite())
+        .map(|s| match *s {
+            Source::Delta(k) => scene.lights[k].name.clone(),
+            Source::Area { object, .. } => scene.objects[object].name.clone(),
+        })
+        .collect()
 }
 
 #[cfg(test)]
