@@ -263,7 +263,7 @@ impl<'a> OutputSet<'a> {
             .ok()
             .and_then(|v| v.parse().ok())
             .map(std::time::Duration::from_millis);
-        let renamed = cleanup::settle_all(&temps, || {
+        cleanup::settle_all(&temps, || {
             for s in &mut self.slots {
                 if let Some(p) = pause {
                     std::thread::sleep(p);
@@ -275,8 +275,7 @@ impl<'a> OutputSet<'a> {
                 }
             }
             Ok(())
-        });
-        renamed
+        })
     }
 }
 

@@ -139,7 +139,8 @@ fn outputs_that_are_one_file_however_spelled_are_refused() {
 }
 
 /// Render 24 outputs over existing ones with a pause before each rename, and interrupt it
-/// while the renames run: the signal waits for them, so every file is new (and exit 130);
+/// while the renames run: the signal waits for them, so every file is new (exit 130, or 0 when
+/// the command finishes first);
 /// interrupted before the renames (during the render), every file is old.
 #[test]
 fn an_interrupted_multi_output_render_changes_all_files_or_none() {
@@ -180,7 +181,13 @@ fn an_interrupted_multi_output_render_changes_all_files_or_none() {
             .args(["-INT", &child.id().to_string()])
             .status();
         let status = child.wait().unwrap();
-        assert_eq!(status.code(), Some(130), "pause {pause_ms}");
+        // After the point of no return the command may finish (exit 0) before the waiting
+        // signal thread exits with 130: either way every file is new.
+        let codes: &[i32] = if expect_new { &[0, 130] } else { &[130] };
+        assert!(
+            status.code().is_some_and(|c| codes.contains(&c)),
+            "pause {pause_ms}: {status:?}"
+        );
         let old = names
             .iter()
             .filter(|n| std::fs::read(dir.join(n)).unwrap() == b"old")
@@ -519,5 +526,210 @@ fn aov_renders_say_what_plain_renders_say() {
     for r in [&plain, &aov] {
         r.assert_clean();
         assert!(r.stderr.contains("clamped"), "{}", r.stderr);
+    }
+}
+
+fn lamp_scene(copies: usize, integrator: &str) -> raytree::Scene {
+    // Its front (where emission leaves) faces the floor.
+    let tri = r#"{"type": "triangle", "vertices": [[-1, 2, -1], [1, 2, -1], [0, 2, 1]], "material": "lamp"}"#;
+    let json = format!(
+        r#"{{"camera": {{"position": [0, 1, 4], "look_at": [0, 0.5, 0], "fov_y": 60, "width": 8, "height": 8}},
+        "materials": {{"lamp": {{"emission": [4, 4, 4]}}, "grey": {{"diffuse": [0.5, 0.5, 0.5]}}}},
+        "objects": [{{"type": "plane", "point": [0, 0, 0], "normal": [0, 1, 0], "material": "grey"}}, {}],
+        "settings": {{"integrator": "{integrator}", "spp": 4}}}}"#,
+        vec![tri; copies].join(",")
+    );
+    raytree::Scene::from_json(&json).unwrap()
+}
+
+/// Issue 27 item 15: 100 coincident copies of an emitting triangle light the floor as one does
+/// (before: 9.31 against 0.25 under path, 18.3 against 0.18 under Whitted), bit for bit.
+#[test]
+fn coincident_emitters_light_the_floor_once() {
+    for integrator in ["path", "whitted"] {
+        let (one, _) = raytree::render(&lamp_scene(1, integrator), &|_| {});
+        let (many, _) = raytree::render(&lamp_scene(100, integrator), &|_| {});
+        let lum = |i: &raytree::Image| i.pixels.iter().map(|p| p.x).sum::<f64>();
+        assert!(lum(&one) > 0.0, "{integrator}: the floor is lit");
+        assert_eq!(one.pixels, many.pixels, "{integrator}");
+    }
+}
+
+/// Issue 27 item 14: finite samples near f64::MAX whose sum overflows keep a finite mean (the
+/// camera sees an emitter of 1.19e308 directly, 4 samples a pixel).
+#[test]
+fn a_finite_mean_is_written_when_the_running_sum_overflows() {
+    for integrator in ["path", "whitted"] {
+        let json = format!(
+            r#"{{"camera": {{"position": [0, 0, 4], "look_at": [0, 0, 0], "fov_y": 20, "width": 4, "height": 4}},
+            "materials": {{"sun": {{"emission": [1.19e308, 1.19e308, 1.19e308]}}}},
+            "objects": [{{"type": "sphere", "center": [0, 0, 0], "radius": 3, "material": "sun"}}],
+            "settings": {{"integrator": "{integrator}", "spp": 4, "antialiasing": "uniform"}}}}"#
+        );
+        let scene = raytree::Scene::from_json(&json).unwrap();
+        let (img, stats) = raytree::render(&scene, &|_| {});
+        assert_eq!(stats.nonfinite_pixels, 0, "{integrator}");
+        for p in &img.pixels {
+            assert!(
+                p.is_finite() && (p.x - 1.19e308).abs() < 1e294,
+                "{integrator}: {p}"
+            );
+        }
+        let tree = raytree::trace_pixel(&scene, 1, 1).unwrap();
+        assert_eq!(
+            tree.radiance,
+            img.pixels[4 + 1],
+            "{integrator}: tree == pixel"
+        );
+    }
+}
+
+/// The Monte Carlo commands' property (issue 27): for any accepted scene under the path
+/// integrator, `render --aov --debug-view`, `explain` (text and JSON), `diff`, `versus` and
+/// `converge` end with exit 0 or 2 in bounded memory and time, print no non-finite token,
+/// write only finite EXR pixels, JSON without `null` numbers and Markdown without non-finite
+/// tokens, leave no temp file, and leave a user's file beside their outputs untouched.
+mod monte_carlo_commands {
+    use super::super::finite::{exr_problem, nonfinite_tokens};
+    use super::super::harness::{MEM_MIB, run_with, snapshot, temp_files};
+    use super::super::scenes::{FIXTURES, HEIGHT, TET, WIDTH, accepted, mutation, scene_text};
+    use proptest::prelude::*;
+    use proptest::test_runner::Config;
+    use std::path::Path;
+    use std::time::Duration;
+
+    fn problem(dir: &Path, args: &[&str], files: &[&str]) -> Option<String> {
+        let before = snapshot(dir);
+        let r = run_with(args, dir, MEM_MIB, Duration::from_secs(60));
+        let bad = |what: String| Some(format!("{args:?}: {what}\n{}", r.stderr));
+        if r.timed_out || !matches!(r.code, Some(0 | 2)) || r.stderr.contains("panicked") {
+            return bad(format!("exit {:?}, timed out {}", r.code, r.timed_out));
+        }
+        if !temp_files(dir).is_empty() {
+            return bad("temp files left".into());
+        }
+        for s in [&r.stdout, &r.stderr] {
+            if !nonfinite_tokens(s).is_empty() {
+                return bad(format!("non-finite tokens {:?}", nonfinite_tokens(s)));
+            }
+        }
+        let after = snapshot(dir);
+        if after.get("user.txt") != before.get("user.txt") {
+            return bad("the user's file changed".into());
+        }
+        if r.code == Some(2) {
+            return (after != before).then(|| format!("{args:?}: a refused run wrote files"));
+        }
+        for f in files {
+            let p = dir.join(f);
+            let problem = match p.extension().and_then(|e| e.to_str()) {
+                Some("exr") => exr_problem(&p),
+                Some("json") => std::fs::read_to_string(&p)
+                    .ok()
+                    .filter(|j| j.contains("null"))
+                    .map(|_| "null in JSON".to_string()),
+                _ => std::fs::read_to_string(&p)
+                    .ok()
+                    .map(|t| nonfinite_tokens(&t))
+                    .filter(|t| !t.is_empty())
+                    .map(|t| format!("{t:?}")),
+            };
+            if let Some(p) = problem {
+                return bad(format!("{f}: {p}"));
+            }
+        }
+        None
+    }
+
+    fn commands_problem(dir: &Path, (x, y): (u32, u32)) -> Option<String> {
+        let size = format!("{WIDTH}x{HEIGHT}");
+        let px = format!("{x},{y}");
+        let (s, p) = (size.as_str(), px.as_str());
+        let base = ["--integrator", "path", "--size", s];
+        let runs: [(Vec<&str>, Vec<&str>); 6] = [
+            (
+                vec![
+                    "render",
+                    "scene.json",
+                    "-o",
+                    "x.exr",
+                    "--aov",
+                    "d=C<RD>.*L",
+                    "--debug-view",
+                    "noise",
+                ],
+                vec!["x.exr", "x.d.exr"],
+            ),
+            (vec!["explain", "scene.json", "--pixel", p], vec![]),
+            (
+                vec!["explain", "scene.json", "--pixel", p, "--json"],
+                vec![],
+            ),
+            (
+                vec![
+                    "diff",
+                    "scene.json",
+                    "--pixel",
+                    p,
+                    "--a",
+                    "--spp 1",
+                    "--b",
+                    "--spp 2",
+                ],
+                vec![],
+            ),
+            (
+                vec!["versus", "scene.json", "-o", "vs"],
+                vec!["vs/breakdown.json"],
+            ),
+            (
+                vec![
+                    "converge",
+                    "scene.json",
+                    "--max-spp",
+                    "2",
+                    "--ref-spp",
+                    "4",
+                    "--series",
+                    "default,light-only",
+                    "-o",
+                    "cv",
+                ],
+                vec!["cv/converge.md", "cv/converge.json"],
+            ),
+        ];
+        runs.iter().find_map(|(args, files)| {
+            let mut a = args.clone();
+            a.extend(base);
+            let found = problem(dir, &a, files);
+            for f in ["x.exr", "x.d.exr", "x.view-noise.png"] {
+                let _ = std::fs::remove_file(dir.join(f));
+            }
+            found
+        })
+    }
+
+    proptest! {
+        #![proptest_config(Config { cases: 24, max_shrink_iters: 50, ..Config::default() })]
+
+        #[test]
+        fn every_monte_carlo_command_ends_cleanly_with_finite_output(
+            fixture in 0..FIXTURES.len(),
+            mutations in prop::collection::vec(mutation(), 1..=4),
+            pixel in (0..WIDTH, 0..HEIGHT),
+        ) {
+            let text = scene_text(fixture, &mutations, 256);
+            prop_assume!(accepted(&text));
+            let dir = tempfile::tempdir().unwrap();
+            std::fs::write(dir.path().join("scene.json"), &text).unwrap();
+            std::fs::write(dir.path().join("tet.obj"), TET).unwrap();
+            std::fs::write(dir.path().join("user.txt"), "mine").unwrap();
+            if let Some(p) = commands_problem(dir.path(), pixel) {
+                return Err(TestCaseError::fail(format!(
+                    "{p}\nfixture {} with {mutations:?}\n{text}",
+                    FIXTURES[fixture].0
+                )));
+            }
+        }
     }
 }
