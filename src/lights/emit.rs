@@ -266,5 +266,39 @@ pub fn emitters(scene: &crate::Scene) -> Vec<(String, Emitter<'_>)> {
     delta.chain(area).collect()
 }
 
+/// Emitted rays a probe of [`dark_emitters`] traces per area light (an 8 x 8 grid of origins,
+/// each with its own direction).
+pub const DARK_PROBE: u32 = 64;
+
+/// The names of the area lights of `scene` that light nothing: none of [`DARK_PROBE`] emitted
+/// rays (origins stratified over the light, cosine-weighted directions from its emitting side)
+/// meets a surface. Such a lamp faces away from everything (issue 32: an area light whose
+/// emitting side sees no surface got no warning; only its directly seen face shows).
+#[must_use]
+pub fn dark_emitters(scene: &crate::Scene) -> Vec<String> {
+    let side = f64::from(DARK_PROBE).sqrt() as u32;
+    emitters(scene)
+        .into_iter()
+        .filter(|(_, e)| matches!(e, Emitter::Area { .. }))
+        .filter(|(_, e)| {
+            !(0..DARK_PROBE).any(|k| {
+                let cell = DVec2::new(f64::from(k % side), f64::from(k / side));
+                let u_pos = (cell + 0.5) / f64::from(side);
+                // A second, shuffled grid for the directions (golden-ratio steps).
+                let u_dir = DVec2::new(
+                    (f64::from(k) * 0.618_033_988_749_895 + 0.25).fract(),
+                    (f64::from(k) + 0.5) / f64::from(DARK_PROBE),
+                );
+                e.sample_le(u_pos, u_dir).is_some_and(|r| {
+                    let t_min = 1e-7 * (1.0 + r.origin.abs().max_element());
+                    let ray = crate::math::Ray::new(r.origin, r.direction, t_min);
+                    scene.intersect(&ray, f64::INFINITY).is_some()
+                })
+            })
+        })
+        .map(|(name, _)| name)
+        .collect()
+}
+
 #[cfg(test)]
 mod tests;

@@ -11,7 +11,7 @@ mod prepared;
 #[cfg(test)]
 mod tests;
 
-pub use emit::{EmittedRay, Emitter, bounding_sphere, emitters};
+pub use emit::{DARK_PROBE, EmittedRay, Emitter, bounding_sphere, dark_emitters, emitters};
 pub use prepared::{PreparedEmitter, PreparedPlanar};
 
 use crate::math::Rgb;

@@ -242,3 +242,23 @@ fn the_flux_is_the_integral_of_emitted_radiance() {
         "sample_le's weight is pi A L"
     );
 }
+
+/// Issue 32: a lamp whose emitting side faces away from every surface is named; one facing the
+/// floor is not.
+#[test]
+fn a_lamp_facing_away_from_everything_is_dark() {
+    let scene = |edge_v: &str| {
+        crate::Scene::from_json(&format!(
+            r#"{{"camera": {{"position": [0, 1, 4], "look_at": [0, 0.5, 0], "fov_y": 60, "width": 8, "height": 8}},
+            "materials": {{"lamp": {{"emission": [4, 4, 4]}}, "grey": {{"diffuse": [0.5, 0.5, 0.5]}}}},
+            "objects": [{{"type": "plane", "point": [0, 0, 0], "normal": [0, 1, 0], "material": "grey"}},
+                        {{"type": "quad", "name": "lamp", "corner": [-0.5, 2, -0.5], "edge_u": [1, 0, 0], "edge_v": {edge_v}, "material": "lamp"}}]}}"#
+        ))
+        .unwrap()
+    };
+    // edge_u x edge_v: (1,0,0) x (0,0,1) = (0,-1,0) faces the floor; (0,0,-1) faces the sky.
+    assert!(dark_emitters(&scene("[0, 0, 1]")).is_empty());
+    assert_eq!(dark_emitters(&scene("[0, 0, -1]")), vec!["lamp".to_string()]);
+    let note = crate::effects::dark_note(&scene("[0, 0, -1]"));
+    assert!(note.contains("lamp emits towards nothing"), "{note}");
+}
