@@ -32,7 +32,7 @@ pub use error::SceneError;
 pub use generated::icosphere_scene;
 pub use locate::locate;
 pub use transform::transformed;
-pub use validate::{check_aperture, check_focus, check_settings};
+pub use validate::{check_aperture, check_focus, check_settings, validate};
 
 /// The built-in default scene: the lecture's classic (mirror ball, glass ball, checkered floor,
 /// one light). Same file as `fixtures/classic.json`.
