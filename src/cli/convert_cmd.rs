@@ -51,7 +51,46 @@ pub fn run(a: &ConvertArgs) -> Result<()> {
     let all = Inputs::new(inputs.iter().map(PathBuf::as_path));
     drop(pending);
     let pending = Pending::create(&a.output, &all)?;
-    let mut json = serde_json::to_string_pretty(&desc)?;
+    let mut json = String::new();
+    write_json(&serde_json::to_value(&desc)?, 0, &mut json);
     json.push('\n');
     pending.commit(json.as_bytes())
+}
+
+/// Pretty JSON with arrays of numbers (points, colours, triangles) on one line, so a converted
+/// mesh reads one vertex per line.
+fn write_json(v: &serde_json::Value, indent: usize, out: &mut String) {
+    use serde_json::Value;
+    let pad = |n: usize| "  ".repeat(n);
+    match v {
+        Value::Array(a) if a.iter().all(|x| !x.is_array() && !x.is_object()) => {
+            let items: Vec<String> = a.iter().map(Value::to_string).collect();
+            out.push_str(&format!("[{}]", items.join(", ")));
+        }
+        Value::Array(a) if a.is_empty() => out.push_str("[]"),
+        Value::Array(a) => {
+            out.push_str("[\n");
+            for (i, x) in a.iter().enumerate() {
+                out.push_str(&pad(indent + 1));
+                write_json(x, indent + 1, out);
+                out.push_str(if i + 1 < a.len() { ",\n" } else { "\n" });
+            }
+            out.push_str(&format!("{}]", pad(indent)));
+        }
+        Value::Object(m) if m.is_empty() => out.push_str("{}"),
+        Value::Object(m) => {
+            out.push_str("{\n");
+            for (i, (k, x)) in m.iter().enumerate() {
+                out.push_str(&format!(
+                    "{}{}: ",
+                    pad(indent + 1),
+                    Value::String(k.clone())
+                ));
+                write_json(x, indent + 1, out);
+                out.push_str(if i + 1 < m.len() { ",\n" } else { "\n" });
+            }
+            out.push_str(&format!("{}}}", pad(indent)));
+        }
+        scalar => out.push_str(&scalar.to_string()),
+    }
 }

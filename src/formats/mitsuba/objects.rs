@@ -26,6 +26,8 @@ pub struct State<'r> {
     b: Builder,
     limits: Limits,
     next_material: usize,
+    /// Materials already made from BSDFs with an id (a `<ref>` reuses them).
+    by_id: HashMap<String, String>,
 }
 
 impl<'r> State<'r> {
@@ -43,6 +45,7 @@ impl<'r> State<'r> {
             b,
             limits,
             next_material: 0,
+            by_id: HashMap::new(),
         }
     }
 
@@ -307,9 +310,26 @@ impl<'r> State<'r> {
     }
 
     /// A BSDF element as a material name in the converted scene.
-    fn bsdf(&mut self, el: &El, two_sided: bool) -> Result<String, FormatError> {
+    fn bsdf(&mut self, el: &El, two_sided: bool, id: Option<&str>) -> Result<String, FormatError> {
         let ids = self.ids();
         let el = deref(&ids, el)?;
+        let id = id.or(el.attr("id"));
+        if let Some(name) = id.and_then(|i| self.by_id.get(i)) {
+            return Ok(name.clone());
+        }
+        let name = self.bsdf_new(el, two_sided, id)?;
+        if let Some(i) = id {
+            self.by_id.insert(i.to_string(), name.clone());
+        }
+        Ok(name)
+    }
+
+    fn bsdf_new(
+        &mut self,
+        el: &El,
+        two_sided: bool,
+        id: Option<&str>,
+    ) -> Result<String, FormatError> {
         let ty = el.attr("type").unwrap_or("");
         if ty == "twosided" || matches!(ty, "mask" | "bumpmap" | "normalmap" | "blendbsdf") {
             if ty != "twosided" {
@@ -324,7 +344,7 @@ impl<'r> State<'r> {
                 .iter()
                 .find(|c| c.tag == "bsdf" || c.tag == "ref")
                 .ok_or_else(|| el.err("needs a nested <bsdf>"))?;
-            return self.bsdf(inner, true);
+            return self.bsdf_new(deref(&self.ids(), inner)?, true, id);
         }
         let ids = self.ids();
         let p = Props::new(el, &ids)?;
@@ -338,7 +358,7 @@ impl<'r> State<'r> {
             self.b.note(&el.file, el.line, format!("{}: Mitsuba shades only the front of a BSDF not wrapped in twosided; raytree shades both sides", el.label()));
         }
         self.unused(el, &p);
-        let name = el.attr("id").map_or_else(
+        let name = id.map_or_else(
             || {
                 self.next_material += 1;
                 format!("{ty}-{}", self.next_material)
@@ -445,7 +465,7 @@ impl<'r> State<'r> {
             let ids = self.ids();
             let d = deref(&ids, c)?;
             match d.tag.as_str() {
-                "bsdf" if material.is_none() => material = Some(self.bsdf(c, false)?),
+                "bsdf" if material.is_none() => material = Some(self.bsdf(c, false, None)?),
                 "bsdf" => return Err(c.err("a shape takes one <bsdf>")),
                 "emitter" => emission = Some(self.emitter(d, Some(el))?),
                 _ => {}
