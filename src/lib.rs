@@ -15,6 +15,7 @@ pub mod denoise;
 pub mod diagram;
 pub mod effects;
 pub mod finite;
+pub mod formats;
 pub mod geometry;
 #[cfg(feature = "gui")]
 pub mod gui;

@@ -42,6 +42,9 @@ pub enum Command {
     /// Whitted vs path tracing side by side, the difference image, and what Whitted misses by
     /// light path class.
     Versus(super::versus_cmd::VersusArgs),
+    /// Convert a pbrt-v4 or Mitsuba 3 scene (or raytree JSON) to raytree JSON, listing what was
+    /// approximated.
+    Convert(super::convert_cmd::ConvertArgs),
 }
 
 /// Settings every tracing command can override (defaults come from the scene file).
@@ -140,6 +143,10 @@ pub struct Overrides {
     /// scene's brightest radiance, see `raytree effects`).
     #[arg(long, value_name = "WEIGHT")]
     pub roulette_below: Option<f64>,
+    /// Mitsuba scenes: give `$NAME` the value VALUE (overrides the scene's `<default>`);
+    /// repeatable.
+    #[arg(short = 'D', value_name = "NAME=VALUE")]
+    pub define: Vec<String>,
 }
 
 /// `raytree render`.

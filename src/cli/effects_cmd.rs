@@ -21,6 +21,12 @@ pub fn run(a: &EffectsArgs) -> Result<()> {
             l.reason
         )?;
     }
+    if !loaded.notes.is_empty() {
+        sayln!("converted from another format; approximated:")?;
+        for n in &loaded.notes {
+            sayln!("  - {}", raytree::input::escape_controls(&n.to_string()))?;
+        }
+    }
     let growth = tree_growth(&loaded.scene);
     // Under the path integrator the tree and the cut are Whitted's: said first, then labelled.
     let whitted = match path_note(&loaded.scene) {

@@ -1,6 +1,7 @@
 //! Loading scenes and applying command-line overrides, with errors that name the file.
 
 use super::args::Overrides;
+use super::load_formats as lf;
 use super::say::warnln;
 use anyhow::{Result, anyhow, bail};
 use raytree::Scene;
@@ -19,26 +20,41 @@ pub struct Loaded {
     /// The files read: the scene and the OBJ meshes it references (outputs may not overwrite
     /// them).
     pub inputs: Vec<std::path::PathBuf>,
+    /// What converting a pbrt or Mitsuba scene approximated (empty for JSON).
+    pub notes: Vec<raytree::formats::Note>,
 }
 
 /// Read and validate `path` (or the built-in scene), then apply `o`.
 pub fn load(path: Option<&Path>, o: &Overrides) -> Result<Loaded> {
     let mut inputs = Vec::new();
+    let mut notes = Vec::new();
     let (mut scene, label) = match path {
         None => (Scene::default_scene(), "<built-in classic>".to_string()),
         Some(p) => {
             let label = escape_controls(&p.display().to_string()).into_owned();
             let bytes = read_limited(p, MAX_SCENE_BYTES)
                 .map_err(|e| anyhow!("cannot read scene {label}: {e}"))?;
-            let src = raytree::input::decode(bytes).map_err(|e| anyhow!("{label}:{e}"))?;
-            let dir = p.parent().unwrap_or(Path::new(""));
-            inputs.push(p.to_path_buf());
-            let scene = Scene::from_json_with(&src, &mut |file| {
-                inputs.push(dir.join(file));
-                read_obj(dir, file)
-            })
-            .map_err(|e| anyhow!("{label}:{e}"))?;
-            (scene, label)
+            let format = raytree::formats::Format::detect(&p.to_string_lossy(), &bytes);
+            if lf::is_foreign(format) {
+                inputs.push(p.to_path_buf());
+                let defines = lf::defines(&o.define)?;
+                let f = lf::convert(p, &bytes, format, &defines, &mut inputs)?;
+                for line in lf::note_lines(&f.notes) {
+                    warnln!("{line}");
+                }
+                notes = f.notes;
+                (lf::validate(&label, &f.desc)?, label)
+            } else {
+                let src = raytree::input::decode(bytes).map_err(|e| anyhow!("{label}:{e}"))?;
+                let dir = p.parent().unwrap_or(Path::new(""));
+                inputs.push(p.to_path_buf());
+                let scene = Scene::from_json_with(&src, &mut |file| {
+                    inputs.push(dir.join(file));
+                    read_obj(dir, file)
+                })
+                .map_err(|e| anyhow!("{label}:{e}"))?;
+                (scene, label)
+            }
         }
     };
     apply(&mut scene, o)?;
@@ -58,6 +74,7 @@ pub fn load(path: Option<&Path>, o: &Overrides) -> Result<Loaded> {
         scene,
         label,
         inputs,
+        notes,
     })
 }
 

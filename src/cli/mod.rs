@@ -12,6 +12,7 @@ mod cleanup;
 mod compare_cmd;
 mod converge_cmd;
 mod converge_plot;
+mod convert_cmd;
 mod cost_cmd;
 mod denoise_out;
 mod diagram_cmd;
@@ -19,6 +20,7 @@ mod diff_cmd;
 mod effects_cmd;
 mod explain_cmd;
 mod load;
+mod load_formats;
 mod output;
 mod plot;
 mod render_cmd;
@@ -61,6 +63,7 @@ pub fn run() -> ExitCode {
         Command::Explain(a) => explain_cmd::run(&a),
         Command::Diff(a) => diff_cmd::run(&a),
         Command::Versus(a) => versus_cmd::run(&a),
+        Command::Convert(a) => convert_cmd::run(&a),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,

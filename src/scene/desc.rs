@@ -210,6 +210,23 @@ pub enum ObjectDesc {
         #[serde(default)]
         name: Option<String>,
     },
+    /// A triangle mesh given inline in world space (what `raytree convert` writes for meshes
+    /// of other formats, so a converted scene is self-contained).
+    Trimesh {
+        /// Vertex positions.
+        positions: Vec<Triple>,
+        /// Triangles as three 0-based indices into `positions`; the front of each is where
+        /// `(b - a) x (c - a)` points, unless `normals` say otherwise.
+        indices: Vec<[u32; 3]>,
+        /// Per-vertex shading normals, one per position (absent: flat).
+        #[serde(default, skip_serializing_if = "Option::is_none")]
+        normals: Option<Vec<Triple>>,
+        /// Material name.
+        material: String,
+        /// Display name.
+        #[serde(default)]
+        name: Option<String>,
+    },
 }
 
 /// A mesh's scale: one number or one per axis.
@@ -238,7 +255,8 @@ impl ObjectDesc {
             | ObjectDesc::Triangle { material, .. }
             | ObjectDesc::Quad { material, .. }
             | ObjectDesc::Box { material, .. }
-            | ObjectDesc::Mesh { material, .. } => material,
+            | ObjectDesc::Mesh { material, .. }
+            | ObjectDesc::Trimesh { material, .. } => material,
         }
     }
 
@@ -251,7 +269,8 @@ impl ObjectDesc {
             | ObjectDesc::Triangle { name, .. }
             | ObjectDesc::Quad { name, .. }
             | ObjectDesc::Box { name, .. }
-            | ObjectDesc::Mesh { name, .. } => name.as_deref(),
+            | ObjectDesc::Mesh { name, .. }
+            | ObjectDesc::Trimesh { name, .. } => name.as_deref(),
         }
     }
 
@@ -265,6 +284,7 @@ impl ObjectDesc {
             ObjectDesc::Quad { .. } => "quad",
             ObjectDesc::Box { .. } => "box",
             ObjectDesc::Mesh { .. } => "mesh",
+            ObjectDesc::Trimesh { .. } => "trimesh",
         }
     }
 }

@@ -4,7 +4,8 @@ use super::SceneError;
 use super::check::Check;
 use super::desc::{ObjectDesc, ScaleDesc};
 use crate::geometry::Shape;
-use crate::mesh::{Mesh, MeshData, Transform};
+use crate::mesh::{Face, Mesh, MeshData, MeshNormals, Transform};
+use glam::DAffine3;
 use glam::DVec3;
 use std::sync::Arc;
 
@@ -50,6 +51,55 @@ pub(super) fn shape(
         None => ck.fail(
             format!("{p}.file"),
             format!("{file}: every triangle has zero area"),
+        ),
+    }
+}
+
+/// The world-space mesh of the inline `trimesh` object `o` at JSON path `p`.
+pub(super) fn inline(ck: &Check, p: &str, o: &ObjectDesc) -> Result<Shape, SceneError> {
+    let ObjectDesc::Trimesh {
+        positions,
+        indices,
+        normals,
+        ..
+    } = o
+    else {
+        unreachable!("called for trimesh objects only");
+    };
+    let mut data = MeshData::default();
+    for (k, v) in positions.iter().enumerate() {
+        data.positions
+            .push(ck.vec(&format!("{p}.positions[{k}]"), *v)?);
+    }
+    let n = positions.len();
+    if let Some(ns) = normals {
+        if ns.len() != n {
+            return ck.fail(
+                format!("{p}.normals"),
+                format!("has {} normals for {n} positions", ns.len()),
+            );
+        }
+        for (k, v) in ns.iter().enumerate() {
+            data.normals.push(ck.vec(&format!("{p}.normals[{k}]"), *v)?);
+        }
+    }
+    for (k, t) in indices.iter().enumerate() {
+        if let Some(bad) = t.iter().find(|&&i| i as usize >= n) {
+            return ck.fail(
+                format!("{p}.indices[{k}]"),
+                format!("index {bad} out of range ({n} positions)"),
+            );
+        }
+        data.faces.push(Face {
+            vertices: *t,
+            normals: normals.as_ref().map(|_| *t),
+        });
+    }
+    match Mesh::new(&data, &DAffine3::IDENTITY, MeshNormals::File) {
+        Some(m) => Ok(Shape::Mesh(Arc::new(m))),
+        None => ck.fail(
+            format!("{p}.indices"),
+            "every triangle has zero area (or there are none)",
         ),
     }
 }

@@ -33,7 +33,7 @@ pub use generated::icosphere_scene;
 pub use locate::locate;
 pub use transform::transformed;
 pub use validate::{
-    MAX_RR_DEPTH, MAX_SPP, check_aperture, check_focus, check_rr_depth, check_settings,
+    MAX_RR_DEPTH, MAX_SPP, check_aperture, check_focus, check_rr_depth, check_settings, validate,
 };
 
 /// The built-in default scene: the lecture's classic (mirror ball, glass ball, checkered floor,

@@ -322,6 +322,7 @@ fn object(
             Shape::Box { min: lo, max: hi }
         }
         ObjectDesc::Mesh { .. } => super::mesh_object::shape(ck, &p, o, load_mesh)?,
+        ObjectDesc::Trimesh { .. } => super::mesh_object::inline(ck, &p, o)?,
     };
     let name = o
         .name()

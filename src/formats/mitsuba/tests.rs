@@ -1,0 +1,266 @@
+//! Mitsuba front-end: one test per element family and per convention in
+//! `/work/shared/notes/scene-format-conventions.md`.
+
+use super::convert;
+use crate::formats::{Converted, FormatError, Limits};
+use crate::scene::desc::{LightDesc, ObjectDesc, TextureDesc};
+use crate::scene::validate;
+use glam::DVec3;
+use std::collections::HashMap;
+
+const SENSOR: &str = r#"<sensor type="perspective"><float name="fov" value="40"/>
+    <transform name="to_world"><lookat origin="0, 0, 5" target="0, 0, 0" up="0, 1, 0"/></transform>
+    <film type="hdrfilm"><integer name="width" value="64"/><integer name="height" value="48"/></film></sensor>"#;
+
+fn run_with(
+    src: &str,
+    fs: &HashMap<String, Vec<u8>>,
+    defines: &[(String, String)],
+) -> Result<Converted, FormatError> {
+    let mut res = |p: &str| fs.get(p).cloned().ok_or_else(|| "no such file".to_string());
+    convert(
+        "s.xml",
+        src.as_bytes(),
+        defines,
+        &mut res,
+        Limits::default(),
+    )
+}
+
+fn scene(body: &str) -> String {
+    format!("<scene version=\"3.0.0\">\n{SENSOR}\n{body}\n</scene>\n")
+}
+
+fn run(body: &str) -> Converted {
+    run_with(&scene(body), &HashMap::new(), &[]).unwrap()
+}
+
+fn fail(body: &str) -> FormatError {
+    run_with(&scene(body), &HashMap::new(), &[]).unwrap_err()
+}
+
+#[test]
+fn sensor_is_right_handed_with_x_fov_by_default() {
+    let c = run(
+        r#"<shape type="sphere"><point name="center" x="1" y="0" z="0"/><float name="radius" value="0.2"/></shape>"#,
+    );
+    let s = validate(&c.desc, "", &mut |_| Err(String::new())).unwrap();
+    let ObjectDesc::Sphere { center, .. } = c.desc.objects[0] else {
+        panic!()
+    };
+    // Looking down -z with y up, world +x is image-right; no mirror needed.
+    assert!((DVec3::from(center) - s.camera.position).dot(s.camera.right) > 0.5);
+    assert!(!c.notes.iter().any(|n| n.message.contains("left-handed")));
+    // fov_axis x (Mitsuba's default) on a 64x48 film.
+    let want = 2.0 * (20f64.to_radians().tan() * 48.0 / 64.0).atan().to_degrees();
+    assert!((c.desc.camera.fov_y - want).abs() < 1e-12);
+    let smaller = run_with(
+        &scene("").replace(
+            r#"<float name="fov" value="40"/>"#,
+            r#"<float name="fov" value="40"/><string name="fov_axis" value="smaller"/>"#,
+        ),
+        &HashMap::new(),
+        &[],
+    )
+    .unwrap();
+    assert!((smaller.desc.camera.fov_y - 40.0).abs() < 1e-12);
+}
+
+#[test]
+fn depth_counts_segments_and_filters_default_to_gaussian() {
+    let c = run(r#"<integrator type="path"><integer name="max_depth" value="2"/></integrator>"#);
+    // Mitsuba's max_depth 2 is direct light: raytree's 0.
+    assert_eq!(c.desc.settings.max_depth, 0);
+    assert!(
+        matches!(c.desc.settings.filter, crate::scene::FilterDesc::Gaussian { sigma, radius: Some(r) } if sigma == 0.5 && r == 2.0)
+    );
+    let c = run(r#"<integrator type="path"><integer name="max_depth" value="8"/></integrator>"#);
+    assert_eq!(c.desc.settings.max_depth, 6);
+}
+
+#[test]
+fn shapes_transforms_and_emitters() {
+    let c = run(r#"
+      <shape type="rectangle"><transform name="to_world"><scale value="0.5"/><rotate x="1" angle="90"/><translate y="2"/></transform>
+        <emitter type="area"><rgb name="radiance" value="17, 12, 4"/></emitter>
+        <bsdf type="diffuse"><rgb name="reflectance" value="0"/></bsdf></shape>
+      <shape type="cube"><transform name="to_world"><scale x="0.5" y="1" z="2"/><translate x="3"/></transform></shape>
+      <emitter type="point"><point name="position" value="0, 4, 0"/><rgb name="intensity" value="2"/></emitter>
+      <emitter type="directional"><vector name="direction" value="0, -1, 0"/><rgb name="irradiance" value="1"/></emitter>
+      <emitter type="constant"><rgb name="radiance" value="0.25"/></emitter>"#);
+    let ObjectDesc::Quad {
+        corner,
+        edge_u,
+        edge_v,
+        material,
+        ..
+    } = &c.desc.objects[0]
+    else {
+        panic!("{:?}", c.desc.objects[0])
+    };
+    // Rotating +z by +90 degrees about x gives -y: the lamp faces down.
+    let n = DVec3::from(*edge_u).cross(DVec3::from(*edge_v));
+    assert!(n.y < 0.0 && n.x.abs() < 1e-12, "{n}");
+    assert!(
+        (DVec3::from(*corner) - DVec3::new(-0.5, 2.0, -0.5)).length() < 1e-12,
+        "{corner:?}"
+    );
+    assert_eq!(c.desc.materials[material].emission, [17.0, 12.0, 4.0]);
+    assert!(
+        matches!(
+            c.desc.objects[1],
+            ObjectDesc::Box {
+                min: [2.5, -1.0, -2.0],
+                max: [3.5, 1.0, 2.0],
+                ..
+            }
+        ),
+        "{:?}",
+        c.desc.objects[1]
+    );
+    assert!(matches!(
+        c.desc.lights[0],
+        LightDesc::Point {
+            position: [0.0, 4.0, 0.0],
+            intensity: [2.0, 2.0, 2.0],
+            ..
+        }
+    ));
+    assert!(matches!(
+        c.desc.lights[1],
+        LightDesc::Directional {
+            direction: [0.0, -1.0, 0.0],
+            ..
+        }
+    ));
+    assert_eq!(c.desc.background, [0.25; 3]);
+}
+
+#[test]
+fn bsdfs_map_with_notes_and_one_sidedness() {
+    let c = run(r#"
+      <bsdf type="twosided" id="white"><bsdf type="diffuse"><rgb name="reflectance" value="0.7"/></bsdf></bsdf>
+      <bsdf type="roughconductor" id="gold"><string name="material" value="Au"/></bsdf>
+      <bsdf type="roughdielectric" id="glass"><string name="int_ior" value="bk7"/><float name="alpha" value="0.2"/><string name="distribution" value="ggx"/></bsdf>
+      <bsdf type="plastic" id="red"><rgb name="diffuse_reflectance" value="0.5, 0, 0"/></bsdf>
+      <shape type="sphere"><ref id="white"/></shape>
+      <shape type="sphere"><ref id="gold"/></shape>
+      <shape type="sphere"><ref id="glass"/></shape>
+      <shape type="sphere"><ref id="red"/></shape>
+      <shape type="sphere"><bsdf type="diffuse"/></shape>"#);
+    let m = |i: usize| &c.desc.materials[c.desc.objects[i].material()];
+    assert!(matches!(
+        m(0).diffuse,
+        Some(TextureDesc::Solid([0.7, 0.7, 0.7]))
+    ));
+    // Rough BSDFs default to Beckmann alpha 0.1: the same GGX alpha, noted.
+    assert_eq!(m(1).roughness, 0.1);
+    assert!(c.notes.iter().any(|n| n.message.contains("Beckmann")));
+    assert!((m(2).ior.unwrap() - 1.5046 / 1.000_277).abs() < 1e-12);
+    assert_eq!(m(2).roughness, 0.2);
+    assert!(m(3).reflectivity[0] > 0.03 && m(3).reflectivity[0] < 0.05);
+    // Mitsuba's BSDFs are one-sided unless wrapped in twosided: noted, except for twosided.
+    let one_sided: Vec<usize> = c
+        .notes
+        .iter()
+        .filter(|n| n.message.contains("only the front"))
+        .map(|n| n.line)
+        .collect();
+    assert_eq!(one_sided.len(), 3, "{:?}", c.notes);
+}
+
+#[test]
+fn forward_refs_defaults_defines_and_includes() {
+    let fs: HashMap<String, Vec<u8>> = [("parts/inc.xml".to_string(), br#"<scene version="3.0.0"><shape type="sphere"><float name="radius" value="$r"/><ref id="later"/></shape></scene>"#.to_vec())].into();
+    let src = scene(
+        r#"<default name="r" value="2"/><include filename="parts/inc.xml"/><bsdf type="diffuse" id="later"/>"#,
+    );
+    let c = run_with(&src, &fs, &[]).unwrap();
+    assert!(matches!(
+        c.desc.objects[0],
+        ObjectDesc::Sphere { radius: 2.0, .. }
+    ));
+    let c = run_with(&src, &fs, &[("r".into(), "3".into())]).unwrap();
+    assert!(matches!(
+        c.desc.objects[0],
+        ObjectDesc::Sphere { radius: 3.0, .. }
+    ));
+}
+
+#[test]
+fn old_spellings_are_upgraded() {
+    let src = r#"<scene version="0.6.0"><sensor type="perspective"><float name="fov" value="30"/><string name="fovAxis" value="y"/>
+      <transform name="toWorld"><lookAt origin="0, 0, 5" target="0, 0, 0" up="0, 1, 0"/></transform></sensor>
+      <shape type="sphere"><bsdf type="dielectric"><float name="intIOR" value="1.33"/><float name="extIOR" value="1"/></bsdf></shape></scene>"#;
+    let c = run_with(src, &HashMap::new(), &[]).unwrap();
+    assert_eq!(c.desc.camera.fov_y, 30.0);
+    assert_eq!(c.desc.camera.position, [0.0, 0.0, 5.0]);
+    assert_eq!(
+        c.desc.materials[c.desc.objects[0].material()].ior,
+        Some(1.33)
+    );
+}
+
+#[test]
+fn ply_meshes_are_smoothed_unless_face_normals() {
+    let ply = b"ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\nproperty float z\n\
+        element face 1\nproperty list uchar int vertex_indices\nend_header\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n";
+    let fs: HashMap<String, Vec<u8>> = [("m.ply".to_string(), ply.to_vec())].into();
+    let smooth = run_with(
+        &scene(r#"<shape type="ply"><string name="filename" value="m.ply"/></shape>"#),
+        &fs,
+        &[],
+    )
+    .unwrap();
+    assert!(matches!(
+        &smooth.desc.objects[0],
+        ObjectDesc::Trimesh {
+            normals: Some(_),
+            ..
+        }
+    ));
+    let flat = run_with(&scene(r#"<shape type="ply"><string name="filename" value="m.ply"/><boolean name="face_normals" value="true"/></shape>"#), &fs, &[]).unwrap();
+    assert!(matches!(
+        &flat.desc.objects[0],
+        ObjectDesc::Trimesh { normals: None, .. }
+    ));
+}
+
+#[test]
+fn errors_have_positions_and_name_the_element() {
+    let e = fail(r#"<shape type="sphere"><ref id="nowhere"/></shape>"#);
+    assert!(e.message.contains("undefined id") && e.line == 5, "{e}");
+    let e = fail(r#"<bsdf type="diffuse" id="a"/><bsdf type="diffuse" id="a"/>"#);
+    assert!(e.message.contains("duplicate id"), "{e}");
+    let e = fail(r#"<shape type="sphere"><float name="radius" value="$nope"/></shape>"#);
+    assert!(
+        e.message.contains("$nope") && e.message.contains("-D nope"),
+        "{e}"
+    );
+    let e =
+        fail(r#"<shape type="serialized"><string name="filename" value="x.serialized"/></shape>"#);
+    assert!(e.message.contains("serialized"), "{e}");
+    let e = fail(r#"<shape type="sphere"><integer name="radius" value="1.5"/></shape>"#);
+    assert!(
+        e.message.contains("not a number") || e.message.contains("radius"),
+        "{e}"
+    );
+    let e = fail(r#"<shape type="obj"><string name="filename" value="missing.obj"/></shape>"#);
+    assert!(e.message.contains("missing.obj"), "{e}");
+    let e = run_with(
+        "<scene version=\"3.0.0\">\n<shape type=\"sphere\">\n</scene>",
+        &HashMap::new(),
+        &[],
+    )
+    .unwrap_err();
+    assert!(e.message.contains("malformed XML") && e.line == 3, "{e}");
+    let fs: HashMap<String, Vec<u8>> = [(
+        "a.xml".to_string(),
+        br#"<scene version="3.0.0"><include filename="s.xml"/></scene>"#.to_vec(),
+    )]
+    .into();
+    let e = run_with(&scene(r#"<include filename="a.xml"/>"#), &fs, &[]).unwrap_err();
+    assert!(e.message.contains("include cycle"), "{e}");
+    assert!(fail(r#"<shape type="sphere"><transform name="to_world"><scale value="0"/></transform></shape>"#).message.contains("zero"));
+    assert!(fail("<frobnicate/>").message.contains("unknown element"));
+}

@@ -1,0 +1,291 @@
+//! The Mitsuba XML as an owned tree: includes spliced, `$variables` substituted, old spellings
+//! upgraded, ids indexed.
+
+use crate::formats::{FormatError, Limits, Resolver, relative_to};
+use std::collections::HashMap;
+use std::rc::Rc;
+
+/// An element with its attributes, children and position.
+#[derive(Clone, Debug)]
+pub struct El {
+    /// Tag name (upgraded: `lookAt` -> `lookat`).
+    pub tag: String,
+    /// Attributes in order (values substituted; `name` upgraded).
+    pub attrs: Vec<(String, String)>,
+    /// Child elements.
+    pub children: Vec<El>,
+    /// The file it is in.
+    pub file: Rc<str>,
+    /// 1-based line.
+    pub line: usize,
+    /// 1-based column.
+    pub column: usize,
+}
+
+impl El {
+    /// Attribute `name`.
+    #[must_use]
+    pub fn attr(&self, name: &str) -> Option<&str> {
+        self.attrs
+            .iter()
+            .find(|(k, _)| k == name)
+            .map(|(_, v)| v.as_str())
+    }
+
+    /// `<tag type="..." id="...">` for messages.
+    #[must_use]
+    pub fn label(&self) -> String {
+        let mut s = format!("<{}", self.tag);
+        for k in ["type", "name", "id"] {
+            if let Some(v) = self.attr(k) {
+                s.push_str(&format!(" {k}=\"{v}\""));
+            }
+        }
+        s.push('>');
+        s
+    }
+
+    /// An error at this element.
+    #[must_use]
+    pub fn err(&self, msg: impl std::fmt::Display) -> FormatError {
+        FormatError {
+            file: self.file.to_string(),
+            line: self.line,
+            column: self.column,
+            message: format!("{}: {msg}", self.label()),
+        }
+    }
+}
+
+/// Reads the XML of the top file and its includes.
+pub struct Reader<'r> {
+    pub res: &'r mut dyn Resolver,
+    limits: Limits,
+    vars: HashMap<String, String>,
+    defines: HashMap<String, String>,
+    open: Vec<String>,
+    pub files: usize,
+    /// Objects by id.
+    pub ids: Rc<HashMap<String, El>>,
+    /// Version of the top file (major, minor).
+    pub version: (u32, u32),
+}
+
+impl<'r> Reader<'r> {
+    pub fn new(res: &'r mut dyn Resolver, limits: Limits, defines: &[(String, String)]) -> Self {
+        Self {
+            res,
+            limits,
+            vars: HashMap::new(),
+            defines: defines.iter().cloned().collect(),
+            open: Vec::new(),
+            files: 0,
+            ids: Rc::new(HashMap::new()),
+            version: (3, 0),
+        }
+    }
+
+    /// Read `file`, which must hold `<scene version=...>`.
+    pub fn read_root(&mut self, file: &str, bytes: &[u8]) -> Result<El, FormatError> {
+        let root = self.read_file(file, bytes, 0, true)?;
+        let mut ids = HashMap::new();
+        index(&root, &mut ids, true)?;
+        self.ids = Rc::new(ids);
+        Ok(root)
+    }
+
+    fn read_file(
+        &mut self,
+        file: &str,
+        bytes: &[u8],
+        depth: usize,
+        top: bool,
+    ) -> Result<El, FormatError> {
+        let text = crate::formats::text(file, bytes)?;
+        let doc = roxmltree::Document::parse(text).map_err(|e| {
+            let p = e.pos();
+            FormatError {
+                file: file.to_string(),
+                line: p.row as usize,
+                column: p.col as usize,
+                message: format!("malformed XML: {e}"),
+            }
+        })?;
+        let root = doc.root_element();
+        let f: Rc<str> = Rc::from(file);
+        let pos = doc.text_pos_at(root.range().start);
+        let here = |msg: String| FormatError {
+            file: file.to_string(),
+            line: pos.row as usize,
+            column: pos.col as usize,
+            message: msg,
+        };
+        if root.tag_name().name() != "scene" {
+            return Err(here(format!(
+                "the root element is <{}>, not <scene>",
+                root.tag_name().name()
+            )));
+        }
+        let version = root
+            .attribute("version")
+            .ok_or_else(|| here("<scene> needs a version attribute".into()))?;
+        let v = parse_version(version)
+            .ok_or_else(|| here(format!("<scene>: bad version {version:?}")))?;
+        if top {
+            self.version = v;
+        }
+        self.open.push(file.to_string());
+        let el = self.element(&doc, root, &f, depth)?;
+        self.open.pop();
+        Ok(el)
+    }
+
+    fn element(
+        &mut self,
+        doc: &roxmltree::Document,
+        n: roxmltree::Node,
+        file: &Rc<str>,
+        depth: usize,
+    ) -> Result<El, FormatError> {
+        let pos = doc.text_pos_at(n.range().start);
+        let old = self.version.0 < 3;
+        let mut tag = n.tag_name().name().to_string();
+        if old && tag == "lookAt" {
+            tag = "lookat".into();
+        }
+        let mut el = El {
+            tag,
+            attrs: Vec::new(),
+            children: Vec::new(),
+            file: file.clone(),
+            line: pos.row as usize,
+            column: pos.col as usize,
+        };
+        for a in n.attributes() {
+            let value = self.substitute(&el, a.value())?;
+            let value = if old && a.name() == "name" {
+                snake(&value)
+            } else {
+                value
+            };
+            el.attrs.push((a.name().to_string(), value));
+        }
+        for c in n.children().filter(roxmltree::Node::is_element) {
+            let child = self.element(doc, c, file, depth)?;
+            match child.tag.as_str() {
+                "default" => {
+                    let (Some(k), Some(v)) = (child.attr("name"), child.attr("value")) else {
+                        return Err(child.err("needs name and value"));
+                    };
+                    if !self.defines.contains_key(k) {
+                        self.vars.insert(k.to_string(), v.to_string());
+                    }
+                }
+                "include" => {
+                    let name = child
+                        .attr("filename")
+                        .ok_or_else(|| child.err("needs a filename"))?;
+                    let path = relative_to(file, name);
+                    if depth + 1 > self.limits.include_depth {
+                        return Err(child.err(format!(
+                            "nested deeper than {} files",
+                            self.limits.include_depth
+                        )));
+                    }
+                    if self.open.contains(&path) {
+                        return Err(child.err(format!(
+                            "include cycle ({} -> {path})",
+                            self.open.join(" -> ")
+                        )));
+                    }
+                    self.files += 1;
+                    if self.files > self.limits.files {
+                        return Err(
+                            child.err(format!("more than {} files read", self.limits.files))
+                        );
+                    }
+                    let bytes = self
+                        .res
+                        .read(&path)
+                        .map_err(|e| child.err(format!("{path:?}: {e}")))?;
+                    let inc = self.read_file(&path, &bytes, depth + 1, false)?;
+                    el.children.extend(inc.children);
+                }
+                _ => el.children.push(child),
+            }
+        }
+        Ok(el)
+    }
+
+    /// `$name` replaced by its value (`-D` first, then `<default>`); an unknown one is an error.
+    fn substitute(&self, el: &El, v: &str) -> Result<String, FormatError> {
+        if !v.contains('$') {
+            return Ok(v.to_string());
+        }
+        let mut out = String::new();
+        let mut rest = v;
+        while let Some(i) = rest.find('$') {
+            out.push_str(&rest[..i]);
+            let after = &rest[i + 1..];
+            let n = after
+                .find(|c: char| !(c.is_ascii_alphanumeric() || c == '_'))
+                .unwrap_or(after.len());
+            let name = &after[..n];
+            let val = self
+                .defines
+                .get(name)
+                .or_else(|| self.vars.get(name))
+                .ok_or_else(|| {
+                    el.err(format!(
+                        "${name} has no value: give it a <default> or -D {name}=VALUE"
+                    ))
+                })?;
+            out.push_str(val);
+            rest = &after[n..];
+        }
+        out.push_str(rest);
+        Ok(out)
+    }
+}
+
+fn parse_version(v: &str) -> Option<(u32, u32)> {
+    let mut it = v.split('.');
+    let major = it.next()?.parse().ok()?;
+    let minor = it.next().map_or(Some(0), |m| m.parse().ok())?;
+    Some((major, minor))
+}
+
+/// `camelCase` -> `camel_case` (`intIOR` -> `int_ior`, `toWorld` -> `to_world`).
+#[must_use]
+pub fn snake(s: &str) -> String {
+    let mut out = String::new();
+    let mut prev_lower = false;
+    for c in s.chars() {
+        if c.is_ascii_uppercase() && prev_lower {
+            out.push('_');
+        }
+        prev_lower = c.is_ascii_lowercase() || c.is_ascii_digit();
+        out.push(c.to_ascii_lowercase());
+    }
+    out
+}
+
+/// Index objects with an `id`; duplicates are an error.
+fn index(el: &El, ids: &mut HashMap<String, El>, root: bool) -> Result<(), FormatError> {
+    if !root
+        && el.tag != "ref"
+        && let Some(id) = el.attr("id")
+    {
+        if let Some(first) = ids.get(id) {
+            return Err(el.err(format!(
+                "duplicate id {id:?} (first at {}:{})",
+                first.line, first.column
+            )));
+        }
+        ids.insert(id.to_string(), el.clone());
+    }
+    for c in &el.children {
+        index(c, ids, false)?;
+    }
+    Ok(())
+}

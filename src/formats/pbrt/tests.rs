@@ -1,0 +1,363 @@
+//! pbrt-v4 front-end: one test per directive family and per convention in
+//! `/work/shared/notes/scene-format-conventions.md`.
+
+use super::convert;
+use crate::formats::{Converted, FormatError, Limits};
+use crate::scene::desc::{LightDesc, ObjectDesc, TextureDesc};
+use crate::scene::validate;
+use glam::DVec3;
+use std::collections::HashMap;
+
+const CAMERA: &str = "Scale -1 1 1\nLookAt 0 0 5  0 0 0  0 1 0\nCamera \"perspective\" \"float fov\" 40\n\
+    Film \"rgb\" \"integer xresolution\" 64 \"integer yresolution\" 48\n";
+
+fn files(extra: &[(&str, &[u8])]) -> HashMap<String, Vec<u8>> {
+    extra
+        .iter()
+        .map(|(k, v)| ((*k).to_string(), v.to_vec()))
+        .collect()
+}
+
+fn run_with(src: &str, fs: &HashMap<String, Vec<u8>>) -> Result<Converted, FormatError> {
+    let mut res = |p: &str| fs.get(p).cloned().ok_or_else(|| "no such file".to_string());
+    convert("s.pbrt", src.as_bytes(), &mut res, Limits::default())
+}
+
+fn run(world: &str) -> Converted {
+    run_with(&format!("{CAMERA}WorldBegin\n{world}"), &HashMap::new()).unwrap()
+}
+
+fn fail(src: &str) -> FormatError {
+    run_with(src, &HashMap::new()).unwrap_err()
+}
+
+fn sphere_center(c: &Converted, i: usize) -> DVec3 {
+    match &c.desc.objects[i] {
+        ObjectDesc::Sphere { center, .. } => DVec3::from(*center),
+        o => panic!("{o:?}"),
+    }
+}
+
+#[test]
+fn transform_is_column_major_and_replaces_concat_multiplies() {
+    let c = run(
+        "Translate 1 0 0\nTransform [1 0 0 0  0 1 0 0  0 0 1 0  5 6 7 1]\nShape \"sphere\"\n\
+         AttributeBegin\nTranslate 1 0 0\nConcatTransform [2 0 0 0  0 2 0 0  0 0 2 0  1 0 0 1]\n\
+         Shape \"sphere\" \"float radius\" 0.5\nAttributeEnd\nShape \"sphere\"\n",
+    );
+    assert_eq!(sphere_center(&c, 0), DVec3::new(5.0, 6.0, 7.0));
+    // Translate(1) * Concat(scale 2, translate 1): the origin goes to 1 + 1.
+    assert_eq!(sphere_center(&c, 1), DVec3::new(7.0, 6.0, 7.0));
+    let ObjectDesc::Sphere { radius, .. } = c.desc.objects[1] else {
+        panic!()
+    };
+    assert_eq!(radius, 1.0);
+    // AttributeEnd restores the matrix.
+    assert_eq!(sphere_center(&c, 2), DVec3::new(5.0, 6.0, 7.0));
+}
+
+/// pbrt's camera space is left-handed with +x image-right: `Scale -1 1 1` before `LookAt` makes
+/// world +x image-right; without it, world +x is on the image's left, and raytree mirrors the
+/// world to keep it there.
+#[test]
+fn camera_handedness_keeps_image_right_where_pbrt_has_it() {
+    let side = |prefix: &str| {
+        let src = format!(
+            "{prefix}LookAt 0 0 5  0 0 0  0 1 0\nCamera \"perspective\"\nWorldBegin\n\
+             Translate 1 0 0\nShape \"sphere\" \"float radius\" 0.2\n"
+        );
+        let c = run_with(&src, &HashMap::new()).unwrap();
+        let scene = validate(&c.desc, "", &mut |_| Err(String::new())).unwrap();
+        let p = sphere_center(&c, 0);
+        (p - scene.camera.position).dot(scene.camera.right)
+    };
+    assert!(side("Scale -1 1 1\n") > 0.5);
+    assert!(side("") < -0.5);
+    let c = run_with(
+        "LookAt 0 0 5 0 0 0 0 1 0\nCamera \"perspective\"\nWorldBegin\n",
+        &HashMap::new(),
+    )
+    .unwrap();
+    assert!(c.notes.iter().any(|n| n.message.contains("left-handed")));
+}
+
+#[test]
+fn fov_spans_the_shorter_image_axis() {
+    let fov = |w: u32, h: u32| {
+        let src = format!(
+            "Camera \"perspective\" \"float fov\" 30\nFilm \"rgb\" \"integer xresolution\" {w} \"integer yresolution\" {h}\nWorldBegin\n"
+        );
+        run_with(&src, &HashMap::new()).unwrap().desc.camera.fov_y
+    };
+    assert_eq!(fov(200, 100), 30.0);
+    let want = 2.0 * (15f64.to_radians().tan() * 2.0).atan().to_degrees();
+    assert!((fov(100, 200) - want).abs() < 1e-12);
+}
+
+#[test]
+fn settings_map_spp_depth_and_filters() {
+    let c = run_with(&format!("Sampler \"zsobol\" \"integer pixelsamples\" 64\nIntegrator \"volpath\" \"integer maxdepth\" 1\nPixelFilter \"triangle\"\n{CAMERA}WorldBegin\n"), &HashMap::new()).unwrap();
+    // pbrt's maxdepth 1 is direct light only: raytree's max_depth 0.
+    assert_eq!(c.desc.settings.max_depth, 0);
+    assert_eq!(c.desc.settings.spp, 64);
+    assert_eq!(
+        c.desc.settings.filter,
+        crate::scene::FilterDesc::Tent { radius: 2.0 }
+    );
+    // Defaults: maxdepth 5, 16 spp, Gaussian.
+    let d = run("");
+    assert_eq!((d.desc.settings.max_depth, d.desc.settings.spp), (4, 16));
+    assert!(matches!(
+        d.desc.settings.filter,
+        crate::scene::FilterDesc::Gaussian { .. }
+    ));
+}
+
+#[test]
+fn materials_map_with_notes() {
+    let c = run(
+        "MakeNamedMaterial \"gold\" \"string type\" \"conductor\" \"spectrum eta\" \"metal-Au-eta\" \"spectrum k\" \"metal-Au-k\" \"float roughness\" 0.04\n\
+        NamedMaterial \"gold\"\nShape \"sphere\"\n\
+        Material \"dielectric\" \"float roughness\" 0.09 \"bool remaproughness\" false\nShape \"sphere\"\n\
+        Material \"coateddiffuse\" \"rgb reflectance\" [0.5 0.5 0.5]\nShape \"sphere\"\n",
+    );
+    let gold = &c.desc.materials["gold"];
+    // Normal-incidence Fresnel of gold: red far above blue; alpha = sqrt(0.04).
+    assert!(
+        gold.reflectivity[0] > 0.9 && gold.reflectivity[2] < 0.5,
+        "{:?}",
+        gold.reflectivity
+    );
+    assert!((gold.roughness - 0.2).abs() < 1e-15);
+    let glass = c
+        .desc
+        .materials
+        .values()
+        .find(|m| m.ior == Some(1.5))
+        .unwrap();
+    // remaproughness false: alpha is the roughness.
+    assert_eq!(glass.roughness, 0.09);
+    assert!(
+        c.notes
+            .iter()
+            .any(|n| n.message.contains("conductor") && n.line == 6)
+    );
+    assert!(c.notes.iter().any(|n| n.message.contains("coated diffuse")));
+}
+
+#[test]
+fn area_lights_emit_and_two_sided_is_noted() {
+    let c = run(
+        "AttributeBegin\nAreaLightSource \"diffuse\" \"rgb L\" [1 2 3] \"float scale\" 2 \"bool twosided\" true\n\
+        Shape \"bilinearmesh\" \"point3 P\" [0 0 0  1 0 0  0 1 0  1 1 0]\nAttributeEnd\nShape \"sphere\"\n",
+    );
+    let ObjectDesc::Quad {
+        material,
+        edge_u,
+        edge_v,
+        ..
+    } = &c.desc.objects[0]
+    else {
+        panic!("{:?}", c.desc.objects[0])
+    };
+    assert_eq!(c.desc.materials[material].emission, [2.0, 4.0, 6.0]);
+    assert_eq!((*edge_u, *edge_v), ([1.0, 0.0, 0.0], [0.0, 1.0, 0.0]));
+    assert!(
+        c.notes
+            .iter()
+            .any(|n| n.message.contains("two-sided") && n.line == 7)
+    );
+    // The sphere after AttributeEnd does not emit.
+    assert_eq!(
+        c.desc.materials[c.desc.objects[1].material()].emission,
+        [0.0; 3]
+    );
+}
+
+#[test]
+fn reverse_orientation_and_mirrors_keep_the_outward_side() {
+    let c = run(
+        "Shape \"bilinearmesh\" \"point3 P\" [0 0 0  1 0 0  0 1 0  1 1 0]\n\
+        ReverseOrientation\nShape \"bilinearmesh\" \"point3 P\" [0 0 0  1 0 0  0 1 0  1 1 0]\n\
+        ReverseOrientation\nScale 1 1 -1\nShape \"bilinearmesh\" \"point3 P\" [0 0 0  1 0 0  0 1 0  1 1 0]\n",
+    );
+    let n = |i: usize| match &c.desc.objects[i] {
+        ObjectDesc::Quad { edge_u, edge_v, .. } => DVec3::from(*edge_u).cross(DVec3::from(*edge_v)),
+        o => panic!("{o:?}"),
+    };
+    assert!(n(0).z > 0.0);
+    assert!(n(1).z < 0.0);
+    // A mirror in z maps the object-space +z normal to world -z.
+    assert!(n(2).z < 0.0);
+}
+
+/// pbrt turns a triangle's geometric normal to face its shading normal N.
+#[test]
+fn shading_normals_decide_the_front_of_a_mesh() {
+    let c = run(
+        "Shape \"trianglemesh\" \"point3 P\" [0 0 0  1 0 0  0 1 0] \"integer indices\" [0 1 2] \"normal N\" [0 0 -1  0 0 -1  0 0 -1]\n",
+    );
+    let scene = validate(&c.desc, "", &mut |_| Err(String::new())).unwrap();
+    let crate::geometry::Shape::Mesh(m) = &scene.objects[0].shape else {
+        panic!()
+    };
+    assert!(m.geometric_normal(0).z < 0.0);
+}
+
+#[test]
+fn sheared_spheres_are_baked_and_boxes_and_quads_recognised() {
+    let c = run(
+        "AttributeBegin\nScale 1 2 1\nShape \"sphere\"\nAttributeEnd\n\
+        Shape \"trianglemesh\" \"point3 P\" [0 0 0  2 0 0  2 0 3  0 0 3] \"integer indices\" [0 1 3  1 2 3]\n",
+    );
+    assert!(
+        matches!(&c.desc.objects[0], ObjectDesc::Trimesh { indices, normals: Some(_), .. } if indices.len() == 1280)
+    );
+    assert!(c.notes.iter().any(|n| n.message.contains("baked")));
+    let ObjectDesc::Quad {
+        corner,
+        edge_u,
+        edge_v,
+        ..
+    } = &c.desc.objects[1]
+    else {
+        panic!("{:?}", c.desc.objects[1])
+    };
+    assert_eq!(
+        (*corner, *edge_u, *edge_v),
+        ([0.0; 3], [2.0, 0.0, 0.0], [0.0, 0.0, 3.0])
+    );
+    // A 12-triangle axis-aligned box mesh becomes a box.
+    let (p, t) =
+        crate::formats::build::box_triangles(DVec3::new(-1.0, 0.0, 2.0), DVec3::new(1.0, 3.0, 4.0));
+    let pts: Vec<String> = p
+        .iter()
+        .map(|v| format!("{} {} {}", v.x, v.y, v.z))
+        .collect();
+    let idx: Vec<String> = t.iter().flatten().map(u32::to_string).collect();
+    let c = run(&format!(
+        "Shape \"trianglemesh\" \"point3 P\" [{}] \"integer indices\" [{}]\n",
+        pts.join(" "),
+        idx.join(" ")
+    ));
+    assert!(
+        matches!(
+            c.desc.objects[0],
+            ObjectDesc::Box {
+                min: [-1.0, 0.0, 2.0],
+                max: [1.0, 3.0, 4.0],
+                ..
+            }
+        ),
+        "{:?}",
+        c.desc.objects[0]
+    );
+}
+
+#[test]
+fn lights_and_instances() {
+    let c = run(
+        "LightSource \"point\" \"rgb I\" [1 1 1] \"point3 from\" [0 2 0]\n\
+        LightSource \"distant\" \"blackbody L\" 6500 \"point3 from\" [0 1 0] \"point3 to\" [0 0 0]\n\
+        LightSource \"infinite\" \"rgb L\" [0.1 0.2 0.3]\n\
+        ObjectBegin \"ball\"\nShape \"sphere\" \"float radius\" 0.5\nObjectEnd\n\
+        Translate 3 0 0\nObjectInstance \"ball\"\nTranslate 3 0 0\nObjectInstance \"ball\"\n\
+        CoordinateSystem \"here\"\nIdentity\nCoordSysTransform \"here\"\nShape \"sphere\"\n",
+    );
+    assert!(matches!(
+        c.desc.lights[0],
+        LightDesc::Point {
+            position: [0.0, 2.0, 0.0],
+            ..
+        }
+    ));
+    let LightDesc::Directional {
+        direction,
+        irradiance,
+        ..
+    } = c.desc.lights[1]
+    else {
+        panic!()
+    };
+    assert_eq!(direction, [0.0, -1.0, 0.0]);
+    assert!(
+        irradiance.iter().all(|&x| (x - 1.0).abs() < 0.2),
+        "{irradiance:?}"
+    );
+    assert_eq!(c.desc.background, [0.1, 0.2, 0.3]);
+    assert_eq!(sphere_center(&c, 0), DVec3::new(3.0, 0.0, 0.0));
+    assert_eq!(sphere_center(&c, 1), DVec3::new(6.0, 0.0, 0.0));
+    assert_eq!(sphere_center(&c, 2), DVec3::new(6.0, 0.0, 0.0));
+}
+
+#[test]
+fn includes_plymeshes_and_textures() {
+    let ply = b"ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\nproperty float z\n\
+        element face 1\nproperty list uchar int vertex_indices\nend_header\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n";
+    let fs = files(&[
+        (
+            "sub/inc.pbrt",
+            b"Shape \"plymesh\" \"string filename\" \"m.ply\"\n",
+        ),
+        ("sub/m.ply", ply),
+    ]);
+    let c = run_with(&format!("{CAMERA}WorldBegin\nTexture \"t\" \"spectrum\" \"checkerboard\" \"rgb tex1\" [1 1 1] \"rgb tex2\" [0 0 0]\n\
+        Material \"diffuse\" \"texture reflectance\" \"t\"\nInclude \"sub/inc.pbrt\"\n"), &fs).unwrap();
+    // pbrt renders PLY meshes without normals faceted.
+    assert!(matches!(
+        &c.desc.objects[0],
+        ObjectDesc::Trimesh { normals: None, .. }
+    ));
+    let Some(TextureDesc::Solid(d)) = &c.desc.materials[c.desc.objects[0].material()].diffuse
+    else {
+        panic!()
+    };
+    assert_eq!(*d, [0.5; 3]);
+    assert!(c.notes.iter().any(|n| n.message.contains("checkerboard")));
+}
+
+#[test]
+fn errors_name_file_line_and_column() {
+    let e = fail("WorldBegin\n  Shap \"sphere\"\n");
+    assert_eq!((e.line, e.column), (2, 3));
+    assert!(e.message.contains("unknown directive"), "{e}");
+    let e = fail("WorldBegin\nShape \"sphere\" \"integer radius\" 1\n");
+    assert!(
+        e.message.contains("must be of type float") && e.line == 2 && e.column == 16,
+        "{e}"
+    );
+    let e = fail("WorldBegin\nInclude \"missing.pbrt\"\n");
+    assert!(e.message.contains("missing.pbrt") && e.line == 2, "{e}");
+    let fs = files(&[("a.pbrt", b"Include \"s.pbrt\"\n")]);
+    let e = run_with("WorldBegin\nInclude \"a.pbrt\"\n", &fs).unwrap_err();
+    assert!(
+        e.message.contains("include cycle") && e.file == "a.pbrt",
+        "{e}"
+    );
+    let e = fail("WorldBegin\nShape \"sphere\" \"float radius\" -1\n");
+    assert!(e.message.contains("radius"), "{e}");
+    let e = fail(
+        "WorldBegin\nShape \"trianglemesh\" \"point3 P\" [0 0 0 1 0 0 0 1 0] \"integer indices\" [0 1 5]\n",
+    );
+    assert!(e.message.contains("out of range"), "{e}");
+    let e = fail("Translate 1 2\n");
+    assert!(e.message.contains("expected 3 numbers"), "{e}");
+    assert!(fail("AttributeEnd\n").message.contains("without"));
+    assert!(
+        fail("LookAt 0 0 0 0 0 1 0 1 0\n")
+            .message
+            .contains("WorldBegin")
+    );
+    let e = fail("WorldBegin\nShape \"sphere\" \"float radius\" [1 2]\n");
+    assert!(e.message.contains("one number"), "{e}");
+}
+
+#[test]
+fn unknown_parameters_and_unsupported_features_are_noted() {
+    let c = run(
+        "Shape \"sphere\" \"float radius\" 1 \"float zmax\" 0.5 \"float frobnicate\" 3\nShape \"cylinder\"\n",
+    );
+    assert!(c.notes.iter().any(|n| n.message.contains("frobnicate")));
+    assert!(c.notes.iter().any(|n| n.message.contains("partial sphere")));
+    assert!(c.notes.iter().any(|n| n.message.contains("cylinder")));
+}
