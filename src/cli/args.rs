@@ -353,7 +353,8 @@ pub struct DiagramArgs {
     #[arg(long, value_name = "camera,reflected,refracted,shadow,diffuse")]
     pub kinds: Option<String>,
     /// Which sample of the pixel to draw (for spp > 1), numbered as `raytree trace` numbers
-    /// them; default: the first (with --lpe, the first with a matching path).
+    /// them; default: the first (with --lpe, the first with a matching path; with
+    /// --all-samples, the one that carries the most light).
     #[arg(long, value_name = "K")]
     pub sample: Option<usize>,
     /// Also draw every other sample of the pixel under --sample, faded by its value.
