@@ -3,6 +3,7 @@
 //! ([`invariants`]).
 
 pub mod acne;
+pub mod bias;
 pub mod converge;
 pub mod cost;
 pub mod diff;

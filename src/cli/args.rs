@@ -309,9 +309,15 @@ pub struct CompareArgs {
     /// Write a false-colour error map here (.png).
     #[arg(short = 'o', long = "output")]
     pub map: Option<PathBuf>,
-    /// Error shown as full white in the map (default: the largest error).
-    #[arg(long)]
+    /// Error shown at the map's ends (full red/blue, or white with --abs; default: the largest).
+    #[arg(long, allow_hyphen_values = true)]
     pub scale: Option<f64>,
+    /// Compare only the pixels X0 <= x < X1, Y0 <= y < Y1 (metrics, interval and map).
+    #[arg(long, value_name = "X0,Y0,X1,Y1", allow_hyphen_values = true)]
+    pub region: Option<String>,
+    /// Write the unsigned map (largest channel |A - B|, black to white) instead of the signed one.
+    #[arg(long)]
+    pub abs: bool,
 }
 
 /// `raytree diagram`. Here `--size` is the figure's size (the scene's image size is kept, so

@@ -10,6 +10,7 @@ mod budget;
 mod canvas;
 mod cleanup;
 mod compare_cmd;
+mod compare_map;
 mod converge_cmd;
 mod converge_plot;
 mod cost_cmd;
