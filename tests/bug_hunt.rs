@@ -1,8 +1,9 @@
 //! The numbers a bug hunt needs (issue 32, items 14-17), through the binary: `compare`'s mean
-//! signed difference with its interval, signed map and `--region`.
+//! signed difference with its interval, signed map and `--region`; `outliers` on an image with
+//! a known hot pixel and on a scene.
 
 mod common;
-use common::{fails, raytree};
+use common::{fails, fixture, raytree};
 use std::path::Path;
 
 /// A `w x h` EXR at `dir/name` with `f(x, y)` in every channel.
@@ -108,4 +109,85 @@ fn compare_refuses_bad_regions_and_scales_with_no_output() {
         assert!(o.stdout.is_empty(), "{value}: printed {:?}", o.stdout);
         assert!(!d.join("m.png").exists(), "{value}");
     }
+}
+
+#[test]
+fn outliers_finds_the_hot_pixel_of_an_image() {
+    let dir = tempfile::tempdir().unwrap();
+    let d = dir.path();
+    exr(d, "hot.exr", (24, 16), |x, y| {
+        if (x, y) == (7, 5) {
+            20.0
+        } else {
+            0.5 + noise(x, y)
+        }
+    });
+    let text = stdout(&raytree(&["outliers", "hot.exr", "--top", "3"], d));
+    let first = text
+        .lines()
+        .find(|l| l.trim_start().starts_with("1."))
+        .unwrap();
+    assert!(first.contains("pixel 7,5"), "{text}");
+    assert!(
+        first.contains("value [20.0000, 20.0000, 20.0000]"),
+        "{first}"
+    );
+    let median: f64 = first
+        .split("neighbourhood median ")
+        .nth(1)
+        .and_then(|s| s.split_whitespace().next())
+        .unwrap()
+        .parse()
+        .unwrap();
+    assert!((median - 0.5).abs() < 0.05, "{first}");
+    assert!(text.contains("raytree trace SCENE --pixel 7,5"), "{text}");
+    assert!(text.contains("raytree explain SCENE --pixel 7,5"), "{text}");
+    let json = stdout(&raytree(
+        &["outliers", "hot.exr", "--json", "--window", "5"],
+        d,
+    ));
+    let v: serde_json::Value = serde_json::from_str(&json).unwrap();
+    assert_eq!(v["by_excess"][0]["pixel"], serde_json::json!([7, 5]));
+    assert_eq!(v["window"], 5);
+    assert!(v["by_std_error"].is_null(), "an image has no samples");
+    // Bad input: exit 2.
+    for args in [
+        &["outliers", "hot.exr", "--window", "4"][..],
+        &["outliers", "hot.exr", "--top", "0"],
+        &["outliers", "hot.exr", "--spp", "4"],
+        &["outliers", "missing.exr"],
+    ] {
+        fails(&raytree(args, d));
+    }
+}
+
+#[test]
+fn outliers_of_a_scene_rank_by_excess_and_by_standard_error() {
+    let dir = tempfile::tempdir().unwrap();
+    let d = dir.path();
+    let caustic = fixture("caustic.json");
+    let args = [
+        "outliers", &caustic, "--spp", "4", "--size", "60x45", "--top", "5", "--json",
+    ];
+    let v: serde_json::Value = serde_json::from_str(&stdout(&raytree(&args, d))).unwrap();
+    let top = &v["by_excess"][0];
+    let (lum, median) = (
+        top["luminance"].as_f64().unwrap(),
+        top["median"].as_f64().unwrap(),
+    );
+    assert!(lum > 5.0 * median + 1.0, "a firefly: {top}");
+    let se = v["by_std_error"].as_array().unwrap();
+    assert_eq!(se.len(), 5);
+    assert!(
+        se.windows(2).all(|w| {
+            w[0]["std_error"].as_f64().unwrap() >= w[1]["std_error"].as_f64().unwrap()
+        })
+    );
+    // The command printed for the pixel runs, with the render's settings.
+    let explain = top["explain"].as_str().unwrap();
+    assert!(explain.ends_with("--spp 4 --size 60x45"), "{explain}");
+    let words: Vec<&str> = explain.split_whitespace().skip(1).collect();
+    let text = stdout(&raytree(&words, d));
+    let [x, y] = [&top["pixel"][0], &top["pixel"][1]];
+    assert!(text.contains(&format!("pixel ({x}, {y})")), "{text}");
 }

@@ -13,5 +13,6 @@ pub mod growth;
 #[cfg(test)]
 mod hand_tree;
 pub mod invariants;
+pub mod outliers;
 pub mod samples;
 pub mod teach;

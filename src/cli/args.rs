@@ -42,6 +42,9 @@ pub enum Command {
     /// Whitted vs path tracing side by side, the difference image, and what Whitted misses by
     /// light path class.
     Versus(super::versus_cmd::VersusArgs),
+    /// The worst pixels: ranked by their excess over a robust neighbourhood estimate (and, for
+    /// a scene, by the standard error of their mean), with the trace/explain command for each.
+    Outliers(super::outliers_cmd::OutliersArgs),
 }
 
 /// Settings every tracing command can override (defaults come from the scene file).

@@ -20,6 +20,7 @@ mod diff_cmd;
 mod effects_cmd;
 mod explain_cmd;
 mod load;
+mod outliers_cmd;
 mod output;
 mod plot;
 mod render_cmd;
@@ -62,6 +63,7 @@ pub fn run() -> ExitCode {
         Command::Explain(a) => explain_cmd::run(&a),
         Command::Diff(a) => diff_cmd::run(&a),
         Command::Versus(a) => versus_cmd::run(&a),
+        Command::Outliers(a) => outliers_cmd::run(&a),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,
