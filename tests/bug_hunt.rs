@@ -1,6 +1,6 @@
 //! The numbers a bug hunt needs (issue 32, items 14-17), through the binary: `compare`'s mean
 //! signed difference with its interval, signed map and `--region`; `outliers` on an image with
-//! a known hot pixel and on a scene.
+//! a known hot pixel and on a scene; `converge` naming identical series.
 
 mod common;
 use common::{fails, fixture, raytree};
@@ -190,4 +190,34 @@ fn outliers_of_a_scene_rank_by_excess_and_by_standard_error() {
     let text = stdout(&raytree(&words, d));
     let [x, y] = [&top["pixel"][0], &top["pixel"][1]];
     assert!(text.contains(&format!("pixel ({x}, {y})")), "{text}");
+}
+
+#[test]
+fn converge_says_when_two_series_are_identical() {
+    let dir = tempfile::tempdir().unwrap();
+    let d = dir.path();
+    // The built-in scene has point lights only: MIS and light sampling give the same image.
+    let args = [
+        "converge",
+        "--integrator",
+        "path",
+        "--size",
+        "16x12",
+        "--max-spp",
+        "4",
+        "--ref-spp",
+        "16",
+        "--series",
+        "default,light-only,bsdf-only",
+        "-o",
+        "rep",
+    ];
+    stdout(&raytree(&args, d));
+    let md = std::fs::read_to_string(d.join("rep/converge.md")).unwrap();
+    assert!(
+        md.contains("Identical series (the same rel-RMSE at every spp")
+            && md.contains("default = light-only")
+            && !md.contains("bsdf-only = "),
+        "{md}"
+    );
 }
