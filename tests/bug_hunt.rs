@@ -1,6 +1,7 @@
 //! The numbers a bug hunt needs (issue 32, items 14-17), through the binary: `compare`'s mean
 //! signed difference with its interval, signed map and `--region`; `outliers` on an image with
-//! a known hot pixel and on a scene; `converge` naming identical series.
+//! a known hot pixel and on a scene; `converge` naming identical series; `diff` between
+//! stochastic settings naming the first differing decision with a standard error.
 
 mod common;
 use common::{fails, fixture, raytree};
@@ -220,4 +221,53 @@ fn converge_says_when_two_series_are_identical() {
             && !md.contains("bsdf-only = "),
         "{md}"
     );
+}
+
+#[test]
+fn diff_between_roulette_depths_names_the_first_differing_decision() {
+    let dir = tempfile::tempdir().unwrap();
+    let d = dir.path();
+    let caustic = fixture("caustic.json");
+    let base = [
+        "diff",
+        &caustic,
+        "--pixel",
+        "98,112",
+        "--spp",
+        "16",
+        "--a",
+        "--rr-depth 1",
+        "--b",
+        "--rr-depth 8",
+    ];
+    let short = stdout(&raytree(&base, d));
+    assert!(
+        short.contains("first differing decision: sample "),
+        "{short}"
+    );
+    assert!(short.contains("path roulette"), "{short}");
+    assert!(short.contains("+/- ["), "a standard error: {short}");
+    assert!(
+        short.contains("(standard error, paired by sample, 16 samples)"),
+        "{short}"
+    );
+    assert!(
+        short.contains("--full lists every changed field"),
+        "{short}"
+    );
+    let mut full_args = base.to_vec();
+    full_args.push("--full");
+    let full = stdout(&raytree(&full_args, d));
+    assert!(full.starts_with(short.lines().next().unwrap()));
+    assert!(
+        short.lines().count() * 5 < full.lines().count(),
+        "short {} lines, full {}",
+        short.lines().count(),
+        full.lines().count()
+    );
+    assert!(short.lines().count() <= 12, "{short}");
+    let json = stdout(&raytree(&[&base[..], &["--json"]].concat(), d));
+    let v: serde_json::Value = serde_json::from_str(&json).unwrap();
+    assert_eq!(v["first_decision"]["decision"], "path roulette");
+    assert!(v["pixel"]["std_error"][0].as_f64().unwrap() >= 0.0);
 }
