@@ -253,6 +253,7 @@ impl EffectPlan {
                 } else {
                     format!("emissive: {}", emitters.join(", "))
                 };
+                let list = format!("{list}{}", dark_note(scene));
                 match s.light_samples {
                     Some(n) => format!("{list}; {n} shadow rays per light per hit"),
                     None => format!("{list}; settings.light_samples absent (seen, not sampled)"),
@@ -427,4 +428,24 @@ mod tests {
                 .contains("4 shadow rays")
         );
     }
+}
+
+/// `; emitter X emits towards nothing ...` for the area lights that light no surface
+/// ([`crate::lights::dark_emitters`]), else empty.
+#[must_use]
+pub fn dark_note(scene: &Scene) -> String {
+    let dark = crate::lights::dark_emitters(scene);
+    if dark.is_empty() {
+        return String::new();
+    }
+    let (who, verb) = if dark.len() == 1 {
+        ("emitter", "emits")
+    } else {
+        ("emitters", "emit")
+    };
+    format!(
+        "; {who} {} {verb} towards nothing (none of {} rays leaving its emitting side meets a surface): it lights no surface, only its own face can be seen",
+        dark.join(", "),
+        crate::lights::DARK_PROBE
+    )
 }

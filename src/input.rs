@@ -80,6 +80,39 @@ pub fn quote(s: &str) -> String {
     }
 }
 
+/// A window of at most 60 characters of `s` around the 1-based character `column`, control
+/// characters escaped as in [`escape_controls`] and cut ends marked `...`, with the 0-based
+/// offset of that column's character in the window (for a caret line under it).
+#[must_use]
+pub fn excerpt(s: &str, column: usize) -> (String, usize) {
+    let chars: Vec<char> = s.chars().collect();
+    let at = column.saturating_sub(1).min(chars.len());
+    let start = at.saturating_sub(QUOTE_CHARS / 2);
+    let end = (start + QUOTE_CHARS).min(chars.len());
+    let mut out = String::new();
+    if start > 0 {
+        out.push_str("...");
+    }
+    let mut caret = out.chars().count();
+    for (i, c) in chars[start..end].iter().enumerate() {
+        if i + start == at {
+            caret = out.chars().count();
+        }
+        if c.is_control() {
+            out.extend(c.escape_debug());
+        } else {
+            out.push(*c);
+        }
+    }
+    if at >= end {
+        caret = out.chars().count();
+    }
+    if end < chars.len() {
+        out.push_str(&format!("... ({} characters)", chars.len()));
+    }
+    (out, caret)
+}
+
 /// `s` with every control character escaped as Rust writes it in a string literal (`\n`,
 /// `\u{1b}`), so that a message is one line and cannot drive the terminal.
 #[must_use]
@@ -101,6 +134,26 @@ pub fn escape_controls(s: &str) -> Cow<'_, str> {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn an_excerpt_is_escaped_cut_and_keeps_its_caret_under_the_column() {
+        let (e, c) = excerpt("C<RD>\u{1b}]0;x\u{7}K", 6);
+        assert!(!e.chars().any(char::is_control), "{e}");
+        assert_eq!(&e[c..c + 6], "\\u{1b}", "{e} {c}");
+        let long = format!("{}K{}", "a".repeat(100_000), "b".repeat(100_000));
+        let (e, c) = excerpt(&long, 100_001);
+        assert!(e.len() < 120, "{}", e.len());
+        assert!(
+            e.starts_with("...") && e.ends_with("(200001 characters)"),
+            "{e}"
+        );
+        assert_eq!(e.chars().nth(c), Some('K'));
+        assert_eq!(
+            excerpt("ab", 3),
+            ("ab".to_string(), 2),
+            "a caret past the end"
+        );
+    }
 
     #[test]
     fn bom_is_dropped_and_bad_bytes_are_placed() {

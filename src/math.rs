@@ -364,3 +364,95 @@ mod tests {
         }
     }
 }
+
+/// A pixel's running sum of sample radiances that keeps a finite mean finite: beside the plain
+/// sum (whose mean is returned bit for bit whenever it is finite) a copy scaled by 2^-64
+/// (exact: a power of two), used only when finite samples near `f64::MAX` overflow the plain
+/// sum. Issue 27: 4 samples of 1.19e308 summed to infinity and the pixel was written black.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct PixelSum {
+    sum: Rgb,
+    scaled: Rgb,
+}
+
+/// 2^-64, the scale of [`PixelSum`]'s overflow copy.
+const PIXEL_SUM_SCALE: f64 = 1.0 / 18_446_744_073_709_551_616.0;
+
+impl PixelSum {
+    /// The plain sum.
+    #[must_use]
+    pub fn plain(self) -> Rgb {
+        self.sum
+    }
+
+    /// The mean of `n` samples: the plain `sum / n` where that is finite, else the mean from
+    /// the scaled copy (channel by channel).
+    #[must_use]
+    pub fn mean(self, n: f64) -> Rgb {
+        let plain = self.sum / n;
+        if plain.is_finite() {
+            return plain;
+        }
+        let rescued = self.scaled / n / PIXEL_SUM_SCALE;
+        Rgb::from_array(std::array::from_fn(|i| {
+            if plain[i].is_finite() || !rescued[i].is_finite() {
+                plain[i]
+            } else {
+                rescued[i]
+            }
+        }))
+    }
+}
+
+impl std::ops::AddAssign<Rgb> for PixelSum {
+    fn add_assign(&mut self, l: Rgb) {
+        self.sum += l;
+        self.scaled += l * PIXEL_SUM_SCALE;
+    }
+}
+
+impl std::ops::Div<f64> for PixelSum {
+    type Output = Rgb;
+    fn div(self, n: f64) -> Rgb {
+        self.mean(n)
+    }
+}
+
+#[cfg(test)]
+mod pixel_sum_tests {
+    use super::*;
+
+    #[test]
+    fn a_finite_mean_of_samples_whose_sum_overflows_stays_finite() {
+        let mut s = PixelSum::default();
+        for _ in 0..4 {
+            s += Rgb::new(1.19e308, 0.5, 1.0);
+        }
+        assert!(s.plain().x.is_infinite());
+        let m = s / 4.0;
+        assert!((m.x - 1.19e308).abs() <= 1e-12 * 1.19e308, "{m}");
+        assert_eq!(
+            (m.y, m.z),
+            (0.5, 1.0),
+            "channels that did not overflow are the plain mean"
+        );
+    }
+
+    #[test]
+    fn an_ordinary_mean_is_the_plain_one_bit_for_bit() {
+        let mut s = PixelSum::default();
+        let mut plain = Rgb::ZERO;
+        for i in 0..37 {
+            let l = Rgb::new(0.1 * f64::from(i), 1e-300, 3.7e10 / f64::from(i + 1));
+            s += l;
+            plain += l;
+        }
+        assert_eq!(s / 37.0, plain / 37.0);
+        let mut inf = PixelSum::default();
+        inf += Rgb::splat(f64::INFINITY);
+        assert!(
+            (inf / 1.0).x.is_infinite(),
+            "an infinite sample stays infinite"
+        );
+    }
+}

@@ -44,7 +44,7 @@ const NEIGHBOURS: [(i64, i64); 8] = [
 /// A pixel's first pass: the sum of its samples (as they enter the pixel) and their spread.
 #[derive(Clone, Copy, Debug, Default)]
 struct First {
-    sum: Rgb,
+    sum: crate::math::PixelSum,
     spread: Spread,
 }
 
@@ -179,11 +179,11 @@ fn second_pass<I: Integrator, S: PixelSampler, K: SampleSink>(
     sampler: &S,
     plan: AdaptivePlan,
     (x, y): (u32, u32),
-    mut sum: Rgb,
+    mut sum: crate::math::PixelSum,
     sink: &mut K,
     px: &mut K::Pixel,
     counts: &mut RayCounts,
-) -> Rgb {
+) -> crate::math::PixelSum {
     let cam = Camera::new(integrator);
     let mut second = sampler.clone();
     second.refine(plan.first, plan.total - plan.first);

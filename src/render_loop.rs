@@ -169,7 +169,7 @@ pub fn pixel<I: Integrator, S: PixelSampler, K: SampleSink>(
     let cam = Camera::new(integrator);
     let spp = integrator.scene().settings.spp.max(1);
     let mut px = K::Pixel::default();
-    let mut sum = Rgb::ZERO;
+    let mut sum = crate::math::PixelSum::default();
     for s in 0..spp {
         let (l, kept) = one_sample(integrator, cam, sampler, (x, y, s), sink, &mut px, counts);
         if kept {

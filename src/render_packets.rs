@@ -49,7 +49,7 @@ fn render_band<R: Recorder + Default, I: Integrator, S: PixelSampler>(
     let spp = scene.settings.spp.max(1);
     let mut counts = RayCounts::default();
     let mut rec = R::default();
-    let mut band = vec![Rgb::ZERO; (w * rows) as usize];
+    let mut band = vec![crate::math::PixelSum::default(); (w * rows) as usize];
     let film = integrator.film();
     let filter = scene.settings.filter.filter();
     let mut rays = Vec::with_capacity(PACKET);
@@ -78,8 +78,6 @@ fn render_band<R: Recorder + Default, I: Integrator, S: PixelSampler>(
             }
         }
     }
-    for p in &mut band {
-        *p /= f64::from(spp);
-    }
+    let band = band.into_iter().map(|p| p / f64::from(spp)).collect();
     (band, counts)
 }

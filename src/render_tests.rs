@@ -90,7 +90,7 @@ fn recorded_film_offsets_and_lens_points_follow_the_filter_and_the_disk() {
 /// against the tent's pdf.
 #[test]
 fn the_render_path_chi_square_rejects_the_wrong_filter() {
-    let scene = scene(FilterDesc::Box, 3);
+    let scene = scene(FilterDesc::Box {}, 3);
     let (offsets, _) = recorded(&scene);
     let tent = crate::sampling::PixelFilter::Tent { radius: 1.0 };
     let mut it = offsets.into_iter();

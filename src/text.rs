@@ -41,6 +41,43 @@ fn not_finite(v: f64) -> String {
     format!("{NOT_FINITE} {what}>")
 }
 
+/// `s` with every token Rust's float formatting gives a non-finite number (`NaN`, `inf`,
+/// `-inf`, standing alone, not inside a word) replaced by the words of [`num`]: the last guard
+/// of every text output (standard output and error, Markdown, CSV, legends), so that a number
+/// formatted without [`num`] still cannot reach a reader as a token it would parse.
+#[must_use]
+pub fn guard_nonfinite(s: &str) -> std::borrow::Cow<'_, str> {
+    let word = |c: Option<char>| c.is_some_and(|c| c.is_alphanumeric() || c == '_');
+    let mut out = String::new();
+    let mut last = 0;
+    let mut i = 0;
+    while i < s.len() {
+        let rest = &s[i..];
+        let before = s[..i].chars().next_back();
+        let hit = [
+            ("-inf", f64::NEG_INFINITY),
+            ("inf", f64::INFINITY),
+            ("NaN", f64::NAN),
+        ]
+        .into_iter()
+        .find(|(t, _)| rest.starts_with(t) && !word(rest[t.len()..].chars().next()));
+        match hit {
+            Some((t, v)) if !word(before) => {
+                out.push_str(&s[last..i]);
+                out.push_str(&not_finite(v));
+                i += t.len();
+                last = i;
+            }
+            _ => i += rest.chars().next().map_or(1, char::len_utf8),
+        }
+    }
+    if last == 0 {
+        return std::borrow::Cow::Borrowed(s);
+    }
+    out.push_str(&s[last..]);
+    std::borrow::Cow::Owned(out)
+}
+
 /// A colour as `[r, g, b]` with 4 significant digits.
 #[must_use]
 pub fn rgb(c: Rgb) -> String {
@@ -355,6 +392,29 @@ fn node_text(tree: &RayTree, id: NodeId, prefix: &str, last: bool, out: &mut Str
 
 #[cfg(test)]
 mod tests {
+    #[test]
+    fn the_guard_replaces_nonfinite_tokens_and_nothing_else() {
+        let s = format!(
+            "value [{}, {}, {}] {}% rel {}% info infinite NaNa xinf",
+            f64::INFINITY,
+            f64::NEG_INFINITY,
+            f64::NAN,
+            f64::INFINITY,
+            f64::NAN
+        );
+        let g = guard_nonfinite(&s);
+        assert_eq!(
+            g,
+            "value [<not finite: +infinite>, <not finite: -infinite>, <not finite: not a number>] \
+             <not finite: +infinite>% rel <not finite: not a number>% info infinite NaNa xinf"
+        );
+        assert!(matches!(
+            guard_nonfinite("all 1.5e3 fine"),
+            std::borrow::Cow::Borrowed(_)
+        ));
+        assert_eq!(guard_nonfinite(">=inf"), ">=<not finite: +infinite>");
+    }
+
     use super::*;
 
     /// Every token of `s` a program would read as a non-finite number (`NaN`, `inf`, ...).

@@ -27,3 +27,6 @@ mod finite;
 
 #[path = "hostile/scenes.rs"]
 mod scenes;
+
+#[path = "hostile/round3.rs"]
+mod round3;

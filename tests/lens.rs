@@ -26,14 +26,14 @@ fn dof() -> Scene {
 #[test]
 fn aperture_zero_is_the_pinhole_bit_for_bit() {
     let mut pinhole = dof();
-    pinhole.settings.filter = FilterDesc::Box;
+    pinhole.settings.filter = FilterDesc::Box {};
     pinhole.camera.aperture_radius = 0.0;
     let written = DOF.replace(
         "\"aperture_radius\": 0.15",
         "\"aperture_radius\": 0, \"focus_distance\": 2.5",
     );
     let mut zero = Scene::from_json(&written).unwrap();
-    zero.settings.filter = FilterDesc::Box;
+    zero.settings.filter = FilterDesc::Box {};
     assert_eq!(zero.camera.aperture_radius, 0.0);
     assert_eq!(zero.camera.focus_distance, 2.5);
     let no_lens = DOF
@@ -45,7 +45,7 @@ fn aperture_zero_is_the_pinhole_bit_for_bit() {
         let a = render(&small(pinhole.clone(), 64, 36, spp), &|_| {}).0;
         let b = render(&small(zero.clone(), 64, 36, spp), &|_| {}).0;
         let mut c_scene = small(no_lens.clone(), 64, 36, spp);
-        c_scene.settings.filter = FilterDesc::Box;
+        c_scene.settings.filter = FilterDesc::Box {};
         let c = render(&c_scene, &|_| {}).0;
         assert_eq!(a, b, "spp {spp}");
         assert_eq!(a, c, "spp {spp}");

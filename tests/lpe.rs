@@ -266,3 +266,68 @@ fn diagram_lpe_sample_is_the_pixels_sample() {
     assert!(err.contains(&list.join(", ")), "{err}");
     assert!(!none.exists());
 }
+
+/// Fuzz the parser (issue 27): any string, and valid expressions with characters inserted,
+/// deleted or repeated, parse to `Ok` (whose matcher then runs on path strings) or to an error
+/// whose column lies in the expression; never a panic, and in bounded time (the regex
+/// compiler's size limit refuses blow-ups).
+mod fuzz {
+    use ::raytree::lpe::Lpe;
+    use proptest::prelude::*;
+
+    const SEEDS: [&str; 6] = [
+        "C<RD>S+L",
+        "C(<R.>|<T.>)*L",
+        "CD+L",
+        "C[^D]*<RG>L",
+        "C.*L",
+        "C<TS>{2,3}<RD>L",
+    ];
+    const ALPHABET: &str = "CLDSGRT<>()[]|*+?.^{},0123'x \u{1b}\u{0}é";
+
+    fn check(expr: &str) -> Result<(), TestCaseError> {
+        match Lpe::parse(expr) {
+            Ok(l) => {
+                for path in ["CL", "C<RD>L", "C<TS><TS><RD>L", "C<RG><RD><RD>L"] {
+                    let _ = l.matches(path);
+                }
+            }
+            Err(e) => prop_assert!(
+                e.column >= 1 && e.column <= expr.chars().count() + 1,
+                "column {} of {expr:?}",
+                e.column
+            ),
+        }
+        Ok(())
+    }
+
+    proptest! {
+        #![proptest_config(ProptestConfig { cases: 2000, ..ProptestConfig::default() })]
+
+        #[test]
+        fn any_string_parses_or_is_refused_at_a_column(s in "\\PC{0,40}") {
+            check(&s)?;
+        }
+
+        #[test]
+        fn mutated_expressions_parse_or_are_refused_at_a_column(
+            seed in 0..SEEDS.len(),
+            edits in prop::collection::vec((0usize..64, 0usize..ALPHABET.chars().count(), 0u8..3), 1..6),
+        ) {
+            let mut chars: Vec<char> = SEEDS[seed].chars().collect();
+            let alphabet: Vec<char> = ALPHABET.chars().collect();
+            for (at, c, op) in edits {
+                let at = at % (chars.len() + 1);
+                match op {
+                    0 => chars.insert(at, alphabet[c]),
+                    1 if at < chars.len() => { chars.remove(at); }
+                    _ => {
+                        let tail: Vec<char> = chars[at..].to_vec();
+                        chars.extend(tail);
+                    }
+                }
+            }
+            check(&chars.into_iter().collect::<String>())?;
+        }
+    }
+}

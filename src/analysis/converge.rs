@@ -22,13 +22,26 @@ pub fn rel_rmse(img: &Image, reference: &Image) -> Option<f64> {
     if (img.width, img.height) != (reference.width, reference.height) || img.pixels.is_empty() {
         return None;
     }
-    let sq: f64 = img
-        .pixels
-        .iter()
-        .zip(&reference.pixels)
-        .map(|(a, r)| ((*a - *r) / (*r + Rgb::splat(REL_OFFSET))).length_squared())
-        .sum();
-    Some((sq / (3.0 * img.pixels.len() as f64)).sqrt())
+    let rel = || {
+        img.pixels
+            .iter()
+            .zip(&reference.pixels)
+            .map(|(a, r)| (*a - *r) / (*r + Rgb::splat(REL_OFFSET)))
+    };
+    let n = 3.0 * img.pixels.len() as f64;
+    let sq: f64 = rel().map(Rgb::length_squared).sum();
+    let plain = (sq / n).sqrt();
+    if plain.is_finite() {
+        return Some(plain);
+    }
+    // Relative errors whose squares overflow (a background of 1e200 against a reference near
+    // 0): the same root from errors scaled by the largest (issue 27), when that is finite.
+    let top = rel().map(|e| e.abs().max_element()).fold(0.0, f64::max);
+    if !(top.is_finite() && top > 0.0) {
+        return Some(plain);
+    }
+    let scaled: f64 = rel().map(|e| (e / top).length_squared()).sum();
+    Some(top * (scaled / n).sqrt())
 }
 
 /// The least-squares slope of `ln y` against `ln x` over the points with both positive and
@@ -84,7 +97,9 @@ impl Series {
             "stratified" => Self::Stratified,
             "denoise" => Self::Denoised,
             _ => match s.strip_prefix("rr:").map(str::parse::<u32>) {
-                Some(Ok(n)) => Self::RrDepth(n),
+                Some(Ok(n)) => Self::RrDepth(
+                    crate::scene::check_rr_depth(n).map_err(|e| format!("{s}: the depth {e}"))?,
+                ),
                 _ => {
                     return Err(format!(
                         "unknown series {s:?}: expected default, light-only, bsdf-only, sobol, stratified, rr:N or denoise"
@@ -320,6 +335,17 @@ mod tests {
         assert!((loglog_slope(&pts).unwrap() + 0.5).abs() < 1e-12);
         assert_eq!(loglog_slope(&pts[..1]), None);
         assert_eq!(loglog_slope(&[(1.0, 1.0), (1.0, 2.0)]), None);
+    }
+
+    #[test]
+    fn rel_rmse_stays_finite_when_its_squares_overflow() {
+        let img = |v: f64| Image {
+            width: 2,
+            height: 1,
+            pixels: vec![Rgb::splat(v); 2],
+        };
+        let e = rel_rmse(&img(1e200), &img(0.0)).unwrap();
+        assert!((e / 1e202 - 1.0).abs() < 1e-12, "{e}");
     }
 
     #[test]

@@ -90,13 +90,22 @@ impl McView {
             _ => {
                 let Some(aov) = name.strip_prefix("share:") else {
                     return Err(format!(
-                        "unknown debug view '{name}'; the views are {}",
+                        "unknown debug view {}; the views are {}",
+                        crate::input::quote(name),
                         Self::NAMES.join(", ")
                     ));
                 };
+                if aov.is_empty() {
+                    return Err(
+                        "debug view \"share:\" needs the name of an AOV: share:NAME, with --aov NAME=LPE"
+                            .into(),
+                    );
+                }
                 let Some(k) = aovs.iter().position(|a| *a == aov) else {
                     return Err(format!(
-                        "debug view '{name}': no AOV named '{aov}' (give it with --aov {aov}=LPE)"
+                        "debug view {}: no AOV named {} (give it with --aov NAME=LPE)",
+                        crate::input::quote(name),
+                        crate::input::quote(aov)
                     ));
                 };
                 Self::Share(k)

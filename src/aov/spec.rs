@@ -14,7 +14,11 @@ pub struct Aov {
 
 /// A bad `NAME=LPE`: which specification (0-based), the 1-based column in it, and why.
 #[derive(Clone, Debug, PartialEq, Eq, thiserror::Error)]
-#[error("{spec}: column {column}: {message}")]
+#[error(
+    "{}: column {column}: {}",
+    crate::input::quote(spec),
+    crate::input::escape_controls(message)
+)]
 pub struct AovSpecError {
     /// The specification as written.
     pub spec: String,

@@ -3,7 +3,7 @@
 use super::acne_figures::{heat_map, plot};
 use super::args::{AcneArgs, Overrides};
 use super::load::{load, pair};
-use super::output::{Inputs, OutDir};
+use super::output::{Inputs, Origin, OutDir, OutputSet};
 use super::say::sayln;
 use anyhow::{Result, anyhow, bail};
 use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
@@ -81,11 +81,11 @@ pub fn run(a: &AcneArgs) -> Result<()> {
             .map(|st| format!("heatmap-{}.png", st.name())),
     );
     names.push("plot.png".to_string());
-    let mut pending = names
+    let mut set = OutputSet::new(&inputs, false);
+    let slots = names
         .iter()
-        .map(|n| dir.file(n, &inputs))
-        .collect::<Result<Vec<_>>>()?
-        .into_iter();
+        .map(|n| dir.reserve(&mut set, n, Origin::Named))
+        .collect::<Result<Vec<_>>>()?;
     let total = cfg.strategies.len() * cfg.epsilons.len() * cfg.scales.len();
     let bar = ProgressBar::with_draw_target(Some(total as u64), ProgressDrawTarget::stderr())
         .with_style(
@@ -104,16 +104,19 @@ pub fn run(a: &AcneArgs) -> Result<()> {
             s.to_string_lossy().into_owned()
         });
     let mut bytes = vec![
-        report.markdown(&name).into_bytes(),
+        raytree::text::guard_nonfinite(&report.markdown(&name))
+            .into_owned()
+            .into_bytes(),
         serde_json::to_string_pretty(&report)?.into_bytes(),
     ];
     for &st in &cfg.strategies {
         bytes.push(heat_map(&report, st)?);
     }
     bytes.push(plot(&report, &name)?);
-    for b in bytes {
-        pending.next().expect("one file per output").commit(&b)?;
+    for (slot, b) in slots.into_iter().zip(bytes) {
+        set.stage(slot, &b)?;
     }
+    set.commit()?;
     dir.keep();
     sayln!(
         "wrote {} ({total} renders of {}x{}): report.md, report.json, plot.png, heatmap-*.png",

@@ -5,7 +5,7 @@
 use super::args::RenderArgs;
 use super::canvas::Canvas;
 use super::load::load;
-use super::output::{Inputs, Pending, encode_counting, image_format};
+use super::output::{Inputs, Origin, OutputSet, encode_counting, image_format};
 use super::say::{sayln, warnln};
 use anyhow::{Result, bail};
 use indicatif::{ProgressBar, ProgressStyle};
@@ -25,11 +25,8 @@ pub(super) fn beside(output: &Path, tag: &str, ext: &str) -> PathBuf {
 /// Parse `--aov` (with a caret under the bad column) and `--debug-view`.
 fn parse(a: &RenderArgs) -> Result<(Vec<raytree::aov::Aov>, Vec<McView>)> {
     let aovs = parse_aovs(&a.aov).map_err(|e| {
-        anyhow::anyhow!(
-            "--aov {e}\n  {}\n  {}^",
-            e.spec,
-            " ".repeat(e.column.saturating_sub(1))
-        )
+        let (shown, caret) = raytree::input::excerpt(&e.spec, e.column);
+        anyhow::anyhow!("--aov {e}\n  {shown}\n  {}^", " ".repeat(caret))
     })?;
     let names: Vec<&str> = aovs.iter().map(|x| x.name.as_str()).collect();
     let views = a
@@ -37,6 +34,12 @@ fn parse(a: &RenderArgs) -> Result<(Vec<raytree::aov::Aov>, Vec<McView>)> {
         .iter()
         .map(|v| McView::parse(v, &names).map_err(|e| anyhow::anyhow!("--debug-view: {e}")))
         .collect::<Result<Vec<_>>>()?;
+    if let Some(v) = (0..views.len()).find(|&i| views[..i].contains(&views[i])) {
+        bail!(
+            "--debug-view {} is given twice: each view is written once",
+            raytree::input::quote(&a.debug_view[v])
+        );
+    }
     Ok((aovs, views))
 }
 
@@ -80,16 +83,19 @@ pub fn run(a: &RenderArgs) -> Result<()> {
             .map(|v| beside(&a.output, &format!("view-{}", v.file_name(&names)), "png")),
     );
     paths.extend(a.spp_map.clone());
-    if let Some(p) = paths
+    let mut set = OutputSet::new(&inputs, a.force);
+    let derived = 1..1 + names.len() + views.len();
+    let slots = paths
         .iter()
         .enumerate()
-        .find_map(|(i, p)| paths[..i].contains(p).then_some(p))
-    {
-        bail!("two outputs would both be {}: rename an AOV", p.display());
-    }
-    let pending = paths
-        .iter()
-        .map(|p| Pending::create(p, &inputs))
+        .map(|(i, p)| {
+            let origin = match (derived.contains(&i), i <= names.len()) {
+                (false, _) => Origin::Named,
+                (true, true) => Origin::Derived("--aov"),
+                (true, false) => Origin::Derived("--debug-view"),
+            };
+            set.reserve(p, origin)
+        })
         .collect::<Result<Vec<_>>>()?;
     let lpes: Vec<_> = aovs.iter().map(|x| x.lpe.clone()).collect();
     let bar = ProgressBar::new(u64::from(scene.camera.height)).with_style(
@@ -106,7 +112,7 @@ pub fn run(a: &RenderArgs) -> Result<()> {
     let secs = start.elapsed().as_secs_f64();
     bar.finish_and_clear();
     let mut files = Vec::new();
-    let (bytes, _) = encode_counting(&r.beauty, format)?;
+    let (bytes, clamped) = encode_counting(&r.beauty, format)?;
     files.push(bytes);
     for img in &r.aovs {
         files.push(encode_counting(img, format)?.0);
@@ -125,10 +131,12 @@ pub fn run(a: &RenderArgs) -> Result<()> {
         };
         files.push(super::spp_map::png(&map)?);
     }
-    for (p, bytes) in pending.into_iter().zip(&files) {
-        p.commit(bytes)?;
+    for (slot, bytes) in slots.into_iter().zip(&files) {
+        set.stage(slot, bytes)?;
     }
+    set.commit()?;
     report(a, &r, &paths, secs, &names)?;
+    super::render_cmd::warn_image(a, scene, &r.stats, clamped, format);
     if views.contains(&McView::Noise) {
         let single = r.mc.iter().filter(|p| p.samples < 2).count();
         if single > 0 {

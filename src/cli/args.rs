@@ -176,6 +176,10 @@ pub struct RenderArgs {
     /// --adaptive, the refined pixels).
     #[arg(long, value_name = "PNG")]
     pub spp_map: Option<PathBuf>,
+    /// Let the files this command derives from the output's name (`--features`, `--aov`,
+    /// `--debug-view`) replace existing files of those names, which are refused otherwise.
+    #[arg(long)]
+    pub force: bool,
     /// Settings overrides.
     #[command(flatten)]
     pub overrides: Overrides,

@@ -11,13 +11,31 @@ pub const DEFAULT_MIB: u64 = 4096;
 /// Bytes a rendered pixel may need at once: the linear image (24), a row's copy while bands
 /// are gathered (24), the encoder's input (`f32` RGB for EXR, 12) and its output (up to 12),
 /// diagnostic counts (8).
-const PIXEL_BYTES: u64 = 80;
+pub const PIXEL_BYTES: u64 = 80;
 
-/// Bytes one recorded ray may need: the node, its two name strings on the heap, and its pretty
-/// JSON (measured 1.9 KB per node on the classic scene; 3 KB allowed), twice while the output
-/// string grows.
-fn node_bytes() -> u64 {
-    std::mem::size_of::<RayNode>() as u64 + 64 + 2 * 3072
+/// Bytes one recorded ray may need while its tree is held and printed: the node itself, its
+/// heap parts (names, the children list, under the path integrator the path record and its
+/// light path string of up to one letter pair per bounce), the allocator's rounding, and the
+/// analysis a command builds beside it (the explanation, the LPE filter's copy). JSON is
+/// streamed (`say::json`), so the text never exists whole. Checked against the measured peak
+/// by `tests/hostile/round3.rs`.
+fn node_bytes(scene: &Scene) -> u64 {
+    let node = std::mem::size_of::<RayNode>() as u64;
+    // The text form: a line of about 300 bytes a ray.
+    let heap = match scene.settings.integrator {
+        raytree::scene::IntegratorKind::Path => 2 * u64::from(scene.settings.max_depth) + 96 + 512,
+        _ => 96 + 512,
+    };
+    // Twice: the filtered or explained copy a command may hold beside the tree.
+    2 * (node + heap)
+}
+
+/// The most samples one pixel can record: `spp`, or a refined pixel's total under adaptive or
+/// automatic antialiasing (`--max-spp`).
+fn max_samples(scene: &Scene) -> u64 {
+    let integrator = raytree::SceneIntegrator::new(scene);
+    let plan = raytree::render::adaptive_plan(&integrator).map_or(0, |p| p.total);
+    u64::from(scene.settings.spp.max(plan).max(1))
 }
 
 /// The budget in MiB: `--max-memory`, else [`DEFAULT_MIB`] or half the process's
@@ -90,8 +108,8 @@ pub fn check_aov_images(scene: &Scene, aovs: usize, mib: u64) -> Result<()> {
 /// memory budget; refuse when not even each sample's camera and shadow rays fit. Returns the
 /// ray budget when the memory lowered it.
 pub fn fit_tree(scene: &mut Scene, mib: u64) -> Result<Option<u64>> {
-    let spp = u64::from(scene.settings.spp.max(1));
-    let per_node = node_bytes();
+    let spp = max_samples(scene);
+    let per_node = node_bytes(scene);
     // A sample's rays: at most `max_rays`, plus the last secondary ray's shadow rays.
     let extra = scene.lights.len() as u64 + 1;
     let fit = budget_bytes(mib) / per_node / spp;

@@ -51,6 +51,7 @@ impl Canvas {
 
     /// Draw `text` with its baseline-left at `(x, y)`.
     pub fn text(&mut self, x: f32, y: f32, size: f32, text: &str, c: Rgb8) {
+        let text = &*raytree::text::guard_nonfinite(text);
         let scaled = self.font.as_scaled(PxScale::from(size));
         let mut caret = x;
         let (w, h) = (self.pixmap.width(), self.pixmap.height());

@@ -51,3 +51,12 @@ pub fn settle<T>(p: &Path, f: impl FnOnce() -> T) -> T {
     paths.retain(|q| q != p);
     r
 }
+
+/// Run `f` (renames that turn every path of `ps` into a finished output) and forget them, with
+/// no signal cleanup in between: a signal arriving meanwhile waits until `f` has returned.
+pub fn settle_all<T>(ps: &[PathBuf], f: impl FnOnce() -> T) -> T {
+    let mut paths = owned();
+    let r = f();
+    paths.retain(|q| !ps.contains(q));
+    r
+}

@@ -31,7 +31,10 @@ pub fn run(a: &CompareArgs) -> Result<()> {
     if let Some(s) = a.scale
         && !(s.is_finite() && s > 0.0)
     {
-        bail!("--scale: the map's full scale must be a finite number above 0, got {s}");
+        bail!(
+            "--scale {}: the map's full scale must be a finite number > 0",
+            raytree::text::num(s, 4)
+        );
     }
     let inputs = Inputs::new([a.a.as_path(), a.b.as_path()]);
     let pending = a

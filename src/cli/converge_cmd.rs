@@ -3,7 +3,7 @@
 
 use super::args::Overrides;
 use super::load::load;
-use super::output::{Inputs, OutDir, Pending, encode_rgb8_png, read_image};
+use super::output::{Inputs, Origin, OutDir, OutputSet, encode_rgb8_png, read_image};
 use super::say::{out, sayln};
 use anyhow::{Result, bail};
 use clap::Args;
@@ -42,6 +42,10 @@ pub struct ConvergeArgs {
     /// A small run: 64 pixels wide, up to 16 spp against 256.
     #[arg(long)]
     pub quick: bool,
+    /// Let the rendered reference replace a `reference.exr` or `reference.json` in the report
+    /// directory that is not this command's cache (refused otherwise).
+    #[arg(long)]
+    pub force: bool,
     /// Settings overrides (--size sets the render size; default 160 pixels wide, the scene's
     /// aspect ratio).
     #[command(flatten)]
@@ -75,9 +79,20 @@ pub fn run(a: &ConvergeArgs) -> Result<()> {
     let (w, h) = (scene.camera.width, scene.camera.height);
     let max_spp = a.max_spp.unwrap_or(if a.quick { 16 } else { 64 });
     let ref_spp = a.ref_spp.unwrap_or(if a.quick { 256 } else { 1024 });
-    if max_spp == 0 || ref_spp == 0 {
-        bail!("--max-spp and --ref-spp must be at least 1");
+    for (flag, v) in [("--max-spp", max_spp), ("--ref-spp", ref_spp)] {
+        if !(1..=raytree::scene::MAX_SPP).contains(&v) {
+            bail!(
+                "{flag} {v}: must be 1 to {} (the limit of --spp)",
+                raytree::scene::MAX_SPP
+            );
+        }
     }
+    // The reference, a render and their errors at once.
+    super::budget::check_image_with(
+        scene,
+        super::budget::mib(a.overrides.max_memory),
+        3 * super::budget::PIXEL_BYTES,
+    )?;
     if given.is_none() && ref_spp <= max_spp {
         bail!(
             "--ref-spp {ref_spp} must be above --max-spp {max_spp}: the reference must be better than every curve"
@@ -115,14 +130,15 @@ pub fn run(a: &ConvergeArgs) -> Result<()> {
     inputs.extend(a.reference.as_deref());
     let inputs = Inputs::new(inputs);
     let dir = OutDir::create(&a.output)?;
-    let pending = NAMES
+    let mut set = OutputSet::new(&inputs, a.force);
+    let slots = NAMES
         .iter()
-        .map(|n| dir.file(n, &inputs))
+        .map(|n| dir.reserve(&mut set, n, Origin::Named))
         .collect::<Result<Vec<_>>>()?;
     let key = reference_key(&loaded.inputs, scene, ref_spp)?;
     let (reference, cache) = match given {
         Some(r) => (r, None),
-        None => cached_reference(&a.output, &key, scene, ref_spp, &dir, &inputs)?,
+        None => cached_reference(&a.output, &key, scene, ref_spp, &dir, &mut set)?,
     };
     let bar = ProgressBar::new(0).with_style(
         ProgressStyle::with_template("converge [{bar:40}] {pos}/{len} renders {elapsed_precise}")
@@ -141,18 +157,21 @@ pub fn run(a: &ConvergeArgs) -> Result<()> {
     let md = markdown(&curves, &loaded.label, (w, h), &what);
     let plot = super::converge_plot::plot(&curves, (w, h), 1400, 650)?;
     let bytes: [Vec<u8>; 4] = [
-        md.clone().into_bytes(),
+        raytree::text::guard_nonfinite(&md)
+            .into_owned()
+            .into_bytes(),
         csv(&curves).into_bytes(),
         serde_json::to_vec_pretty(&curves)?,
         encode_rgb8_png(&plot, 1400, 650)?,
     ];
-    for (p, b) in pending.into_iter().zip(bytes) {
-        p.commit(&b)?;
+    for (slot, b) in slots.into_iter().zip(bytes) {
+        set.stage(slot, &b)?;
     }
     if let Some((exr, json, bytes)) = cache {
-        exr.commit(&bytes)?;
-        json.commit(key.as_bytes())?;
+        set.stage(exr, &bytes)?;
+        set.stage(json, key.as_bytes())?;
     }
+    set.commit()?;
     dir.keep();
     out(&md)?;
     sayln!("wrote {}/{{{}}}", a.output.display(), NAMES.join(","))?;
@@ -194,7 +213,15 @@ fn reference_key(files: &[PathBuf], scene: &raytree::Scene, spp: u32) -> Result<
     Ok(serde_json::to_string_pretty(&key)?)
 }
 
-type Cache = Option<(Pending, Pending, Vec<u8>)>;
+type Cache = Option<(usize, usize, Vec<u8>)>;
+
+/// Whether `json` is a cache key this command wrote (so the `reference.exr` beside it is its
+/// cache too, and may be replaced).
+fn is_our_key(json: &Path) -> bool {
+    let text = super::load::read_text(json, 1 << 20).unwrap_or_default();
+    serde_json::from_str::<serde_json::Value>(&text)
+        .is_ok_and(|v| v.get("files_fnv1a").is_some() && v.get("ref_spp").is_some())
+}
 
 /// The reference from the report directory when its key matches, else rendered (and, once the
 /// report is written, cached). Either way the 32-bit float values of the EXR, so a cached run
@@ -205,19 +232,24 @@ fn cached_reference(
     scene: &raytree::Scene,
     spp: u32,
     dir: &OutDir,
-    inputs: &Inputs,
+    set: &mut OutputSet,
 ) -> Result<(Image, Cache)> {
     let (exr, json) = (out.join("reference.exr"), out.join("reference.json"));
-    if std::fs::read_to_string(&json).is_ok_and(|k| k == key)
+    if super::load::read_text(&json, 1 << 20).is_ok_and(|k| k == key)
         && let Ok(r) = read_reference(&exr)
         && (r.width, r.height) == (scene.camera.width, scene.camera.height)
     {
         sayln!("using the cached reference {}", exr.display())?;
         return Ok((r, None));
     }
+    let origin = if is_our_key(&json) || !(exr.exists() || json.exists()) {
+        Origin::Named
+    } else {
+        Origin::Derived("the reference cache; --reference uses a file as the reference")
+    };
     let pending = (
-        dir.file("reference.exr", inputs)?,
-        dir.file("reference.json", inputs)?,
+        dir.reserve(set, "reference.exr", origin)?,
+        dir.reserve(set, "reference.json", origin)?,
     );
     sayln!(
         "rendering the reference: {spp} spp at {}x{}",

@@ -2,7 +2,7 @@
 
 use super::args::CostArgs;
 use super::load::load;
-use super::output::{Inputs, OutDir, encode_rgb8_png};
+use super::output::{Inputs, Origin, OutDir, OutputSet, encode_rgb8_png};
 use super::plot::error_vs_time;
 use super::say::{out, sayln};
 use anyhow::Result;
@@ -21,12 +21,19 @@ pub fn run(a: &CostArgs) -> Result<()> {
         overrides.size = Some(if a.quick { "160x90" } else { "320x180" }.to_string());
     }
     let loaded = load(a.scene.as_deref(), &overrides)?;
+    // A sweep holds a reference and a render (and their errors) at once.
+    super::budget::check_image_with(
+        &loaded.scene,
+        super::budget::mib(a.overrides.max_memory),
+        3 * super::budget::PIXEL_BYTES,
+    )?;
     let inputs = Inputs::new(loaded.inputs.iter().map(|p| p.as_path()));
     let dir = OutDir::create(&a.output)?;
     let names = ["cost.md", "cost.csv", "cost.json", "cost.png"];
-    let pending = names
+    let mut set = OutputSet::new(&inputs, false);
+    let slots = names
         .iter()
-        .map(|n| dir.file(n, &inputs))
+        .map(|n| dir.reserve(&mut set, n, Origin::Named))
         .collect::<Result<Vec<_>>>()?;
     let mut sweep = if a.quick {
         Sweep::quick()
@@ -49,14 +56,17 @@ pub fn run(a: &CostArgs) -> Result<()> {
     let md = markdown(&report, &loaded.label);
     let plot = encode_rgb8_png(&error_vs_time(&report, 1200, 800)?, 1200, 800)?;
     let bytes: [Vec<u8>; 4] = [
-        md.clone().into_bytes(),
+        raytree::text::guard_nonfinite(&md)
+            .into_owned()
+            .into_bytes(),
         csv(&report).into_bytes(),
         serde_json::to_vec_pretty(&report)?,
         plot,
     ];
-    for (p, b) in pending.into_iter().zip(bytes) {
-        p.commit(&b)?;
+    for (slot, b) in slots.into_iter().zip(bytes) {
+        set.stage(slot, &b)?;
     }
+    set.commit()?;
     dir.keep();
     out(&md)?;
     sayln!("wrote {}/{{{}}}", a.output.display(), names.join(","))?;

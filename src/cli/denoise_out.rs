@@ -2,7 +2,7 @@
 //! image, and the albedo and normal images beside the output (`raytree::denoise`).
 
 use super::args::RenderArgs;
-use super::output::{ImageFormat, Inputs, Pending, encode_counting};
+use super::output::{ImageFormat, Origin, OutputSet, encode_counting};
 use super::say::sayln;
 use anyhow::Result;
 use raytree::denoise::{DenoiseParams, Features, denoise, gather_counted};
@@ -20,7 +20,7 @@ pub const PIXEL_BYTES: u64 = 384;
 /// The reserved guide outputs (when `--features`) and what the render leaves for them.
 pub struct Guides {
     denoise: bool,
-    files: Option<(Pending, Pending)>,
+    files: Option<(usize, usize)>,
     features: RefCell<Option<Features>>,
 }
 
@@ -32,14 +32,14 @@ fn beside(output: &Path, name: &str) -> std::path::PathBuf {
 
 impl Guides {
     /// `None` unless `--denoise` or `--features`; reserves the feature files.
-    pub fn create(a: &RenderArgs, inputs: &Inputs) -> Result<Option<Self>> {
+    pub fn create(a: &RenderArgs, set: &mut OutputSet) -> Result<Option<Self>> {
         if !a.denoise && !a.features {
             return Ok(None);
         }
         let files = if a.features {
             Some((
-                Pending::create(&beside(&a.output, "albedo"), inputs)?,
-                Pending::create(&beside(&a.output, "normal"), inputs)?,
+                set.reserve(&beside(&a.output, "albedo"), Origin::Derived("--features"))?,
+                set.reserve(&beside(&a.output, "normal"), Origin::Derived("--features"))?,
             ))
         } else {
             None
@@ -78,11 +78,11 @@ impl Guides {
         (image, stats, map)
     }
 
-    /// Write the albedo and normal images (with `--features`).
-    pub fn commit(self, format: ImageFormat) -> Result<()> {
+    /// Stage the albedo and normal images (with `--features`) in `set`.
+    pub fn stage(self, set: &mut OutputSet, format: ImageFormat) -> Result<()> {
         if let (Some((albedo, normal)), Some(f)) = (self.files, self.features.into_inner()) {
-            albedo.commit(&encode_counting(&f.albedo_image(), format)?.0)?;
-            normal.commit(&encode_counting(&f.normal_image(), format)?.0)?;
+            set.stage(albedo, &encode_counting(&f.albedo_image(), format)?.0)?;
+            set.stage(normal, &encode_counting(&f.normal_image(), format)?.0)?;
         }
         Ok(())
     }

@@ -45,6 +45,15 @@ pub fn load(path: Option<&Path>, o: &Overrides) -> Result<Loaded> {
     if let Some(note) = ignored_flags(&scene, o) {
         warnln!("{note}");
     }
+    if scene.settings.integrator == IntegratorKind::Path {
+        let over = raytree::trace::overflowing_lights(&scene);
+        if !over.is_empty() {
+            warnln!(
+                "warning: the power of {} overflows a 64-bit float; the path integrator's light sampling chooses it as if its power were the largest finite one",
+                escape_controls(&over.join(", "))
+            );
+        }
+    }
     Ok(Loaded {
         scene,
         label,

@@ -149,6 +149,149 @@ impl Drop for Pending {
     }
 }
 
+/// Who named an output: the user, by a flag (replacing an existing file of that name is what
+/// was asked), or the command, by deriving it from another name (`out.albedo.png` from `-o
+/// out.png`): an existing file there is the user's and is refused unless `--force`.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Origin {
+    /// Named on the command line.
+    Named,
+    /// Derived by the command; the flag that made it (for the message).
+    Derived(&'static str),
+}
+
+/// The identity of an output for collision checks: its directory resolved (symlinks, `.` and
+/// `..`) joined with its file name, and the device and inode of an existing file.
+fn identity(target: &Path) -> Result<(PathBuf, Option<(u64, u64)>)> {
+    let name = target
+        .file_name()
+        .with_context(|| format!("cannot write {}: not a file name", target.display()))?;
+    let dir = std::fs::canonicalize(parent_of(target))
+        .with_context(|| format!("cannot write {}: its directory", target.display()))?;
+    let id = std::fs::metadata(target).ok().map(|m| (m.dev(), m.ino()));
+    Ok((dir.join(name), id))
+}
+
+struct Slot {
+    shown: PathBuf,
+    target: PathBuf,
+    key: (PathBuf, Option<(u64, u64)>),
+    staged: Option<PathBuf>,
+}
+
+/// Every output file of one command, written as a set: each is checked when reserved (before
+/// any work: special files, inputs, two outputs with one name however spelled, derived names
+/// that would replace a user's file), its bytes are staged to a temporary file beside it only
+/// when the work is done, and [`OutputSet::commit`] moves all of them into place at once with
+/// signal cleanup held off, so a signal leaves either no target changed or every one written.
+pub struct OutputSet<'a> {
+    inputs: &'a Inputs,
+    force: bool,
+    slots: Vec<Slot>,
+}
+
+impl<'a> OutputSet<'a> {
+    /// An empty set; `force` allows derived names to replace existing files.
+    pub fn new(inputs: &'a Inputs, force: bool) -> Self {
+        Self {
+            inputs,
+            force,
+            slots: Vec::new(),
+        }
+    }
+
+    /// Check `target` as an output and return its slot. Probes that a temporary file can be
+    /// created beside it (and removes it again, so an abort during the work leaves nothing).
+    pub fn reserve(&mut self, target: &Path, origin: Origin) -> Result<usize> {
+        let real = resolve(target)?;
+        drop(Pending::create(target, self.inputs)?);
+        let key = identity(&real)?;
+        if let Some(other) = self
+            .slots
+            .iter()
+            .find(|s| s.key.0 == key.0 || (key.1.is_some() && s.key.1 == key.1))
+        {
+            bail!(
+                "two outputs of this command would both be {}: {} and {}; give each a file of its own",
+                escape(&real),
+                escape(&other.shown),
+                escape(target)
+            );
+        }
+        if let (Origin::Derived(flag), Some(_), false) = (origin, key.1, self.force) {
+            bail!(
+                "{} (written for {flag}) exists and this command did not create it; not replaced: move it away or add --force",
+                escape(target)
+            );
+        }
+        self.slots.push(Slot {
+            shown: target.to_path_buf(),
+            target: real,
+            key,
+            staged: None,
+        });
+        Ok(self.slots.len() - 1)
+    }
+
+    /// Write the bytes of slot `i` to its temporary file (synced); nothing is replaced yet.
+    pub fn stage(&mut self, i: usize, bytes: &[u8]) -> Result<()> {
+        let slot = &mut self.slots[i];
+        let temp = temp_in(parent_of(&slot.target));
+        cleanup::register(&temp);
+        slot.staged = Some(temp.clone());
+        let written = File::options()
+            .write(true)
+            .create_new(true)
+            .open(&temp)
+            .and_then(|mut f| f.write_all(bytes).and_then(|()| f.sync_all()));
+        written.with_context(|| format!("cannot write {}", slot.shown.display()))
+    }
+
+    /// Move every staged file into place. The renames run with the signal cleanup locked out
+    /// (a signal waits for them), so the set is all or nothing from the user's view.
+    pub fn commit(mut self) -> Result<()> {
+        if let Some(s) = self.slots.iter().find(|s| s.staged.is_none()) {
+            bail!(
+                "internal: {} was reserved but not written",
+                s.shown.display()
+            );
+        }
+        let temps: Vec<PathBuf> = self.slots.iter().filter_map(|s| s.staged.clone()).collect();
+        // A test hook (tests/hostile/round3.rs): a pause before each rename, so that a signal
+        // can be sent while the set is being moved into place.
+        let pause = std::env::var("RAYTREE_TEST_COMMIT_PAUSE_MS")
+            .ok()
+            .and_then(|v| v.parse().ok())
+            .map(std::time::Duration::from_millis);
+        cleanup::settle_all(&temps, || {
+            for s in &mut self.slots {
+                if let Some(p) = pause {
+                    std::thread::sleep(p);
+                }
+                let temp = s.staged.take().expect("checked above");
+                if let Err(e) = std::fs::rename(&temp, &s.target) {
+                    let _ = std::fs::remove_file(&temp);
+                    return Err(e).with_context(|| format!("cannot write {}", s.shown.display()));
+                }
+            }
+            Ok(())
+        })
+    }
+}
+
+impl Drop for OutputSet<'_> {
+    fn drop(&mut self) {
+        for t in self.slots.iter_mut().filter_map(|s| s.staged.take()) {
+            let _ = std::fs::remove_file(&t);
+            cleanup::forget(&t);
+        }
+    }
+}
+
+fn escape(p: &Path) -> String {
+    raytree::input::escape_controls(&p.display().to_string()).into_owned()
+}
+
 /// An output directory: an existing directory is used as it is (only the command's own files
 /// in it are replaced, each atomically; nothing else is touched or deleted), a missing one is
 /// created and removed again if the command fails.
@@ -194,9 +337,9 @@ impl OutDir {
         Ok(out)
     }
 
-    /// Reserve the file `name` in the directory.
-    pub fn file(&self, name: &str, inputs: &Inputs) -> Result<Pending> {
-        Pending::create(&self.path.join(name), inputs)
+    /// Reserve the file `name` in the directory in `set`.
+    pub fn reserve(&self, set: &mut OutputSet, name: &str, origin: Origin) -> Result<usize> {
+        set.reserve(&self.path.join(name), origin)
     }
 
     /// Keep the directory (after every file in it was committed).
@@ -256,11 +399,25 @@ pub fn encode_rgb8_png(rgb: &[u8], width: u32, height: u32) -> Result<Vec<u8>> {
     Ok(raytree::codec::png_rgb8(rgb, width, height)?)
 }
 
+/// Largest image file `compare`, `outliers` and `converge --reference` read (1 GiB).
+pub const MAX_IMAGE_BYTES: u64 = 1 << 30;
+
 /// Read a PNG (sRGB, decoded to linear) or EXR (linear) into an [`Image`].
 pub fn read_image(path: &Path) -> Result<Image> {
     let format = image_format(path)
         .map_err(|_| anyhow::anyhow!("cannot read {}: expected .png or .exr", path.display()))?;
-    let img = image::open(path).with_context(|| format!("cannot read image {}", path.display()))?;
+    // Only a regular file, size-bounded (a FIFO would block, a device never end); the decoder's
+    // error is its own message only (its source repeats it).
+    let shown = escape(path);
+    let bytes = super::load::read_limited(path, MAX_IMAGE_BYTES)
+        .map_err(|e| anyhow::anyhow!("cannot read image {shown}: {e}"))?;
+    let kind = match format {
+        ImageFormat::Png => image::ImageFormat::Png,
+        ImageFormat::Exr => image::ImageFormat::OpenExr,
+    };
+    let img = image::load_from_memory_with_format(&bytes, kind)
+        .map_err(|e| anyhow::anyhow!("cannot read image {shown}: {e}"))?;
+    drop(bytes);
     let (width, height) = (img.width(), img.height());
     let pixels = match format {
         ImageFormat::Exr => img

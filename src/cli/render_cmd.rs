@@ -2,7 +2,7 @@
 
 use super::args::RenderArgs;
 use super::load::load;
-use super::output::{ImageFormat, Inputs, Pending, encode_counting, image_format};
+use super::output::{ImageFormat, Inputs, Origin, OutputSet, encode_counting, image_format};
 use super::say::{sayln, warnln};
 use anyhow::Result;
 use indicatif::{ProgressBar, ProgressStyle};
@@ -40,10 +40,11 @@ pub fn run(a: &RenderArgs) -> Result<()> {
         super::budget::check_image_with(scene, mib, super::denoise_out::PIXEL_BYTES)?;
     }
     let inputs = Inputs::new(loaded.inputs.iter().map(|p| p.as_path()));
-    let pending = Pending::create(&a.output, &inputs)?;
-    let guides = super::denoise_out::Guides::create(a, &inputs)?;
-    let map_pending = match &a.spp_map {
-        Some(p) => Some(Pending::create(p, &inputs)?),
+    let mut set = OutputSet::new(&inputs, a.force);
+    let out = set.reserve(&a.output, Origin::Named)?;
+    let guides = super::denoise_out::Guides::create(a, &mut set)?;
+    let map_slot = match &a.spp_map {
+        Some(p) => Some(set.reserve(p, Origin::Named)?),
         None => None,
     };
     let (w, h) = (scene.camera.width, scene.camera.height);
@@ -68,19 +69,14 @@ pub fn run(a: &RenderArgs) -> Result<()> {
     let secs = start.elapsed().as_secs_f64();
     bar.finish_and_clear();
     let (bytes, clamped) = encode_counting(&image, format)?;
-    if let Some(p) = map_pending {
-        p.commit(&super::spp_map::png(&map)?)?;
+    if let Some(slot) = map_slot {
+        set.stage(slot, &super::spp_map::png(&map)?)?;
     }
-    pending.commit(&bytes)?;
+    set.stage(out, &bytes)?;
     if let Some(g) = guides {
-        g.commit(format)?;
+        g.stage(&mut set, format)?;
     }
-    if clamped > 0 && format == ImageFormat::Exr {
-        warnln!(
-            "warning: {clamped} pixels had a channel beyond the 32-bit float range (3.4e38) and were clamped to it in {}",
-            a.output.display()
-        );
-    }
+    set.commit()?;
     let r = stats.rays;
     sayln!(
         "wrote {} ({w}x{h}, {} spp, max depth {})",
@@ -157,14 +153,6 @@ pub fn run(a: &RenderArgs) -> Result<()> {
             r.dropped_samples
         );
     }
-    if r.budget_samples > 0 {
-        warnln!(
-            "warning: {} samples reached the ray budget of {} rays per sample (--max-rays); {} secondary rays were cut there (`raytree trace` records the weight cut)",
-            r.budget_samples,
-            scene.settings.max_rays,
-            r.budget_cuts
-        );
-    }
     if a.diagnose {
         sayln!(
             "diagnostics: {} self-hit rays in {} pixels, {} leaking rays in {} pixels (offset {} {:e})",
@@ -176,6 +164,35 @@ pub fn run(a: &RenderArgs) -> Result<()> {
             scene.settings.offset.epsilon
         )?;
     }
+    warn_image(a, scene, &stats, clamped, format);
+    Ok(())
+}
+
+/// The warnings every render prints about its image, with or without AOVs: EXR channels
+/// clamped, samples cut by the ray budget, pixels not finite (written black, with the first
+/// one's tree).
+pub fn warn_image(
+    a: &RenderArgs,
+    scene: &raytree::Scene,
+    stats: &raytree::RenderStats,
+    clamped: usize,
+    format: ImageFormat,
+) {
+    if clamped > 0 && format == ImageFormat::Exr {
+        warnln!(
+            "warning: {clamped} pixels had a channel beyond the 32-bit float range (3.4e38) and were clamped to it in {}",
+            a.output.display()
+        );
+    }
+    let r = &stats.rays;
+    if r.budget_samples > 0 {
+        warnln!(
+            "warning: {} samples reached the ray budget of {} rays per sample (--max-rays); {} secondary rays were cut there (`raytree trace` records the weight cut)",
+            r.budget_samples,
+            scene.settings.max_rays,
+            r.budget_cuts
+        );
+    }
     if let Some((x, y)) = stats.first_nonfinite {
         warnln!(
             "warning: {} pixels were not finite and were written black; first at {x},{y} (`raytree trace --pixel {x},{y}`); its tree:",
@@ -185,5 +202,4 @@ pub fn run(a: &RenderArgs) -> Result<()> {
             super::say::err(&raytree::text::tree_text(&tree));
         }
     }
-    Ok(())
 }

@@ -2,7 +2,7 @@
 
 use super::args::TraceArgs;
 use super::load::{load, pair};
-use super::say::{out, sayln, warnln};
+use super::say::{out, warnln};
 use anyhow::{Result, bail};
 
 /// Print the ray tree of one pixel as text or JSON.
@@ -42,12 +42,19 @@ pub fn run(a: &TraceArgs) -> Result<()> {
                 "pixel {x},{y}: the tree holds a non-finite number at {at}; JSON cannot carry it, so none was written (the text form shows it: drop --json)"
             );
         }
-        let mut v = serde_json::to_value(&tree)?;
-        if let (Some(s), Some(o)) = (summary, v.as_object_mut()) {
-            // Beside the tree's own fields (readers of the schema ignore it): what matched.
-            o.insert("lpe_filter".to_owned(), s);
+        /// The tree with, beside its own fields (readers of the schema ignore it), what the
+        /// LPE filter matched.
+        #[derive(serde::Serialize)]
+        struct Filtered<'a> {
+            #[serde(flatten)]
+            tree: &'a raytree::RayTree,
+            #[serde(skip_serializing_if = "Option::is_none")]
+            lpe_filter: Option<serde_json::Value>,
         }
-        sayln!("{}", serde_json::to_string_pretty(&v)?)?;
+        super::say::json(&Filtered {
+            tree: &tree,
+            lpe_filter: summary,
+        })?;
     } else {
         out(&format!("{header}{}", raytree::text::tree_text(&tree)))?;
     }
@@ -95,9 +102,11 @@ pub(super) fn filter_lpe(
 /// Parse one `--lpe` expression; an error shows the expression with a caret under the column.
 fn parse_lpe(expr: &str) -> Result<raytree::lpe::Lpe> {
     raytree::lpe::Lpe::parse(expr).map_err(|e| {
+        let (shown, caret) = raytree::input::excerpt(expr, e.column);
         anyhow::anyhow!(
-            "--lpe: {e}\n  {expr}\n  {}^",
-            " ".repeat(e.column.saturating_sub(1))
+            "--lpe: {}\n  {shown}\n  {}^",
+            raytree::input::escape_controls(&e.to_string()),
+            " ".repeat(caret)
         )
     })
 }

@@ -4,7 +4,7 @@
 
 use super::canvas::Canvas;
 use super::load::load;
-use super::output::{Inputs, OutDir};
+use super::output::{Inputs, Origin, OutDir, OutputSet};
 use super::say::sayln;
 use anyhow::{Context, Result, bail};
 use clap::Args;
@@ -69,13 +69,23 @@ pub fn run(a: &VersusArgs) -> Result<()> {
         "difference.png",
         "breakdown.json",
     ];
-    let pending = names
+    let mut set = OutputSet::new(&inputs, false);
+    let slots = names
         .iter()
-        .map(|n| dir.file(n, &inputs))
+        .map(|n| dir.reserve(&mut set, n, Origin::Named))
         .collect::<Result<Vec<_>>>()?;
     let start = Instant::now();
     let v = versus(scene, region, &|_| {})?;
     let secs = start.elapsed().as_secs_f64();
+    let numbers = [v.whitted_luminance, v.path_luminance]
+        .into_iter()
+        .chain(v.classes.iter().map(|c| c.luminance))
+        .chain(v.breakdown().into_iter().flat_map(|(_, d, s)| [d, s]));
+    if numbers.into_iter().any(|x| !x.is_finite()) {
+        bail!(
+            "the breakdown's luminances are not finite (the scene's radiance overflows a 64-bit float when summed over the region); nothing was written"
+        );
+    }
     let json = serde_json::to_string_pretty(&breakdown_json(&v, &loaded.label))?;
     let files = [
         raytree::codec::png(&v.whitted)?,
@@ -84,9 +94,10 @@ pub fn run(a: &VersusArgs) -> Result<()> {
         difference(&v)?,
         json.clone().into_bytes(),
     ];
-    for (p, bytes) in pending.into_iter().zip(&files) {
-        p.commit(bytes)?;
+    for (slot, bytes) in slots.into_iter().zip(&files) {
+        set.stage(slot, bytes)?;
     }
+    set.commit()?;
     dir.keep();
     if a.json {
         sayln!("{json}")?;

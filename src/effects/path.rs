@@ -64,11 +64,12 @@ pub(super) fn lines(scene: &Scene, names: Names<'_>) -> Vec<EffectLine> {
             format!(
                 "next-event estimation over {} lights ({} point/directional, {emitters} \
                  emissive spheres/quads/triangles), BSDF sampling, MIS (power heuristic), \
-                 Russian roulette from bounce {}, max depth {}",
+                 Russian roulette from bounce {}, max depth {}{}",
                 scene.lights.len() + emitters,
                 scene.lights.len(),
                 s.rr_depth,
-                s.max_depth
+                s.max_depth,
+                super::dark_note(scene)
             ),
         ),
         line(

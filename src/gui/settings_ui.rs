@@ -180,24 +180,35 @@ fn min_weight_ui(ui: &mut egui::Ui, doc: &Document, s: &mut crate::scene::Settin
     );
 }
 
-/// The roulette below a weight at glass (Whitted scenes with a transmissive material): "auto"
-/// shows the weight chosen from the scene ([`crate::trace::bound::carried`]); 0 splits every
-/// glass hit.
+/// The roulette below a weight at glass (Whitted scenes with a transmissive material): off by
+/// default ("default" ticked: every glass hit splits, the image is deterministic); unticking
+/// starts the slider at the weight suggested for the scene ([`crate::trace::bound::carried`]).
 fn roulette_ui(ui: &mut egui::Ui, doc: &Document, s: &mut crate::scene::Settings) {
     if s.integrator != IntegratorKind::Whitted
         || !doc.scene.used_materials().any(|m| m.is_transmissive())
     {
         return;
     }
-    let auto_value = crate::trace::bound::carried::auto_roulette_below(&doc.scene, s);
-    s.roulette_below = auto_weight_ui(
-        ui,
-        s.roulette_below,
-        auto_value,
-        "roulette below",
-        "glass hits weaker than this follow one of their two rays (Russian roulette, exact in \
-         expectation); 0 splits every hit",
+    let suggested = crate::trace::bound::carried::auto_roulette_below(&doc.scene, s);
+    let hover = format!(
+        "off by default: every glass hit splits and the image is deterministic. Unticked, glass \
+         hits weaker than the weight follow one of their two rays (Russian roulette, exact in \
+         expectation, noisy); suggested for this scene: {suggested:.2e}"
     );
+    let mut default = s.roulette_below.is_none();
+    let mut w = s.roulette_below.unwrap_or(suggested);
+    ui.horizontal(|ui| {
+        ui.add_enabled(
+            !default,
+            Slider::new(&mut w, 0.0..=1.0)
+                .logarithmic(true)
+                .smallest_positive(1e-9)
+                .text("roulette below"),
+        );
+        ui.checkbox(&mut default, "default (off)")
+            .on_hover_text(hover);
+    });
+    s.roulette_below = (!default).then_some(w);
 }
 
 /// A weight in `[0, 1]` on a log slider beside an "auto" box: `None` (automatic, the slider

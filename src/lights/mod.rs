@@ -6,10 +6,12 @@
 //! uniformly by area, the area pdf converted to solid angle by `pdf_area dist^2 / |cos_light|`
 //! (pbrt-v4 `Shape::PDF(ctx, wi)` default; Veach's thesis eq. 8.10). See `docs/monte-carlo.md`.
 
+mod emit;
 mod prepared;
 #[cfg(test)]
 mod tests;
 
+pub use emit::{DARK_PROBE, EmittedRay, Emitter, bounding_sphere, dark_emitters, emitters};
 pub use prepared::{PreparedEmitter, PreparedPlanar};
 
 use crate::math::Rgb;

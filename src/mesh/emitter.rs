@@ -57,6 +57,27 @@ impl Mesh {
         })
     }
 
+    /// A point uniform over the mesh's area and the outward (geometric) normal of its triangle:
+    /// `u.x` picks the triangle by area as [`Self::sample_emitter`] does and is rescaled into
+    /// the triangle's own sample. `None` for a mesh of no area.
+    #[must_use]
+    pub fn sample_point(&self, u: DVec2) -> Option<(DVec3, DVec3)> {
+        let total = self.area();
+        if !(total > 0.0 && total.is_finite()) {
+            return None;
+        }
+        let target = u.x * total;
+        let i = self
+            .area_cdf
+            .partition_point(|&c| c <= target)
+            .min(self.tris.len() - 1);
+        let lo = if i == 0 { 0.0 } else { self.area_cdf[i - 1] };
+        let ux = ((target - lo) / (self.area_cdf[i] - lo)).clamp(0.0, 1.0 - f64::EPSILON / 2.0);
+        let [v0, v1, v2] = self.tris[i];
+        let e = PlanarEmitter::triangle(v0, v1, v2);
+        Some((e.sample_point(DVec2::new(ux, u.y)), e.normal()?))
+    }
+
     /// The solid-angle pdf of [`Self::sample_emitter`] for direction `wi` from `p`: where the
     /// ray from `p` first meets the mesh, `d^2 / (cos_light A)` if it meets a triangle's outer
     /// side, else 0.

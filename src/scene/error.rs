@@ -51,6 +51,21 @@ pub(super) fn path_of(p: &serde_path_to_error::Path) -> String {
 /// serde's "unknown field `x`, expected ..." and "unknown variant `x`, expected ..." with the
 /// user's string quoted by [`quote`] (escaped, and cut if long); other messages unchanged.
 pub(super) fn reword(message: String) -> String {
+    // A number too large for an integer field (seed 2^64) reaches serde as a float.
+    for (int, range) in [
+        ("u64", "0 to 18446744073709551615"),
+        ("u32", "0 to 4294967295"),
+    ] {
+        if message.starts_with("invalid type: floating point")
+            && message.ends_with(&format!("expected {int}"))
+        {
+            let got = message
+                .split('`')
+                .nth(1)
+                .map_or(String::new(), |v| format!(", got {v}"));
+            return format!("must be a whole number from {range}{got}");
+        }
+    }
     for what in ["unknown field `", "unknown variant `"] {
         let Some(rest) = message.strip_prefix(what) else {
             continue;

@@ -32,7 +32,9 @@ pub use error::SceneError;
 pub use generated::icosphere_scene;
 pub use locate::locate;
 pub use transform::transformed;
-pub use validate::{check_aperture, check_focus, check_settings};
+pub use validate::{
+    MAX_RR_DEPTH, MAX_SPP, check_aperture, check_focus, check_rr_depth, check_settings,
+};
 
 /// The built-in default scene: the lecture's classic (mirror ball, glass ball, checkered floor,
 /// one light). Same file as `fixtures/classic.json`.
@@ -316,7 +318,7 @@ impl Scene {
     #[inline]
     pub fn area_light(&self, i: usize) -> Option<(AreaEmitter<'_>, Rgb)> {
         let emission = self.material_of(i).emission;
-        if emission.max_element() <= 0.0 {
+        if emission.max_element() <= 0.0 || self.accel.is_coincident_copy(i, self.objects.len()) {
             return None;
         }
         let e = match self.objects[i].shape {

@@ -12,7 +12,7 @@ use glam::DVec3;
 use std::collections::HashMap;
 
 mod settings;
-pub use settings::check_settings;
+pub use settings::{MAX_RR_DEPTH, MAX_SPP, check_rr_depth, check_settings};
 
 pub(super) fn from_json(src: &str, load_mesh: MeshLoader) -> Result<Scene, SceneError> {
     let src = crate::input::strip_bom(src);
@@ -63,6 +63,7 @@ pub fn validate(desc: &SceneDesc, src: &str, load_mesh: MeshLoader) -> Result<Sc
     for (i, l) in desc.lights.iter().enumerate() {
         lights.push(light(&ck, i, l)?);
     }
+    check_spheres(&ck, &camera, &objects)?;
     let settings = settings(&ck, &desc.settings)?;
     let accel = Accel::build(&objects);
     Ok(Scene {
@@ -77,10 +78,58 @@ pub fn validate(desc: &SceneDesc, src: &str, load_mesh: MeshLoader) -> Result<Sc
     })
 }
 
+/// Largest sphere radius: the intersection test squares it.
+pub const MAX_SPHERE_RADIUS: f64 = 1e150;
+
+/// Refuse spheres the intersection test cannot resolve (issue 27: a ground sphere of radius
+/// 1e100 vanished or rendered black). The test (Ray Tracing Gems ch. 7's stable form) squares
+/// the radius, and a point near a sphere's surface is known only to about radius x 2^-52: a
+/// camera closer to the surface than that (2^-44 of the larger of the radius and the camera's
+/// distance to the centre, with headroom) sees it at a distance that is all rounding error.
+fn check_spheres(ck: &Check, camera: &Camera, objects: &[Object]) -> Result<(), SceneError> {
+    for (i, o) in objects.iter().enumerate() {
+        let Shape::Sphere { center, radius } = o.shape else {
+            continue;
+        };
+        let p = format!("objects[{i}].radius");
+        if radius > MAX_SPHERE_RADIUS {
+            return ck.fail(
+                p,
+                format!("{radius:e} is above the limit of 1e150 (the intersection test squares it); use a plane for an unbounded ground"),
+            );
+        }
+        let dist = (camera.position - center).length();
+        let gap = (dist - radius).abs();
+        let resolution = dist.max(radius) * f64::from(2.0f32.powi(-44));
+        if gap < resolution {
+            return ck.fail(
+                p,
+                format!(
+                    "{radius:e} is too large for this camera: the camera is {gap:.3e} from the sphere's surface, below what a 64-bit float resolves there ({resolution:.1e}, 2^-44 of its size); use a plane for a ground this large, or a smaller radius"
+                ),
+            );
+        }
+    }
+    Ok(())
+}
+
 fn camera(ck: &Check, c: &CameraDesc) -> Result<Camera, SceneError> {
     let position = ck.vec("camera.position", c.position)?;
     let look_at = ck.vec("camera.look_at", c.look_at)?;
-    let Some(forward) = (look_at - position).try_normalize() else {
+    let d = look_at - position;
+    if !d.is_finite() {
+        return ck.fail(
+            "camera.look_at",
+            "is so far from camera.position that their difference overflows a 64-bit float",
+        );
+    }
+    // A distance beyond 1.3e154 squares to infinity: normalise it scaled (only then, so the
+    // usual direction is unchanged bit for bit).
+    let scaled = || (d / d.abs().max_element()).try_normalize();
+    let Some(forward) = d
+        .try_normalize()
+        .or_else(|| scaled().filter(|_| d != DVec3::ZERO))
+    else {
         return ck.fail("camera.look_at", "must differ from camera.position");
     };
     let up_hint = ck.direction("camera.up", c.up)?;
@@ -131,12 +180,19 @@ fn camera(ck: &Check, c: &CameraDesc) -> Result<Camera, SceneError> {
 
 /// `camera.aperture_radius` (and `--aperture`): a finite number >= 0.
 pub fn check_aperture(r: f64) -> Result<f64, String> {
-    if r.is_finite() && r >= 0.0 {
-        Ok(r)
-    } else {
+    if !(r.is_finite() && r >= 0.0) {
         Err(format!("must be a finite number >= 0, got {r}"))
+    } else if r > MAX_LENS_RADIUS {
+        Err(format!(
+            "must be at most {MAX_LENS_RADIUS:e} (a lens point's distance from the focus point is squared when its ray is made), got {r:e}"
+        ))
+    } else {
+        Ok(r)
     }
 }
+
+/// Largest thin-lens radius (`camera.aperture_radius`, `--aperture`).
+pub const MAX_LENS_RADIUS: f64 = 1e150;
 
 /// `camera.focus_distance` (and `--focus`): a finite number > 0.
 pub fn check_focus(f: f64) -> Result<f64, String> {

@@ -20,7 +20,7 @@ pub use crate::interaction::SurfaceInteraction;
 pub use crate::media::{MediaStack, Medium};
 pub use integrator::{Integrator, SceneIntegrator, Whitted};
 pub use lights::LightSample;
-pub use path::{PathStrategy, PathTracer};
+pub use path::{PathStrategy, PathTracer, overflowing_lights};
 pub use recorder::{DiagnosticRecorder, NoopRecorder, Recorder, TreeRecorder};
 
 use crate::bvh::TraversalCost;

@@ -261,17 +261,20 @@ impl Sweep {
             push("dielectric_roulette", format!("from depth {d}"), s);
         }
         for &w in self.roulette_below.iter().filter(|_| glass) {
-            let s = Settings {
+            // `None` is the weight suggested for the scene (opt-in: the default is off, which
+            // the min_weight axis's automatic row measures).
+            let mut s = Settings {
                 min_weight: None,
                 roulette_below: w,
                 ..*base
             };
             let label = match w {
                 Some(w) => format!("{w:e}"),
-                None => format!(
-                    "auto ({:.1e})",
-                    crate::trace::bound::carried::auto_roulette_below(scene, &s)
-                ),
+                None => {
+                    let auto = crate::trace::bound::carried::auto_roulette_below(scene, &s);
+                    s.roulette_below = Some(auto);
+                    format!("suggested ({auto:.1e})")
+                }
             };
             push("roulette_below", label, s);
         }

@@ -40,6 +40,36 @@ pub struct Accel {
     objects: usize,
     /// Whether any object is a mesh.
     mesh: bool,
+    /// Objects (ascending) whose sphere, triangle or quad is bit for bit an earlier object's:
+    /// no ray ever hits them (equal distances go to the lower index), so they are not sampled
+    /// as lights either (issue 27: 100 coincident emitting triangles were counted 100 times).
+    coincident: Vec<u32>,
+}
+
+/// The bits of a sphere, triangle or quad (the shapes sampled as lights), to find copies.
+fn shape_bits(s: &Shape) -> Option<Vec<u64>> {
+    let pts: Vec<glam::DVec3> = match *s {
+        Shape::Sphere { center, radius } => vec![center, glam::DVec3::splat(radius)],
+        Shape::Triangle { vertices, .. } => vertices.to_vec(),
+        Shape::Quad { vertices, .. } => vertices.to_vec(),
+        _ => return None,
+    };
+    let tag = match s {
+        Shape::Sphere { .. } => 0,
+        Shape::Triangle { .. } => 1,
+        _ => 2,
+    };
+    let mut bits = vec![tag];
+    bits.extend(pts.iter().flat_map(|p| p.to_array().map(f64::to_bits)));
+    Some(bits)
+}
+
+/// [`Accel::coincident`] of `objects`.
+fn coincident(objects: &[Object]) -> Vec<u32> {
+    let mut seen = std::collections::HashSet::new();
+    (0..objects.len() as u32)
+        .filter(|&i| shape_bits(&objects[i as usize].shape).is_some_and(|b| !seen.insert(b)))
+        .collect()
 }
 
 impl Accel {
@@ -87,7 +117,16 @@ impl Accel {
             planes,
             spheres,
             objects: objects.len(),
+            coincident: coincident(objects),
         }
+    }
+
+    /// Whether object `i` of `n` is a copy of an earlier one ([`Accel::coincident`]), hidden
+    /// by it (false when the accel was built for another object count).
+    #[must_use]
+    pub fn is_coincident_copy(&self, i: usize, n: usize) -> bool {
+        self.objects == n
+            && u32::try_from(i).is_ok_and(|i| self.coincident.binary_search(&i).is_ok())
     }
 
     /// Whether the top-level BVH serves `n` objects: false for small scenes (scanned

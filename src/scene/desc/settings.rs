@@ -203,12 +203,13 @@ impl TryFrom<String> for SamplerKind {
 
 /// The pixel filter (`settings.filter`), importance-sampled: the camera ray's offset from the
 /// pixel centre is drawn from it ([`crate::sampling::PixelFilter`]).
-#[derive(Clone, Copy, Debug, Default, PartialEq, Serialize, Deserialize)]
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
 #[serde(tag = "type", rename_all = "lowercase", deny_unknown_fields)]
 pub enum FilterDesc {
-    /// Uniform over the pixel (today's positions, bit for bit).
-    #[default]
-    Box,
+    /// Uniform over the pixel (today's positions, bit for bit). A struct variant, empty, so
+    /// that `deny_unknown_fields` refuses `{"type": "box", "radius": -5}` (serde lets a unit
+    /// variant of an internally tagged enum take any fields).
+    Box {},
     /// Separable tent of `radius` pixels.
     Tent {
         /// Half-width in pixels (> 0).
@@ -224,6 +225,12 @@ pub enum FilterDesc {
     },
 }
 
+impl Default for FilterDesc {
+    fn default() -> Self {
+        FilterDesc::Box {}
+    }
+}
+
 /// A Gaussian filter without a `radius` is truncated at this many `sigma`.
 pub const GAUSSIAN_RADIUS_SIGMAS: f64 = 3.0;
 
@@ -233,7 +240,7 @@ impl FilterDesc {
     pub fn filter(&self) -> crate::sampling::PixelFilter {
         use crate::sampling::PixelFilter;
         match *self {
-            FilterDesc::Box => PixelFilter::Box,
+            FilterDesc::Box {} => PixelFilter::Box,
             FilterDesc::Tent { radius } => PixelFilter::Tent { radius },
             FilterDesc::Gaussian { sigma, radius } => PixelFilter::Gaussian {
                 sigma,
@@ -245,7 +252,7 @@ impl FilterDesc {
     /// Whether this is the default box.
     #[must_use]
     pub fn is_box(&self) -> bool {
-        *self == FilterDesc::Box
+        matches!(self, FilterDesc::Box {})
     }
 
     /// The filter written `box`, `tent:R` or `gaussian:SIGMA` (the `--filter` flag), or why
@@ -267,7 +274,7 @@ impl FilterDesc {
                 .map_err(|_| format!("{what} {a:?} is not a number"))
         };
         match kind {
-            "box" if arg.is_none() => Ok(FilterDesc::Box),
+            "box" if arg.is_none() => Ok(FilterDesc::Box {}),
             "box" => Err("box takes no parameter".into()),
             "tent" => Ok(FilterDesc::Tent {
                 radius: number(arg, "radius")?,
@@ -390,7 +397,7 @@ impl Default for Settings {
             seed: 0,
             max_depth: 16,
             spp: 1,
-            filter: FilterDesc::Box,
+            filter: FilterDesc::Box {},
             offset: OffsetDesc::default(),
             fresnel: FresnelModel::Exact,
             shadows: ShadowMode::Opaque,

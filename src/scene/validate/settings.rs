@@ -3,6 +3,9 @@
 
 use crate::scene::desc::Settings;
 
+/// Largest accepted `settings.spp` (and `adaptive.max_spp`).
+pub const MAX_SPP: u32 = 65_536;
+
 /// Largest accepted per-sample ray budget (2^32).
 pub const MAX_RAYS_LIMIT: u64 = 1 << 32;
 
@@ -63,12 +66,7 @@ pub fn check_settings(s: &Settings) -> Result<Settings, (String, String)> {
             format!("must be in 1..={MAX_LIGHT_SAMPLES}, got {n}"),
         ));
     }
-    if s.rr_depth > 1024 {
-        return Err((
-            "settings.rr_depth".into(),
-            format!("must be at most 1024, got {}", s.rr_depth),
-        ));
-    }
+    check_rr_depth(s.rr_depth).map_err(|m| ("settings.rr_depth".to_string(), m))?;
     if !(1..=MAX_GLOSSY_SAMPLES).contains(&s.glossy_samples) {
         return Err((
             "settings.glossy_samples".into(),
@@ -91,6 +89,25 @@ pub fn check_settings(s: &Settings) -> Result<Settings, (String, String)> {
         check_adaptive(&a, s.spp)?;
     }
     Ok(*s)
+}
+
+/// Largest accepted `settings.rr_depth`.
+pub const MAX_RR_DEPTH: u32 = 1024;
+
+/// A Russian-roulette depth: the first bounce at which roulette may end a path, 1 to
+/// [`MAX_RR_DEPTH`]. 0 is refused: bounce 1 is the first a path makes, so it would mean 1.
+///
+/// # Errors
+/// The message for an out-of-range depth.
+pub fn check_rr_depth(n: u32) -> Result<u32, String> {
+    match n {
+        0 => Err(
+            "must be at least 1 (roulette from bounce N on; bounce 1 is the first, so 0 would mean the same as 1)"
+                .into(),
+        ),
+        n if n > MAX_RR_DEPTH => Err(format!("must be at most {MAX_RR_DEPTH}, got {n}")),
+        n => Ok(n),
+    }
 }
 
 /// `settings.adaptive`: a finite threshold >= 0 and `max_spp` in `spp..=65536`. A first pass
@@ -119,21 +136,33 @@ pub const MAX_GLOSSY_SAMPLES: u32 = 65_536;
 /// Largest accepted `settings.light_samples`.
 pub const MAX_LIGHT_SAMPLES: u32 = 65_536;
 
-/// `settings.filter`: radius and sigma finite and > 0.
+/// Largest pixel-filter radius (and Gaussian sigma), in pixels: a wider filter draws nearly
+/// every camera ray far outside the image (`--filter gaussian:1e308` gave a background-only
+/// image with no note).
+pub const MAX_FILTER_RADIUS: f64 = 1024.0;
+
+/// `settings.filter`: radius and sigma finite, > 0 and at most [`MAX_FILTER_RADIUS`] pixels.
 fn check_filter(f: &crate::scene::desc::FilterDesc) -> Result<(), (String, String)> {
     use crate::scene::desc::FilterDesc;
     let positive = |name: &str, v: f64| {
-        if v.is_finite() && v > 0.0 {
-            Ok(())
-        } else {
+        if !(v.is_finite() && v > 0.0) {
             Err((
                 format!("settings.filter.{name}"),
                 format!("must be a finite number > 0, got {v}"),
             ))
+        } else if v > MAX_FILTER_RADIUS {
+            Err((
+                format!("settings.filter.{name}"),
+                format!(
+                    "must be at most {MAX_FILTER_RADIUS} pixels (wider, nearly every camera ray leaves the image), got {v:e}"
+                ),
+            ))
+        } else {
+            Ok(())
         }
     };
     match *f {
-        FilterDesc::Box => Ok(()),
+        FilterDesc::Box {} => Ok(()),
         FilterDesc::Tent { radius } => positive("radius", radius),
         FilterDesc::Gaussian { sigma, radius } => {
             positive("sigma", sigma)?;

@@ -75,8 +75,15 @@ impl<'a> LightTable<'a> {
     fn with_power(objects: usize, sources: Vec<Source<'a>>, power: &[f64]) -> Self {
         let n = sources.len();
         let total: f64 = power.iter().sum();
+        // Powers near f64::MAX (clamped there by `power`) whose sum overflows: the same
+        // proportions from powers scaled by the largest (the plain division otherwise, bit for
+        // bit as before).
+        let top = power.iter().copied().fold(0.0, f64::max);
         let pmf: Vec<f64> = if total > 0.0 && total.is_finite() {
             power.iter().map(|p| p / total).collect()
+        } else if top > 0.0 && top.is_finite() {
+            let scaled: f64 = power.iter().map(|p| p / top).sum();
+            power.iter().map(|p| p / top / scaled).collect()
         } else {
             vec![1.0 / n as f64; n]
         };
@@ -142,22 +149,14 @@ impl<'a> LightTable<'a> {
 /// The radius of a sphere around every bounded object (1 when there is none): the disc a
 /// directional light's flux is counted over.
 fn scene_radius(scene: &Scene) -> f64 {
-    let mut lo = glam::DVec3::splat(f64::INFINITY);
-    let mut hi = glam::DVec3::splat(f64::NEG_INFINITY);
-    for o in &scene.objects {
-        if let Some((a, b)) = o.shape.bounds() {
-            lo = lo.min(a);
-            hi = hi.max(b);
-        }
-    }
-    let r = 0.5 * (hi - lo).length();
-    if r.is_finite() && r > 0.0 { r } else { 1.0 }
+    crate::lights::bounding_sphere(scene).1
 }
 
-/// The mean over RGB of the flux of `s` (see the module doc).
-fn power(scene: &Scene, s: &Source<'_>, radius: f64) -> f64 {
+/// The mean over RGB of the flux of `s` (see the module doc), as computed: infinite when it
+/// overflows.
+fn raw_power(scene: &Scene, s: &Source<'_>, radius: f64) -> f64 {
     let mean = |c: Rgb| (c.x + c.y + c.z) / 3.0;
-    let phi = match *s {
+    match *s {
         Source::Delta(k) => match scene.lights[k].kind {
             LightKind::Point { intensity, .. } => 4.0 * PI * mean(intensity),
             LightKind::Directional { irradiance, .. } => PI * radius * radius * mean(irradiance),
@@ -172,8 +171,37 @@ fn power(scene: &Scene, s: &Source<'_>, radius: f64) -> f64 {
             };
             PI * area * mean(emission)
         }
-    };
-    if phi.is_finite() { phi.max(0.0) } else { 0.0 }
+    }
+}
+
+/// The selection power of `s`: [`raw_power`], where a flux that overflows (a point light of
+/// 1.7e308: 4 pi I = inf) is the brightest there is, not nothing: clamped to the largest finite
+/// power (issue 27; [`overflowing`] names such lights for a warning). NaN cannot come from
+/// validated lights; it would count as 0.
+fn power(scene: &Scene, s: &Source<'_>, radius: f64) -> f64 {
+    let phi = raw_power(scene, s, radius);
+    if phi.is_nan() {
+        0.0
+    } else {
+        phi.clamp(0.0, f64::MAX)
+    }
+}
+
+/// The names of the lights (point, directional, emissive objects) whose flux overflows a
+/// 64-bit float, so that light sampling chooses them by a clamped power.
+#[must_use]
+pub fn overflowing(scene: &Scene) -> Vec<String> {
+    let table = LightTable::new(scene);
+    let radius = scene_radius(scene);
+    table
+        .sources
+        .iter()
+        .filter(|s| raw_power(scene, s, radius).is_infinite())
+        .map(|s| match *s {
+            Source::Delta(k) => scene.lights[k].name.clone(),
+            Source::Area { object, .. } => scene.objects[object].name.clone(),
+        })
+        .collect()
 }
 
 #[cfg(test)]
@@ -225,5 +253,76 @@ mod tests {
         assert!((0..1000).all(|i| z.choose(f64::from(i) / 1000.0).0 != 1));
         let u = LightTable::with_power(0, vec![Source::Delta(0); 4], &[0.0; 4]);
         assert!(u.probabilities().all(|(_, p)| p == 0.25));
+    }
+
+    /// Issue 27: a point light of 1.7e308 has an infinite flux; it is the brightest light, so
+    /// it takes (nearly) all of the choice, and it is named for the warning.
+    #[test]
+    fn a_light_whose_power_overflows_is_chosen_not_dropped() {
+        let s = scene(
+            r#"{"camera": {"position": [0,0,5], "look_at": [0,0,0], "fov_y": 40, "width": 4, "height": 3},
+            "lights": [{"type": "point", "name": "sun", "position": [0, 4, 0], "intensity": [1.7e308, 1.7e308, 1.7e308]},
+                       {"type": "point", "name": "lamp", "position": [0, 4, 1], "intensity": [3, 3, 3]}]}"#,
+        );
+        let t = LightTable::new(&s);
+        let p: Vec<f64> = t.probabilities().map(|(_, p)| p).collect();
+        assert!(p[0] > 0.999_999 && p[0] <= 1.0, "{p:?}");
+        assert!(p.iter().all(|p| p.is_finite()) && (p.iter().sum::<f64>() - 1.0).abs() < 1e-12);
+        assert_eq!(overflowing(&s), vec!["sun".to_string()]);
+        // Two such lights share the choice equally.
+        let both = LightTable::with_power(0, vec![Source::Delta(0); 2], &[f64::MAX, f64::MAX]);
+        assert!(both.probabilities().all(|(_, p)| (p - 0.5).abs() < 1e-15));
+    }
+
+    /// Issue 27: copies of one emitting triangle are one light (the camera sees one; equal
+    /// distances go to the lowest index), so the light table is the single triangle's.
+    #[test]
+    fn coincident_copies_of_an_emitter_are_one_light() {
+        let tri = r#"{"type": "triangle", "vertices": [[-1, 2, -1], [1, 2, -1], [0, 2, 1]], "material": "lamp"}"#;
+        let json = |n: usize| {
+            format!(
+                r#"{{"camera": {{"position": [0,0,5], "look_at": [0,0,0], "fov_y": 40, "width": 4, "height": 3}},
+                "materials": {{"lamp": {{"emission": [2, 2, 2]}}}},
+                "objects": [{}]}}"#,
+                vec![tri; n].join(",")
+            )
+        };
+        let one = scene(&json(1));
+        let many = scene(&json(100));
+        let (a, b) = (LightTable::new(&one), LightTable::new(&many));
+        assert_eq!(a.probabilities().count(), 1);
+        assert_eq!(b.probabilities().count(), 1, "100 copies are one light");
+        assert!(many.area_light(0).is_some());
+        assert!((1..100).all(|i| many.area_light(i).is_none()));
+    }
+
+    /// The power light sampling chooses by is the flux of the emitted rays
+    /// (`crate::lights::Emitter::sample_le`): `le |cos| / (pdf_pos pdf_dir)` averaged over RGB,
+    /// for every kind of light, so light tracing and light selection agree.
+    #[test]
+    fn selection_power_is_the_flux_of_the_emitted_rays() {
+        let s = scene(
+            r#"{"camera": {"position": [0,0,5], "look_at": [0,0,0], "fov_y": 40, "width": 4, "height": 3},
+            "materials": {"lamp": {"emission": [2, 2, 2]}, "dim": {"emission": [0.5, 1, 1.5]}},
+            "objects": [
+              {"type": "sphere", "center": [0, 0, 0], "radius": 0.5, "material": "lamp"},
+              {"type": "quad", "corner": [-1, 2, -1], "edge_u": [2, 0, 0], "edge_v": [0, 0, 3], "material": "dim"},
+              {"type": "triangle", "vertices": [[0, 3, 0], [1, 3, 0], [0, 3, 1]], "material": "lamp"}],
+            "lights": [{"type": "point", "position": [0, 4, 0], "intensity": [3, 3, 3]},
+                       {"type": "directional", "direction": [0, -1, 0], "irradiance": [1, 2, 3]}]}"#,
+        );
+        let table = LightTable::new(&s);
+        let emitters = crate::lights::emitters(&s);
+        assert_eq!(table.sources.len(), emitters.len());
+        let radius = scene_radius(&s);
+        for (src, (name, e)) in table.sources.iter().zip(&emitters) {
+            let r = e
+                .sample_le(glam::DVec2::new(0.3, 0.6), glam::DVec2::new(0.8, 0.1))
+                .unwrap();
+            let w = r.weight();
+            let flux = (w.x + w.y + w.z) / 3.0;
+            let p = power(&s, src, radius);
+            assert!((flux - p).abs() <= 1e-9 * p, "{name}: {flux} vs {p}");
+        }
     }
 }

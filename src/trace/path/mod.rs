@@ -13,6 +13,7 @@
 //! itself is in `walk` ([`PathTracer::trace_camera`]).
 
 mod lights;
+pub use lights::overflowing as overflowing_lights;
 mod nee;
 mod walk;
 
