@@ -189,6 +189,7 @@ fn diff_offsets_where_epsilon_zero_gives_acne() {
         "--offset normal --epsilon 0",
         "--b",
         "--offset robust",
+        "--full",
     ]));
     assert!(text.contains("first divergence: "), "{text}");
     assert!(text.contains("self_hit: true -> false"), "{text}");
@@ -209,6 +210,7 @@ fn diff_two_scene_files() {
             "b.json",
             "--pixel",
             "400,200",
+            "--full",
         ],
         dir.path(),
     ));

@@ -133,7 +133,17 @@ fn the_diagram_command_draws_all_samples() {
     }
     let one = std::fs::read_to_string(dir.join("one.svg")).unwrap();
     let all = std::fs::read_to_string(dir.join("all.svg")).unwrap();
-    assert!(all.contains("all 8 samples (sample 0 in full)"));
+    // The sample drawn in full is the one carrying the most light, not sample 0.
+    let mut sc = scene("caustic.json");
+    sc.settings.spp = 8;
+    let t = trace_pixel(&sc, 98, 112).unwrap();
+    let top = raytree::diagram::all_samples::brightest(&t).unwrap();
+    assert!(lum(t.samples[top].radiance) > lum(t.samples[0].radiance));
+    assert!(
+        all.contains(&format!("all 8 samples (sample {top} in full)")),
+        "{}",
+        all.lines().find(|l| l.contains("samples (")).unwrap_or("")
+    );
     assert!(all.matches("<polyline").count() > one.matches("<polyline").count());
     std::fs::remove_dir_all(&dir).ok();
 }
@@ -168,4 +178,137 @@ fn the_inspector_filter_keeps_every_sample_s_camera_ray() {
         .sum::<f64>()
         / gui.tree.samples.len() as f64;
     assert!((carried / lum(t.radiance) - gui.share.unwrap()).abs() < 1e-9);
+}
+
+/// `--all-samples` is linear in the pixel's rays and one figure draws a bounded number of them
+/// (issue 27, item 9): past the bound the dimmest samples are left out and the legend says so.
+#[test]
+fn all_samples_bounds_what_one_figure_draws() {
+    use raytree::diagram::all_samples::{MAX_OTHER_RAYS, brightest};
+    let mut s = scene("caustic.json");
+    s.settings.spp = 8192;
+    let t = trace_pixel(&s, 98, 112).unwrap();
+    let top = brightest(&t).unwrap();
+    let d = Diagram::build(
+        &s,
+        &t,
+        &DiagramOptions {
+            sample: top,
+            all_samples: true,
+            ..DiagramOptions::default()
+        },
+    )
+    .unwrap();
+    let own = t.depth_first(t.samples[top].root);
+    let others = d.rays.iter().filter(|r| !own.contains(&r.node)).count();
+    assert!(others <= MAX_OTHER_RAYS, "{others}");
+    assert!(d.other_samples_left_out > 0);
+    let note = d
+        .labels
+        .iter()
+        .find(|l| l.text.contains("dimmest other sample"))
+        .expect("the legend says what the bound left out");
+    assert!(
+        note.text.starts_with(&format!(
+            "{} dimmest other samples (",
+            d.other_samples_left_out
+        )),
+        "{}",
+        note.text
+    );
+    // The brightest samples are the ones kept: no drawn sample is dimmer than a left-out one.
+    let root_of: std::collections::HashMap<_, usize> = t
+        .samples
+        .iter()
+        .enumerate()
+        .map(|(k, s)| (s.root, k))
+        .collect();
+    let drawn: std::collections::HashSet<usize> = d
+        .rays
+        .iter()
+        .filter_map(|r| root_of.get(&r.node).copied())
+        .collect();
+    let dimmest_drawn = drawn
+        .iter()
+        .map(|k| lum(t.samples[*k].radiance))
+        .fold(f64::INFINITY, f64::min);
+    let brightest_left = (0..t.samples.len())
+        .filter(|k| !drawn.contains(k))
+        .map(|k| lum(t.samples[k].radiance))
+        .fold(0.0, f64::max);
+    assert!(
+        dimmest_drawn >= brightest_left,
+        "{dimmest_drawn} < {brightest_left}"
+    );
+}
+
+/// The automatic plane's sentence says what it measured: the chosen sample's light, or its
+/// rays' throughput when the sample is black (issue 32, item 9: it said "the pixel's light"
+/// of a black sample 0).
+#[test]
+fn the_plane_choice_says_what_it_measured() {
+    let (s, t) = caustic();
+    let mut lit_switch = 0;
+    for k in 0..t.samples.len() {
+        let d = Diagram::build(
+            &s,
+            &t,
+            &DiagramOptions {
+                sample: k,
+                ..DiagramOptions::default()
+            },
+        )
+        .unwrap();
+        if !d.plane_text.contains("chosen over the plane of incidence") {
+            continue;
+        }
+        let index = t.samples[k].index;
+        if lum(t.samples[k].radiance) > 0.0 {
+            lit_switch += 1;
+            assert!(
+                d.plane_text
+                    .contains(&format!("more of sample {index}'s light (summed shares")),
+                "{}",
+                d.plane_text
+            );
+        } else {
+            assert!(
+                d.plane_text.contains(&format!(
+                    "more of sample {index}'s throughput (sample {index} is black)"
+                )),
+                "{}",
+                d.plane_text
+            );
+        }
+        assert!(!d.plane_text.contains("pixel's light"), "{}", d.plane_text);
+    }
+    assert!(
+        lit_switch > 0,
+        "some lit sample leaves the plane of incidence"
+    );
+}
+
+/// Counts in the legend are singular for one ray ("1 ray under 1% ...", "1 ray leaves").
+#[test]
+fn legend_counts_of_one_are_singular() {
+    let (s, t) = caustic();
+    let mut seen = 0;
+    for k in 0..t.samples.len() {
+        let d = Diagram::build(
+            &s,
+            &t,
+            &DiagramOptions {
+                sample: k,
+                ..DiagramOptions::default()
+            },
+        )
+        .unwrap();
+        for l in &d.labels {
+            assert!(!l.text.starts_with("1 rays"), "{}", l.text);
+            if l.text.starts_with("1 ray ") {
+                seen += 1;
+            }
+        }
+    }
+    assert!(seen > 0, "some sample's legend counts one ray");
 }

@@ -279,6 +279,49 @@ pub fn converge(
         .collect()
 }
 
+/// Pairs `(i, j)`, `i < j`, of curves whose rel-RMSE is the same at every point: the same spp
+/// list and every value equal (bitwise, or within 1e-12 relative). On the plot one hides the
+/// other, so the report says so (issue 32, item 17).
+#[must_use]
+pub fn identical(curves: &[Curve]) -> Vec<(usize, usize)> {
+    let same = |a: &Curve, b: &Curve| {
+        a.points.len() == b.points.len()
+            && !a.points.is_empty()
+            && a.points.iter().zip(&b.points).all(|(p, q)| {
+                p.spp == q.spp
+                    && (p.rel_rmse == q.rel_rmse
+                        || (p.rel_rmse - q.rel_rmse).abs()
+                            <= 1e-12 * p.rel_rmse.abs().max(q.rel_rmse.abs()))
+            })
+    };
+    let mut out = Vec::new();
+    for i in 0..curves.len() {
+        for j in i + 1..curves.len() {
+            if same(&curves[i], &curves[j]) {
+                out.push((i, j));
+            }
+        }
+    }
+    out
+}
+
+/// The sentence the plot's caption and `converge.md` carry for [`identical`] curves, or `None`.
+#[must_use]
+pub fn identical_text(curves: &[Curve]) -> Option<String> {
+    let pairs = identical(curves);
+    if pairs.is_empty() {
+        return None;
+    }
+    let names: Vec<String> = pairs
+        .iter()
+        .map(|(i, j)| format!("{} = {}", curves[*i].name, curves[*j].name))
+        .collect();
+    Some(format!(
+        "Identical series (the same rel-RMSE at every spp, so one line hides the other; the markers differ): {}.",
+        names.join(", ")
+    ))
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -339,5 +382,34 @@ mod tests {
         let e = Series::parse("mis-off").unwrap_err();
         assert!(e.contains("mis-off") && e.contains("rr:N"), "{e}");
         assert!(Series::parse("rr:x").is_err());
+    }
+
+    #[test]
+    fn identical_curves_are_found_and_named() {
+        let curve = |name: &str, v: &[f64]| Curve {
+            series: Series::Default,
+            name: name.into(),
+            points: v
+                .iter()
+                .enumerate()
+                .map(|(k, &r)| Point {
+                    spp: 1 << k,
+                    seconds: 0.1 * (k + 1) as f64,
+                    rel_rmse: r,
+                })
+                .collect(),
+            slope_spp: None,
+            slope_seconds: None,
+        };
+        let c = [
+            curve("default", &[0.4, 0.3, 0.2]),
+            curve("light-only", &[0.4, 0.3, 0.2]),
+            curve("bsdf-only", &[0.4, 0.3, 0.21]),
+            curve("sobol", &[0.4, 0.3]),
+        ];
+        assert_eq!(identical(&c), [(0, 1)]);
+        let t = identical_text(&c).unwrap();
+        assert!(t.contains("default = light-only"), "{t}");
+        assert_eq!(identical_text(&c[1..]), None);
     }
 }

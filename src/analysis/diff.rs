@@ -67,6 +67,15 @@ pub struct TreeDiff {
     pub radiance_b: Rgb,
     /// `radiance_b - radiance_a`.
     pub difference: Rgb,
+    /// The first sampling decision that differs ([`decision_changes`]: the first sample with
+    /// one, its shallowest), or `None`.
+    pub first_decision: Option<DecisionChange>,
+    /// Samples in which some decision differs.
+    pub samples_with_decisions_changed: usize,
+    /// Samples both trees have (matched by position).
+    pub samples_matched: usize,
+    /// `b - a` of the sample means with its standard error ([`pixel_difference`]).
+    pub pixel: PixelDifference,
 }
 
 impl TreeDiff {
@@ -244,7 +253,12 @@ pub fn diff(a: &RayTree, b: &RayTree) -> TreeDiff {
             }
         }
     }
+    let decisions = decision_changes(a, b);
     TreeDiff {
+        first_decision: decisions.first().cloned(),
+        samples_with_decisions_changed: decisions.len(),
+        samples_matched: n,
+        pixel: pixel_difference(a, b),
         settings,
         first_divergence: changed.first().cloned(),
         changed,
@@ -257,10 +271,12 @@ pub fn diff(a: &RayTree, b: &RayTree) -> TreeDiff {
     }
 }
 
+mod decision;
 mod text;
-pub use text::diff_text;
+pub use decision::{DecisionChange, PixelDifference, decision_changes, pixel_difference};
 #[cfg(test)]
 use text::subtree_len;
+pub use text::{diff_full_text, diff_text};
 
 pub mod align;
 

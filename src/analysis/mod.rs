@@ -3,6 +3,7 @@
 //! ([`invariants`]).
 
 pub mod acne;
+pub mod bias;
 pub mod converge;
 pub mod cost;
 pub mod diff;
@@ -12,5 +13,6 @@ pub mod growth;
 #[cfg(test)]
 mod hand_tree;
 pub mod invariants;
+pub mod outliers;
 pub mod samples;
 pub mod teach;

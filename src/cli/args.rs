@@ -45,6 +45,9 @@ pub enum Command {
     /// Convert a pbrt-v4 or Mitsuba 3 scene (or raytree JSON) to raytree JSON, listing what was
     /// approximated.
     Convert(super::convert_cmd::ConvertArgs),
+    /// The worst pixels: ranked by their excess over a robust neighbourhood estimate (and, for
+    /// a scene, by the standard error of their mean), with the trace/explain command for each.
+    Outliers(super::outliers_cmd::OutliersArgs),
 }
 
 /// Settings every tracing command can override (defaults come from the scene file).
@@ -320,9 +323,15 @@ pub struct CompareArgs {
     /// Write a false-colour error map here (.png).
     #[arg(short = 'o', long = "output")]
     pub map: Option<PathBuf>,
-    /// Error shown as full white in the map (default: the largest error).
-    #[arg(long)]
+    /// Error shown at the map's ends (full red/blue, or white with --abs; default: the largest).
+    #[arg(long, allow_hyphen_values = true)]
     pub scale: Option<f64>,
+    /// Compare only the pixels X0 <= x < X1, Y0 <= y < Y1 (metrics, interval and map).
+    #[arg(long, value_name = "X0,Y0,X1,Y1", allow_hyphen_values = true)]
+    pub region: Option<String>,
+    /// Write the unsigned map (largest channel |A - B|, black to white) instead of the signed one.
+    #[arg(long)]
+    pub abs: bool,
 }
 
 /// `raytree diagram`. Here `--size` is the figure's size (the scene's image size is kept, so
@@ -364,7 +373,8 @@ pub struct DiagramArgs {
     #[arg(long, value_name = "camera,reflected,refracted,shadow,diffuse")]
     pub kinds: Option<String>,
     /// Which sample of the pixel to draw (for spp > 1), numbered as `raytree trace` numbers
-    /// them; default: the first (with --lpe, the first with a matching path).
+    /// them; default: the first (with --lpe, the first with a matching path; with
+    /// --all-samples, the one that carries the most light).
     #[arg(long, value_name = "K")]
     pub sample: Option<usize>,
     /// Also draw every other sample of the pixel under --sample, faded by its value.

@@ -1,15 +1,20 @@
-//! `raytree compare A B`: error metrics of two images and a false-colour error map.
+//! `raytree compare A B`: error metrics of two images, the mean signed difference with its 95 %
+//! interval (`raytree::analysis::bias`), and a signed (or, with `--abs`, unsigned) error map
+//! with a legend; all over the whole image or `--region`.
 
 use super::args::CompareArgs;
-use super::output::{Inputs, Pending, encode_rgb8_png, read_image};
+use super::compare_map::{abs_map, signed_map};
+use super::output::{Inputs, Pending, read_image};
 use super::say::sayln;
 use anyhow::{Result, bail};
 use raytree::Image;
-use raytree::analysis::cost::{compare, error_map};
+use raytree::analysis::bias::{Region, SignedDifference, signed_difference};
+use raytree::analysis::cost::compare;
+use raytree::text::sci;
 use std::path::Path;
 
-/// Print RMSE, max error and the share of pixels off by more than 1/255; optionally write the
-/// error map (black = equal, through red and yellow to white = the scale or more).
+/// Print RMSE, max error, the share of pixels off by more than 1/255 and the mean signed
+/// difference A - B per channel with its 95 % interval; optionally write the error map.
 pub fn run(a: &CompareArgs) -> Result<()> {
     if let Some(m) = &a.map {
         let png = m
@@ -40,7 +45,7 @@ pub fn run(a: &CompareArgs) -> Result<()> {
     let (ia, ib) = (read_image(&a.a)?, read_image(&a.b)?);
     finite(&ia, &a.a)?;
     finite(&ib, &a.b)?;
-    let Some(m) = compare(&ia, &ib) else {
+    if (ia.width, ia.height) != (ib.width, ib.height) {
         bail!(
             "cannot compare {} ({}x{}) with {} ({}x{}): sizes differ",
             a.a.display(),
@@ -50,24 +55,109 @@ pub fn run(a: &CompareArgs) -> Result<()> {
             ib.width,
             ib.height
         );
+    }
+    let region = match &a.region {
+        Some(s) => Region::parse(s, ia.width, ia.height)
+            .map_err(|e| anyhow::anyhow!("--region {s:?}: {e}"))?,
+        None => Region::whole(ia.width, ia.height),
     };
-    sayln!(
-        "RMSE {:.6e}  max error {:.6}  pixels off by more than 1/255: {:.3}%",
-        m.rmse,
+    let (ca, cb) = (region.crop(&ia), region.crop(&ib));
+    let m = compare(&ca, &cb).expect("same size, not empty");
+    let d = signed_difference(&ia, &ib, region).expect("same size, region inside");
+    let interval_ok = d.blocks < 2 || d.half_width.iter().all(|v| v.is_finite());
+    if !(m.rmse.is_finite()
+        && m.max.is_finite()
+        && d.mean.iter().all(|v| v.is_finite())
+        && interval_ok)
+    {
+        bail!(
+            "cannot compare {} with {}: a difference of their values is not finite (they are finite, but too large to subtract)",
+            a.a.display(),
+            a.b.display()
+        );
+    }
+    let mut text = String::new();
+    if a.region.is_some() {
+        let (w, h) = region.size();
+        text += &format!(
+            "region {},{} to {},{} (x1, y1 exclusive): {w}x{h} of {}x{} pixels\n",
+            region.x0, region.y0, region.x1, region.y1, ia.width, ia.height
+        );
+    }
+    text += &format!(
+        "RMSE {}  max error {:.6}  pixels off by more than 1/255: {:.3}%\n",
+        sci(m.rmse, Some(6)),
         m.max,
         m.off_8bit * 100.0
-    )?;
-    if let Some(p) = pending {
-        let errs = error_map(&ia, &ib).expect("same size");
-        let scale = a.scale.unwrap_or(m.max).max(f64::MIN_POSITIVE);
-        let rgb: Vec<u8> = errs.iter().flat_map(|e| heat(e / scale)).collect();
-        p.commit(&encode_rgb8_png(&rgb, ia.width, ia.height)?)?;
+    );
+    text += &bias_text(&d);
+    let map = match &pending {
+        Some(_) => {
+            let made = if a.abs {
+                abs_map(&ca, &cb, a.scale)?
+            } else {
+                signed_map(&ca, &cb, a.scale)?
+            };
+            Some(made)
+        }
+        None => None,
+    };
+    sayln!("{}", text.trim_end())?;
+    if let (Some(p), Some((png, scale))) = (pending, map) {
+        p.commit(&png)?;
         sayln!(
-            "wrote {} (full scale = {scale:.4})",
-            a.map.as_ref().expect("map").display()
+            "wrote {} ({}, full scale = {})",
+            a.map.as_ref().expect("map").display(),
+            if a.abs {
+                "largest channel |A - B|: black 0, white the scale"
+            } else {
+                "luminance A - B: blue A darker, grey equal, red A brighter"
+            },
+            scale.map_or("0 (the images are equal here)".to_string(), |s| sci(
+                s,
+                Some(4)
+            ))
         )?;
     }
     Ok(())
+}
+
+/// The mean signed difference per channel with its interval, and whether it is beyond the
+/// noise (the interval excludes 0).
+fn bias_text(d: &SignedDifference) -> String {
+    let from = if d.block == 1 {
+        format!(
+            "{} single pixels (the region has too few {}x{} blocks)",
+            d.blocks,
+            raytree::analysis::bias::BLOCK,
+            raytree::analysis::bias::BLOCK
+        )
+    } else {
+        format!("{} block means of {}x{} pixels", d.blocks, d.block, d.block)
+    };
+    let mut s = format!("mean signed difference A - B, 95% interval from {from}:\n");
+    for (c, name) in ["R", "G", "B"].into_iter().enumerate() {
+        let (m, h) = (d.mean[c], d.half_width[c]);
+        if !h.is_finite() {
+            s += &format!(
+                "  {name} {}  (no interval from a single pixel)\n",
+                sci(m, Some(3))
+            );
+            continue;
+        }
+        let verdict = if d.significant(c) {
+            "beyond the noise"
+        } else {
+            "within the noise"
+        };
+        s += &format!(
+            "  {name} {:+.3e}  [{:+.3e}, {:+.3e}]  {verdict}\n",
+            m,
+            m - h,
+            m + h
+        );
+    }
+    s
 }
 
 /// Refuse an image with NaN or infinite values: no error metric of it is a number.
@@ -83,15 +173,4 @@ fn finite(img: &Image, path: &Path) -> Result<()> {
         );
     }
     Ok(())
-}
-
-/// Black-body style ramp: 0 black, 1/3 red, 2/3 yellow, 1 white.
-fn heat(v: f64) -> [u8; 3] {
-    let v = if v.is_finite() {
-        v.clamp(0.0, 1.0)
-    } else {
-        1.0
-    };
-    let ch = |x: f64| ((x * 3.0).clamp(0.0, 1.0) * 255.0 + 0.5) as u8;
-    [ch(v), ch(v - 1.0 / 3.0), ch(v - 2.0 / 3.0)]
 }

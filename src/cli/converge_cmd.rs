@@ -287,6 +287,9 @@ fn markdown(curves: &[Curve], label: &str, (w, h): (u32, u32), what: &str) -> St
             slope(c.slope_seconds)
         );
     }
+    if let Some(t) = raytree::analysis::converge::identical_text(curves) {
+        let _ = writeln!(s, "\n{t}");
+    }
     s.push_str("\n| series | spp | seconds | rel-RMSE |\n| --- | ---: | ---: | ---: |\n");
     for c in curves {
         for p in &c.points {

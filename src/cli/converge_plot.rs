@@ -17,6 +17,57 @@ const COLORS: [RGBColor; 8] = [
     RGBColor(23, 190, 207),
 ];
 
+/// The marker of a series: each of the first six series has its own shape, alternating filled
+/// and hollow and growing in size, so two series with the same points both stay visible (a
+/// hollow square around a filled circle).
+#[derive(Clone, Copy)]
+enum Marker {
+    Circle,
+    Square,
+    Triangle,
+    Cross,
+    Ring,
+    Diamond,
+}
+
+impl Marker {
+    fn of(k: usize) -> Self {
+        [
+            Self::Circle,
+            Self::Square,
+            Self::Triangle,
+            Self::Cross,
+            Self::Ring,
+            Self::Diamond,
+        ][k % 6]
+    }
+
+    /// The marker centred `at` (pixels from its anchor).
+    fn element<DB: DrawingBackend>(
+        self,
+        (x, y): (i32, i32),
+        color: RGBColor,
+    ) -> DynElement<'static, DB, (i32, i32)> {
+        let hollow = color.stroke_width(2);
+        match self {
+            Self::Circle => Circle::new((x, y), 4, color.filled()).into_dyn(),
+            Self::Square => Rectangle::new([(x - 7, y - 7), (x + 7, y + 7)], hollow).into_dyn(),
+            Self::Triangle => Polygon::new(
+                vec![(x, y - 8), (x - 7, y + 5), (x + 7, y + 5)],
+                color.filled(),
+            )
+            .into_dyn(),
+            Self::Cross => Cross::new((x, y), 7, hollow).into_dyn(),
+            Self::Ring => Circle::new((x, y), 10, hollow).into_dyn(),
+            Self::Diamond => PathElement::new(
+                vec![(x, y - 9), (x + 9, y), (x, y + 9), (x - 9, y), (x, y - 9)],
+                hollow,
+            )
+            .into_dyn(),
+        }
+    }
+}
+
 /// A positive, finite range around `values` (log axes), padded by `pad` either side.
 fn range(values: impl Iterator<Item = f64>, pad: f64) -> (f64, f64) {
     let (lo, hi) = values
@@ -45,6 +96,18 @@ pub fn plot(curves: &[Curve], (iw, ih): (u32, u32), w: u32, h: u32) -> Result<Ve
                 ("sans-serif", 26),
             )
             .map_err(|e| err(&e))?;
+        // A caption under the plots when two series coincide (one line would hide the other).
+        let caption = raytree::analysis::converge::identical_text(curves);
+        let root = match &caption {
+            Some(text) => {
+                let (plots, bottom) = root.split_vertically(root.dim_in_pixel().1 - 30);
+                bottom
+                    .draw_text(text, &("sans-serif", 16).into_text_style(&bottom), (15, 5))
+                    .map_err(|e| err(&e))?;
+                plots
+            }
+            None => root,
+        };
         let (left, right) = root.split_horizontally(w / 2);
         let points = || curves.iter().flat_map(|c| c.points.iter());
         // Headroom above for the legend.
@@ -125,15 +188,21 @@ pub fn plot(curves: &[Curve], (iw, ih): (u32, u32), w: u32, h: u32) -> Result<Ve
                     Some(s) => format!("{} (slope {s:.2})", c.name),
                     None => c.name.clone(),
                 };
+                let marker = Marker::of(k);
                 chart
                     .draw_series(LineSeries::new(pts.clone(), color.stroke_width(2)))
                     .map_err(|e| err(&e))?
                     .label(label)
                     .legend(move |(x, y)| {
-                        PathElement::new(vec![(x, y), (x + 20, y)], color.stroke_width(2))
+                        EmptyElement::at((x, y))
+                            + PathElement::new(vec![(0, 0), (20, 0)], color.stroke_width(2))
+                            + marker.element((10, 0), color)
                     });
                 chart
-                    .draw_series(pts.iter().map(|p| Circle::new(*p, 4, color.filled())))
+                    .draw_series(
+                        pts.iter()
+                            .map(|p| EmptyElement::at(*p) + marker.element((0, 0), color)),
+                    )
                     .map_err(|e| err(&e))?;
             }
             chart

@@ -109,9 +109,12 @@ pub fn run(a: &DiagramArgs) -> Result<()> {
     }
     // `--sample K` names the pixel's sample K (as `raytree trace` numbers them), also when
     // --lpe has dropped the samples without a matching path: its position in the tree.
-    // Without it, the first sample the tree holds.
+    // Without it, the first sample the tree holds; with --all-samples, the one that carries
+    // the most light (the figure is framed and labelled on it, so a black sample 0 would
+    // frame the haze, not the light).
     let wanted = a.sample;
     let found = match wanted {
+        None if a.all_samples => raytree::diagram::all_samples::brightest(&tree),
         None => (!tree.samples.is_empty()).then_some(0),
         Some(k) => tree.samples.iter().position(|s| s.index as usize == k),
     };

@@ -6,7 +6,7 @@ use super::load::{apply, load, pair};
 use super::say::{out, sayln};
 use anyhow::{Result, anyhow, bail};
 use clap::{Args, Parser};
-use raytree::analysis::diff::{diff, diff_text};
+use raytree::analysis::diff::{diff, diff_full_text, diff_text};
 use raytree::{RayTree, Scene};
 use std::path::PathBuf;
 
@@ -39,6 +39,9 @@ pub struct DiffArgs {
     /// Print JSON (the TreeDiff) instead of text.
     #[arg(long)]
     pub json: bool,
+    /// After the summary, list every changed field of every ray and the unmatched subtrees.
+    #[arg(long)]
+    pub full: bool,
     /// Overrides of both sides (applied before --a and --b).
     #[command(flatten)]
     pub overrides: Overrides,
@@ -131,7 +134,12 @@ pub fn run(a: &DiffArgs) -> Result<()> {
     let tb = trace(&mut scene_b, &mem_b, x, y, "b")?;
     let d = diff(&ta, &tb);
     if a.json {
-        if !(d.radiance_a.is_finite() && d.radiance_b.is_finite()) {
+        let se_finite = d.pixel.std_error.is_none_or(|e| e.is_finite());
+        if !(d.radiance_a.is_finite()
+            && d.radiance_b.is_finite()
+            && d.pixel.mean.is_finite()
+            && se_finite)
+        {
             bail!(
                 "pixel {x},{y}: a pixel value is not finite; JSON cannot carry it, so none was written (drop --json)"
             );
@@ -159,7 +167,11 @@ pub fn run(a: &DiffArgs) -> Result<()> {
             },
         );
         out(&head)?;
-        out(&diff_text(&d, &ta, &tb))?;
+        if a.full {
+            out(&diff_full_text(&d, &ta, &tb))?;
+        } else {
+            out(&diff_text(&d, &ta, &tb))?;
+        }
     }
     Ok(())
 }

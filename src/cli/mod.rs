@@ -10,6 +10,7 @@ mod budget;
 mod canvas;
 mod cleanup;
 mod compare_cmd;
+mod compare_map;
 mod converge_cmd;
 mod converge_plot;
 mod convert_cmd;
@@ -21,6 +22,7 @@ mod effects_cmd;
 mod explain_cmd;
 mod load;
 mod load_formats;
+mod outliers_cmd;
 mod output;
 mod plot;
 mod render_cmd;
@@ -64,6 +66,7 @@ pub fn run() -> ExitCode {
         Command::Diff(a) => diff_cmd::run(&a),
         Command::Versus(a) => versus_cmd::run(&a),
         Command::Convert(a) => convert_cmd::run(&a),
+        Command::Outliers(a) => outliers_cmd::run(&a),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,

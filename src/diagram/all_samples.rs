@@ -10,7 +10,7 @@ use super::segments::{Seg3, seg3};
 use super::share;
 use crate::bsdf::luminance;
 use crate::scene::Scene;
-use crate::tree::RayTree;
+use crate::tree::{NodeId, RayTree};
 
 /// The faintest opacity factor of a sample (a black one).
 pub const MIN_FADE: f64 = 0.08;
@@ -41,30 +41,92 @@ pub fn sample_fades(tree: &RayTree) -> Vec<f64> {
         .collect()
 }
 
-/// The segments of every sample but `opts.sample`, with the sample index of each.
+/// The most rays of the other samples one figure draws (the chosen sample is always drawn
+/// whole). Past it, the dimmest samples are left out whole and the legend says how many: a
+/// 16384-spp pixel stays a figure a viewer can open, not a 100 MB SVG.
+pub const MAX_OTHER_RAYS: usize = 20_000;
+
+/// The sample (its position in `tree.samples`) that carries the most light: the largest
+/// finite luminance of its radiance, the first of equals; `None` for a tree without samples.
+/// A non-finite sample is never chosen over a finite one (its figure would say nothing).
+#[must_use]
+pub fn brightest(tree: &RayTree) -> Option<usize> {
+    let mut best: Option<(usize, f64)> = None;
+    for (k, s) in tree.samples.iter().enumerate() {
+        let v = luminance(s.radiance);
+        let v = if v.is_finite() { v } else { f64::NEG_INFINITY };
+        if best.is_none_or(|(_, b)| v > b) {
+            best = Some((k, v));
+        }
+    }
+    best.map(|(k, _)| k)
+}
+
+/// The other samples' segments a figure draws, and what the bound left out.
+pub(super) struct Others<'a> {
+    /// Each drawn segment with the position of its sample, in sample order.
+    pub segs: Vec<(usize, Seg3<'a>)>,
+    /// Samples left out whole by [`MAX_OTHER_RAYS`].
+    pub left_out_samples: usize,
+    /// The rays those samples would have drawn.
+    pub left_out_rays: usize,
+}
+
+/// The segments of every sample but `opts.sample` (threshold, kinds and draw depth as for the
+/// chosen one), brightest samples first up to [`MAX_OTHER_RAYS`] rays, drawn in sample order.
+/// Linear in the pixel's rays: the shares are computed once and one `kept` array serves every
+/// sample (their subtrees are disjoint).
 pub(super) fn other_segs<'a>(
     scene: &Scene,
     tree: &'a RayTree,
     opts: &DiagramOptions,
-) -> Vec<(usize, Seg3<'a>)> {
-    let mut out = Vec::new();
+) -> Others<'a> {
+    let mut out = Others {
+        segs: Vec::new(),
+        left_out_samples: 0,
+        left_out_rays: 0,
+    };
     if !opts.all_samples {
         return out;
     }
+    let share = share::shares(tree);
+    let mut kept = vec![false; tree.nodes.len()];
+    let mut per_sample: Vec<(usize, Vec<NodeId>)> = Vec::new();
     for (k, s) in tree.samples.iter().enumerate() {
         if k == opts.sample {
             continue;
         }
-        let kept = share::keep(tree, k, opts.min_share, &[]);
-        out.extend(
-            tree.depth_first(s.root)
-                .into_iter()
-                .filter(|id| kept.kept[id.index()])
-                .map(|id| tree.node(id))
-                .filter(|n| opts.kinds.contains(&n.kind))
-                .filter(|n| opts.max_depth.is_none_or(|d| n.depth <= d))
-                .map(|n| (k, seg3(scene, n))),
-        );
+        let order = tree.depth_first(s.root);
+        share::mark_kept(tree, &order, &share, opts.min_share, &mut kept);
+        let ids: Vec<NodeId> = order
+            .into_iter()
+            .filter(|id| kept[id.index()])
+            .filter(|id| {
+                let n = tree.node(*id);
+                opts.kinds.contains(&n.kind) && opts.max_depth.is_none_or(|d| n.depth <= d)
+            })
+            .collect();
+        per_sample.push((k, ids));
+    }
+    // Brightest first (the order of `sample_fades`, the first of equals first).
+    let fades = sample_fades(tree);
+    let mut by_light: Vec<usize> = (0..per_sample.len()).collect();
+    by_light.sort_by(|a, b| fades[per_sample[*b].0].total_cmp(&fades[per_sample[*a].0]));
+    let mut chosen = vec![false; per_sample.len()];
+    let mut total = 0;
+    for i in by_light {
+        let n = per_sample[i].1.len();
+        if total + n <= MAX_OTHER_RAYS {
+            total += n;
+            chosen[i] = true;
+        } else {
+            out.left_out_samples += 1;
+            out.left_out_rays += n;
+        }
+    }
+    for ((k, ids), _) in per_sample.iter().zip(&chosen).filter(|(_, c)| **c) {
+        out.segs
+            .extend(ids.iter().map(|id| (*k, seg3(scene, tree.node(*id)))));
     }
     out
 }

@@ -1,5 +1,6 @@
 //! Building the diagram: rays to 3D segments, framing, projection onto the canvas.
 
+use super::layout::plural;
 use super::layout::{self, Pending};
 use super::marks::{camera_mark, light_marks};
 use super::model::{Anchor, Diagram, LabelRole, RayEnd, Rect};
@@ -88,8 +89,27 @@ impl Diagram {
             }
             spec => plane::choose(spec, scene, tree, opts.sample),
         };
-        let (legend_pending, legend_entries, legend_rect) =
-            layout::legend(&segs, &frame, extent3, &plane_text, &kept, opts, w, h, fs);
+        // The other samples (all_samples) under the chosen one, faded by their value.
+        let others = super::all_samples::other_segs(scene, tree, opts);
+        let others_note = (others.left_out_samples > 0).then(|| {
+            format!(
+                "{} dimmest other sample{} ({} rays) not drawn: a figure draws at most {} rays of other samples.",
+                others.left_out_samples,
+                plural(others.left_out_samples),
+                others.left_out_rays,
+                super::all_samples::MAX_OTHER_RAYS
+            )
+        });
+        let (legend_pending, legend_entries, legend_rect) = layout::legend(
+            &segs,
+            &frame,
+            extent3,
+            &plane_text,
+            others_note.as_deref(),
+            &kept,
+            opts,
+            (w, h, fs),
+        );
         let top = if opts.title.is_empty() { fs } else { fs * 2.4 };
         let view = Rect::new(
             DVec2::new(fs, top),
@@ -125,17 +145,15 @@ impl Diagram {
         frame.plane_center = centre + if pan.is_finite() { pan } else { DVec2::ZERO };
         frame.canvas_center = (view.min + view.max) * 0.5;
 
-        // The other samples (all_samples) under the chosen one, faded by their value.
-        let others = super::all_samples::other_segs(scene, tree, opts);
         let fades = super::all_samples::sample_fades(tree);
-        let mut rays = Vec::with_capacity(others.len() + segs.len());
-        for (k, s) in &others {
+        let mut rays = Vec::with_capacity(others.segs.len() + segs.len());
+        for (k, s) in &others.segs {
             let mut r = project(s, &frame, &view, extent3, fs, opts);
             r.fade *= fades[*k];
             clip_to(&mut r, &view);
             rays.push(r);
         }
-        let first = others.len();
+        let first = others.segs.len();
         for s in &segs {
             let mut r = project(s, &frame, &view, extent3, fs, opts);
             r.tir = s.node.kind == RayKind::Reflected
@@ -217,6 +235,7 @@ impl Diagram {
             off_plane_rays,
             dropped_rays: kept.dropped,
             dropped_share: kept.dropped_share,
+            other_samples_left_out: others.left_out_samples,
         })
     }
 }

@@ -198,6 +198,12 @@ pub(super) fn place(
     out
 }
 
+/// `"s"` for a count other than 1 (`"1 ray"`, `"2 rays"`, `"0 rays"`).
+#[must_use]
+pub fn plural(n: usize) -> &'static str {
+    if n == 1 { "" } else { "s" }
+}
+
 /// The legend strip at the bottom: its labels, swatches and box.
 #[allow(clippy::too_many_arguments)]
 pub(super) fn legend(
@@ -205,11 +211,10 @@ pub(super) fn legend(
     frame: &PlaneFrame,
     extent3: f64,
     plane_text: &str,
+    others_note: Option<&str>,
     kept: &Kept,
     opts: &DiagramOptions,
-    w: f64,
-    h: f64,
-    fs: f64,
+    (w, h, fs): (f64, f64, f64),
 ) -> (Vec<Pending>, Vec<LegendEntry>, Rect) {
     let size = fs * 0.9;
     let mut items: Vec<(LegendKey, String)> = Vec::new();
@@ -243,7 +248,7 @@ pub(super) fn legend(
     if off > 0 {
         items.push((
             LegendKey::OffPlane,
-            format!("{off} rays leave the plane: projected, dotted, fainter with distance (up to {max_d:.2})"),
+            format!("{off} ray{} leave{} the plane: projected, dotted, fainter with distance (up to {max_d:.2})", plural(off), if off == 1 { "s" } else { "" }),
         ));
     }
     let rouletted = segs
@@ -263,12 +268,16 @@ pub(super) fn legend(
         items.push((
             LegendKey::Note,
             format!(
-                "{} rays under {} of the pixel each left out ({} of it in all).",
+                "{} ray{} under {} of the pixel each left out ({} of it in all).",
                 kept.dropped,
+                plural(kept.dropped),
                 percent(kept.min_share),
                 percent(kept.dropped_share)
             ),
         ));
+    }
+    if let Some(note) = others_note {
+        items.push((LegendKey::Note, note.to_string()));
     }
     items.push((LegendKey::Note, format!("Plane: {plane_text}.")));
     items.push((

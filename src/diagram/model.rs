@@ -358,4 +358,7 @@ pub struct Diagram {
     pub dropped_rays: usize,
     /// The part of the sample's value those rays carry (a fraction, luminance).
     pub dropped_share: f64,
+    /// Other samples left out whole by [`super::all_samples::MAX_OTHER_RAYS`] (all-samples
+    /// figures only).
+    pub other_samples_left_out: usize,
 }

@@ -106,15 +106,34 @@ pub fn auto(
         }
     }
     match best {
-        Some((_, id)) => {
+        Some((h, id)) => {
             let (f, text) = through_ray(scene, tree, id);
-            (
-                f,
-                format!(
-                    "{text}, chosen over the plane of incidence: more of the pixel's light lies in it"
-                ),
-            )
+            (f, format!("{text}, {}", why_chosen(tree, sample, h, base)))
         }
         None => (f0, text0),
     }
+}
+
+/// Why the automatic choice left the plane of incidence, in words that are true of what
+/// [`held`] measured: the summed shares of the rays lying in each plane, shares of the chosen
+/// sample's light, or of its rays' throughput when the sample is black ([`super::share`]).
+fn why_chosen(tree: &RayTree, sample: usize, held: f64, base: f64) -> String {
+    let s = &tree.samples[sample];
+    let whose = if tree.samples.len() == 1 {
+        "the pixel's".to_string()
+    } else {
+        format!("sample {}'s", s.index)
+    };
+    let lum = crate::bsdf::luminance(s.radiance);
+    let what = if lum > 0.0 && lum.is_finite() {
+        format!("more of {whose} light")
+    } else {
+        format!(
+            "more of {whose} throughput ({} is black)",
+            &whose[..whose.len() - 2]
+        )
+    };
+    format!(
+        "chosen over the plane of incidence: its rays carry {what} (summed shares {held:.2} against {base:.2})"
+    )
 }

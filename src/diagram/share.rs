@@ -99,25 +99,10 @@ pub fn keep(tree: &RayTree, sample: usize, min_share: f64, always: &[NodeId]) ->
         }
         v
     };
-    let mark = |id: NodeId, kept: &mut Vec<bool>| {
-        let mut cur = Some(id);
-        while let Some(c) = cur {
-            if kept[c.index()] {
-                break;
-            }
-            kept[c.index()] = true;
-            cur = tree.node(c).parent;
-        }
-    };
-    mark(s.root, &mut kept);
-    for id in &order {
-        if share[id.index()] >= min_share || min_share <= 0.0 {
-            mark(*id, &mut kept);
-        }
-    }
+    mark_kept(tree, &order, &share, min_share, &mut kept);
     for id in always {
         if id.index() < kept.len() && in_sample[id.index()] {
-            mark(*id, &mut kept);
+            mark(tree, *id, &mut kept);
         }
     }
     let total = luminance(s.radiance);
@@ -143,5 +128,40 @@ pub fn keep(tree: &RayTree, sample: usize, min_share: f64, always: &[NodeId]) ->
         min_share,
         dropped,
         dropped_share,
+    }
+}
+
+/// Mark `id` and its ancestors kept (stopping at the first one already kept).
+fn mark(tree: &RayTree, id: NodeId, kept: &mut [bool]) {
+    let mut cur = Some(id);
+    while let Some(c) = cur {
+        if kept[c.index()] {
+            break;
+        }
+        kept[c.index()] = true;
+        cur = tree.node(c).parent;
+    }
+}
+
+/// Mark kept, in `kept` (indexed by node id), the rays of one sample (`order`: its nodes,
+/// root first) whose share in `share` (from [`shares`]) is at least `min_share`, with their
+/// ancestors, and the root. Work is linear in the sample's rays, so a caller that walks every
+/// sample of a pixel with one `kept` and one `share` does work linear in the pixel's rays
+/// (samples' subtrees are disjoint).
+pub fn mark_kept(
+    tree: &RayTree,
+    order: &[NodeId],
+    share: &[f64],
+    min_share: f64,
+    kept: &mut [bool],
+) {
+    let Some(root) = order.first() else {
+        return;
+    };
+    mark(tree, *root, kept);
+    for id in order {
+        if share[id.index()] >= min_share || min_share <= 0.0 {
+            mark(tree, *id, kept);
+        }
     }
 }

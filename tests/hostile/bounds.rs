@@ -231,3 +231,35 @@ fn new_settings_reject_bad_values_with_their_names() {
     );
     assert!(!dir.path().join("a.png").exists());
 }
+
+/// `diagram --all-samples` was quadratic in spp (issue 27, item 9: 4096 spp took 11 s, 16384
+/// did not finish in 60 s): linear now, and a figure draws a bounded number of rays, so 16384
+/// samples end within the harness's timeout with a bounded file.
+#[test]
+fn all_samples_diagrams_of_many_samples_end_quickly() {
+    let dir = tempfile::tempdir().unwrap();
+    let caustic = concat!(env!("CARGO_MANIFEST_DIR"), "/fixtures/caustic.json");
+    let r = run(
+        &[
+            "diagram",
+            caustic,
+            "--pixel",
+            "98,112",
+            "--all-samples",
+            "--spp",
+            "16384",
+            "-o",
+            "d.svg",
+        ],
+        dir.path(),
+    );
+    r.assert_clean();
+    assert_eq!(r.code, Some(0), "{r:#?}");
+    let svg = std::fs::read_to_string(dir.path().join("d.svg")).unwrap();
+    let drawn = svg.matches("<polyline").count();
+    assert!(
+        drawn <= 2 * raytree::diagram::all_samples::MAX_OTHER_RAYS + 1000,
+        "{drawn} polylines"
+    );
+    assert!(svg.contains("dimmest other samples"));
+}

@@ -4,6 +4,7 @@ use super::{FieldChange, TreeDiff};
 use crate::math::Rgb;
 use crate::tree::{NodeId, RayTree};
 use serde_json::Value;
+use std::fmt::Write;
 
 fn value_text(v: &Value) -> String {
     match v {
@@ -19,7 +20,8 @@ fn change_text(f: &FieldChange) -> String {
 }
 
 fn rgb(c: Rgb) -> String {
-    format!("[{:.6}, {:.6}, {:.6}]", c.x, c.y, c.z)
+    let n = |v: f64| crate::text::num(v, 6);
+    format!("[{}, {}, {}]", n(c.x), n(c.y), n(c.z))
 }
 
 fn ids(a: NodeId, b: NodeId) -> String {
@@ -35,51 +37,33 @@ pub(super) fn subtree_len(t: &RayTree, id: NodeId) -> usize {
     t.depth_first(id).len()
 }
 
-/// The difference as text: settings, first divergence, every changed node (one field a line,
-/// `old -> new`), the unmatched subtrees, then the pixel values.
+/// The difference as text, short: the settings that differ, a summary count, the first
+/// differing decision, the first divergence of values, and the pixel difference with its
+/// standard error ([`diff_full_text`] adds every changed field).
 #[must_use]
 pub fn diff_text(d: &TreeDiff, a: &RayTree, b: &RayTree) -> String {
-    use std::fmt::Write;
-    let mut s = String::new();
-    for f in &d.settings {
-        let _ = writeln!(s, "setting {}", change_text(f));
-    }
-    if d.trees_equal() {
+    let mut s = summary(d, a, b);
+    if !d.trees_equal() {
+        let fields: usize = d.changed.iter().map(|c| c.fields.len()).sum();
+        let unmatched = d.only_a.len() + d.only_b.len();
         let _ = writeln!(
             s,
-            "no difference: the trees are identical ({} rays matched)",
-            d.matched
+            "(--full lists every changed field: {fields} fields of {} rays, and {unmatched} unmatched subtrees)",
+            d.changed.len()
         );
-    } else {
-        if let Some(f) = &d.first_divergence {
-            let head: Vec<String> = f
-                .fields
-                .iter()
-                .take(2)
-                .map(|c| format!("{} {} -> {}", c.field, value_text(&c.a), value_text(&c.b)))
-                .collect();
-            let more = f.fields.len().saturating_sub(2);
-            let _ = writeln!(
-                s,
-                "first divergence: {} {} (level {}): {}{}",
-                f.kind.name(),
-                ids(f.a, f.b),
-                f.level,
-                head.join("; "),
-                if more > 0 {
-                    format!(" (and {more} more fields)")
-                } else {
-                    String::new()
-                }
-            );
-        }
+    }
+    s
+}
+
+/// The difference as text, whole: [`diff_text`]'s summary, then every changed node (one field
+/// a line, `old -> new`) and the unmatched subtrees.
+#[must_use]
+pub fn diff_full_text(d: &TreeDiff, a: &RayTree, b: &RayTree) -> String {
+    let mut s = summary(d, a, b);
+    if !d.trees_equal() {
         let _ = writeln!(
             s,
-            "changed rays: {} of {} matched; only in a: {}, only in b: {}",
-            d.changed.len(),
-            d.matched,
-            d.only_a.len(),
-            d.only_b.len()
+            "every changed field (one sample's recorded values, not estimates: no standard error):"
         );
         for c in &d.changed {
             let _ = writeln!(
@@ -106,6 +90,82 @@ pub fn diff_text(d: &TreeDiff, a: &RayTree, b: &RayTree) -> String {
             }
         }
     }
+    s
+}
+
+fn summary(d: &TreeDiff, a: &RayTree, b: &RayTree) -> String {
+    let mut s = String::new();
+    for f in &d.settings {
+        let _ = writeln!(s, "setting {}", change_text(f));
+    }
+    if d.trees_equal() {
+        let _ = writeln!(
+            s,
+            "no difference: the trees are identical ({} rays matched)",
+            d.matched
+        );
+    } else {
+        let rays =
+            |t: &RayTree, l: &[NodeId]| l.iter().map(|id| subtree_len(t, *id)).sum::<usize>();
+        let _ = writeln!(
+            s,
+            "changed rays: {} of {} matched; only in a: {} ({} rays), only in b: {} ({} rays)",
+            d.changed.len(),
+            d.matched,
+            d.only_a.len(),
+            rays(a, &d.only_a),
+            d.only_b.len(),
+            rays(b, &d.only_b)
+        );
+        match &d.first_decision {
+            Some(c) => {
+                let _ = writeln!(
+                    s,
+                    "first differing decision: sample {}, {} {} (depth {}), {}: a {}; b {}",
+                    c.sample,
+                    c.kind.name(),
+                    ids(c.a, c.b),
+                    c.depth,
+                    c.decision,
+                    c.in_a,
+                    c.in_b
+                );
+                let _ = writeln!(
+                    s,
+                    "    decisions differ in {} of {} samples; below a differing decision the paths differ, so their values differ too",
+                    d.samples_with_decisions_changed, d.samples_matched
+                );
+            }
+            None => {
+                let _ = writeln!(
+                    s,
+                    "no sampling decision differs (lobes, roulette outcomes and spawned rays agree): the values below differ by the settings alone"
+                );
+            }
+        }
+        if let Some(f) = &d.first_divergence {
+            let head: Vec<String> = f
+                .fields
+                .iter()
+                .take(2)
+                .map(|c| format!("{} {} -> {}", c.field, value_text(&c.a), value_text(&c.b)))
+                .collect();
+            let more = f.fields.len().saturating_sub(2);
+            let _ = writeln!(
+                s,
+                "first divergence: {} {} (level {}): {}{}",
+                f.kind.name(),
+                ids(f.a, f.b),
+                f.level,
+                head.join("; "),
+                if more > 0 {
+                    format!(" (and {more} more fields)")
+                } else {
+                    String::new()
+                }
+            );
+        }
+    }
     let _ = writeln!(
         s,
         "pixel a {}  b {}  b - a {}",
@@ -113,5 +173,42 @@ pub fn diff_text(d: &TreeDiff, a: &RayTree, b: &RayTree) -> String {
         rgb(d.radiance_b),
         rgb(d.difference)
     );
+    s += &pixel_text(d);
     s
+}
+
+/// The sample means' difference with its standard error and what it says.
+fn pixel_text(d: &TreeDiff) -> String {
+    let p = &d.pixel;
+    let [na, nb] = p.samples;
+    let Some(se) = p.std_error else {
+        return format!(
+            "b - a from {na} and {nb} sample(s): no standard error from fewer than 2 samples a side (exact only if both settings are deterministic)\n"
+        );
+    };
+    let how = if p.paired {
+        format!("paired by sample, {na} samples")
+    } else {
+        format!("{na} and {nb} samples")
+    };
+    let m = p.mean.to_array();
+    let e = se.to_array();
+    let beyond: Vec<&str> = ["R", "G", "B"]
+        .into_iter()
+        .enumerate()
+        .filter(|(c, _)| m[*c].abs() > 2.0 * e[*c])
+        .map(|(_, n)| n)
+        .collect();
+    let verdict = if !(p.mean.is_finite() && se.is_finite()) {
+        "not finite: no verdict".to_string()
+    } else if beyond.is_empty() {
+        "within 2 standard errors in every channel: consistent with noise".to_string()
+    } else {
+        format!("beyond 2 standard errors in {}", beyond.join(", "))
+    };
+    format!(
+        "b - a of the sample means {} +/- {} (standard error, {how}): {verdict}\n",
+        rgb(p.mean),
+        rgb(se)
+    )
 }
