@@ -128,7 +128,7 @@ fn bad_aovs_exit_2_with_the_column_and_write_nothing() {
         &["--debug-view", "roulette", "--integrator", "whitted"],
         "path integrator",
     );
-    run(&["--debug-view", "share:x"], "no AOV named 'x'");
+    run(&["--debug-view", "share:x"], "no AOV named \"x\"");
     run(&["--debug-view", "fireflies"], "unknown debug view");
     run(
         &["--aov", "a=CL", "--size", "4000x4000", "--max-memory", "64"],
