@@ -253,7 +253,7 @@ impl<'r> State<'r> {
         let ids = self.ids();
         let p = Props::new(el, &ids)?;
         self.b.settings.filter = match el.attr("type").unwrap_or("") {
-            "box" => FilterDesc::Box,
+            "box" => FilterDesc::Box {},
             "tent" => FilterDesc::Tent {
                 radius: p.float("radius", 1.0)?,
             },
@@ -270,7 +270,7 @@ impl<'r> State<'r> {
                     el.line,
                     format!("{}: not supported, box filter used", el.label()),
                 );
-                FilterDesc::Box
+                FilterDesc::Box {}
             }
         };
         self.unused(el, &p);

@@ -627,7 +627,7 @@ impl<'r> State<'r> {
                         format!("{what}: radius {r}: raytree's box spans one pixel"),
                     );
                 }
-                FilterDesc::Box
+                FilterDesc::Box {}
             }
             "triangle" => FilterDesc::Tent {
                 radius: positive(
@@ -653,7 +653,7 @@ impl<'r> State<'r> {
                     t.line,
                     format!("{what}: not supported, raytree's box filter used"),
                 );
-                FilterDesc::Box
+                FilterDesc::Box {}
             }
         };
         Ok(())

@@ -258,7 +258,10 @@ fn a_lamp_facing_away_from_everything_is_dark() {
     };
     // edge_u x edge_v: (1,0,0) x (0,0,1) = (0,-1,0) faces the floor; (0,0,-1) faces the sky.
     assert!(dark_emitters(&scene("[0, 0, 1]")).is_empty());
-    assert_eq!(dark_emitters(&scene("[0, 0, -1]")), vec!["lamp".to_string()]);
+    assert_eq!(
+        dark_emitters(&scene("[0, 0, -1]")),
+        vec!["lamp".to_string()]
+    );
     let note = crate::effects::dark_note(&scene("[0, 0, -1]"));
     assert!(note.contains("lamp emits towards nothing"), "{note}");
 }

@@ -160,9 +160,6 @@ pub fn roulette_note(scene: &Scene) -> (bool, String) {
                 carried_bound(scene, s.max_depth, s.shadows)
             ),
         ),
-        None => (
-            false,
-            "off (the default): every glass hit splits".into(),
-        ),
+        None => (false, "off (the default): every glass hit splits".into()),
     }
 }
