@@ -69,7 +69,7 @@ fn effects_cost_and_compare() {
     quick_cost(None, "rep");
     let csv = std::fs::read_to_string(d.join("rep/cost.csv")).unwrap();
     // Header, depth, Fresnel, spp, automatic antialiasing (at 4 spp; at 1 it is uniform),
-    // offset, min weight, dielectric roulette, roulette below (auto), adaptive, filter (no area
+    // offset, min weight, dielectric roulette, roulette below (suggested), adaptive, filter (no area
     // light, no rough material).
     assert_eq!(
         csv.lines().count(),
@@ -77,7 +77,7 @@ fn effects_cost_and_compare() {
         "{csv}"
     );
     assert!(
-        csv.lines().any(|l| l.starts_with("roulette_below,auto (")),
+        csv.lines().any(|l| l.starts_with("roulette_below,suggested (")),
         "{csv}"
     );
     assert!(

@@ -107,7 +107,7 @@ fn converge_refuses_bad_input_and_writes_nothing() {
     fails_with(
         p,
         &["converge", "s.json", "-o", "rep", "--max-spp", "0"],
-        "at least 1",
+        "--max-spp 0: must be 1 to 65536",
     );
     fails_with(
         p,

@@ -325,8 +325,8 @@ fn the_plane_follows_a_chosen_ray() {
     assert!(PlaneSpec::parse("ray=x").is_err());
 }
 
-/// The legend says how many drawn glass hits followed one ray by Russian roulette (the default
-/// below a weight), and says nothing when every hit splits.
+/// The legend says how many drawn glass hits followed one ray by Russian roulette (with the
+/// suggested weight, opt-in), and says nothing when every hit splits (the default).
 #[test]
 fn the_legend_counts_roulette_choices() {
     let line = |s: &raytree::Scene| {
@@ -345,6 +345,11 @@ fn the_legend_counts_roulette_choices() {
             .map(|e| e.text.clone())
     };
     let mut s = scene("tir-block.json");
+    assert_eq!(line(&s), None, "the default splits every hit");
+    s.settings.roulette_below = Some(raytree::trace::bound::carried::auto_roulette_below(
+        &s,
+        &s.settings,
+    ));
     assert_eq!(
         line(&s).as_deref(),
         Some("1 weak glass hit followed one ray (Russian roulette, weight / probability).")

@@ -102,12 +102,12 @@ fn trees_equal_pixels_with_the_roulette() {
     }
 }
 
-/// The default: the automatic roulette weight of glass-emitters (brightest emitter 1: 0.01)
-/// leaves the split where it is visible and plays roulette below; trees equal pixels, some
-/// record a roulette choice, and an explicit `min_weight` (the exhaustive tree of `min_weight
-/// 0`) splits everywhere.
+/// The suggested weight (opt-in since issue 32; the default splits every hit): that of
+/// glass-emitters (brightest emitter 1: 0.01) leaves the split where it is visible and plays
+/// roulette below; trees equal pixels, some record a roulette choice, and an explicit
+/// `min_weight` (the exhaustive tree of `min_weight 0`) gets no suggestion.
 #[test]
-fn the_default_plays_roulette_only_below_its_weight() {
+fn the_suggested_weight_plays_roulette_only_below_it() {
     use raytree::trace::bound::carried::{auto_roulette_below, carried_bound};
     let src = include_str!("../benches/mitsuba-scenes/glass-emitters.json");
     let mut scene = Scene::from_json(src).unwrap();
@@ -115,6 +115,10 @@ fn the_default_plays_roulette_only_below_its_weight() {
     let bound = carried_bound(&scene, scene.settings.max_depth, scene.settings.shadows);
     assert_eq!(bound, 1.0);
     assert_eq!(auto_roulette_below(&scene, &scene.settings), 0.01);
+    // The default plays no roulette at all.
+    let plain = trace_pixel(&scene, 16, 9).unwrap();
+    assert!(plain.nodes.iter().all(|n| n.interface.as_ref().is_none_or(|i| i.roulette.is_none())));
+    scene.settings.roulette_below = Some(0.01);
     let image = render(&scene, &|_| {}).0;
     let mut choices = 0;
     for y in 0..18 {
@@ -141,13 +145,14 @@ fn the_default_plays_roulette_only_below_its_weight() {
         }
     }
     assert!(choices > 0);
+    scene.settings.roulette_below = None;
     scene.settings.min_weight = Some(0.0);
     assert_eq!(auto_roulette_below(&scene, &scene.settings), 0.0);
 }
 
-/// `raytree render` says how many glass hits played the roulette and below which weight;
-/// `--roulette-below 0` splits every hit (and says nothing); a negative weight is refused
-/// with its setting's path.
+/// `raytree render --roulette-below W` says how many glass hits played the roulette and below
+/// which weight; the default and `--roulette-below 0` split every hit (and say nothing); a
+/// negative weight is refused with its setting's path.
 #[test]
 fn render_reports_the_roulette_and_it_can_be_turned_off() {
     let dir = tempfile::tempdir().unwrap();
@@ -161,6 +166,9 @@ fn render_reports_the_roulette_and_it_can_be_turned_off() {
         common::raytree(&args, dir.path())
     };
     let o = run(&[]);
+    assert!(o.status.success(), "{}", common::stderr(&o));
+    assert!(!String::from_utf8_lossy(&o.stdout).contains("roulette:"));
+    let o = run(&["--roulette-below", "2.5e-3"]);
     assert!(o.status.success(), "{}", common::stderr(&o));
     let text = String::from_utf8_lossy(&o.stdout);
     assert!(

@@ -299,13 +299,13 @@ mod tests {
     }
 
     /// Defaults a tree leaves out read as their values: auto antialiasing is "auto", not
-    /// "none"; a roulette turned off is 0.
+    /// "none"; the default roulette (off since issue 32) is 0.
     #[test]
     fn omitted_defaults_read_as_their_values() {
         let mut scene = Scene::default_scene();
         let a = trace_pixel(&scene, 400, 200).unwrap();
         scene.settings.antialiasing = crate::scene::Antialiasing::Uniform;
-        scene.settings.roulette_below = Some(0.0);
+        scene.settings.roulette_below = Some(0.25);
         let b = trace_pixel(&scene, 400, 200).unwrap();
         let d = diff(&a, &b);
         let text = |f: &str| {
@@ -317,10 +317,7 @@ mod tests {
             ("\"auto\"".into(), "\"uniform\"".into())
         );
         let (was, now) = text("settings.roulette_below");
-        assert!(
-            was.parse::<f64>().unwrap() > 0.0 && now == "0.0",
-            "{was} -> {now}"
-        );
+        assert!(was == "0.0" && now == "0.25", "{was} -> {now}");
     }
 
     #[test]

@@ -55,13 +55,21 @@ fn deep_recursion_ends_quickly_with_the_default_cut() {
     let dir = tempfile::tempdir().unwrap();
     // Allocated 14 GB before the cut.
     let r = run(
-        &["trace", "--pixel", "329,189", "--max-depth", "1024"],
+        &[
+            "trace",
+            "--pixel",
+            "329,189",
+            "--max-depth",
+            "1024",
+            "--roulette-below",
+            "0.01",
+        ],
         dir.path(),
     );
     r.assert_clean();
     assert_eq!(r.code, Some(0), "{r:#?}");
     assert!(r.stdout.contains("roulette: the"), "{r:#?}");
-    // The cut alone (no roulette below a weight) ends it too.
+    // The cut alone (the default: no roulette below a weight) ends it too.
     let r = run(
         &[
             "trace",

@@ -72,15 +72,13 @@ fn interrupt(args: &[&str], dir: &Path, sig: &str) -> Option<i32> {
         .stderr(Stdio::null())
         .spawn()
         .unwrap();
+    // Outputs are staged only when the work is done (issue 27), so no temp file shows that
+    // the work has begun: signal after the start-up, while the render or sweep runs.
     let start = Instant::now();
-    while temp_files(dir).is_empty() {
+    while start.elapsed() < Duration::from_millis(400) {
         assert!(
             child.try_wait().unwrap().is_none(),
             "{args:?} ended before the signal"
-        );
-        assert!(
-            start.elapsed() < Duration::from_secs(60),
-            "no temp file appeared"
         );
         std::thread::sleep(Duration::from_millis(10));
     }

@@ -89,11 +89,11 @@ fn the_cut_saves_rays_in_nested_glass_and_nothing_without_recursion() {
         .map(|&(x, y)| crate::render::trace_pixel(&full, x, y).unwrap().nodes.len())
         .sum();
     assert_eq!(nodes as u64, c.exhaustive_rays);
-    // The default also plays roulette below its weight (0.01 over the carried bound).
-    assert!(c.roulette_below > 0.0, "{c:?}");
+    // The default plays no roulette (opt-in since issue 32): the cut alone.
+    assert_eq!(c.roulette_below, 0.0, "{c:?}");
     assert!(c.sentence().contains(&format!(
-        "roulette (below weight {:.2e}) trace {} rays where the exhaustive tree would trace {}",
-        c.roulette_below, c.cut_rays, c.exhaustive_rays
+        "traces {} rays where the exhaustive tree would trace {}",
+        c.cut_rays, c.exhaustive_rays
     )));
     let d = cut_savings(&fixture("diffuse.json"), 16, 9, &|| false).unwrap();
     assert_eq!(d.cut_rays, d.exhaustive_rays);

@@ -224,20 +224,21 @@ mod nested_dielectrics {
             }
         }
 
-        /// The default, roulette below a weight included: each outermost roulette choice
+        /// The suggested roulette weight (opt-in since issue 32): each outermost roulette choice
         /// (no choice above it) at a hit of throughput `tau` moves the pixel by less than
         /// `tau L <= 0.01`, with `L` the carried bound (both its subtree's values, split and
         /// followed, lie in `[0, tau L)`), and the cut branches by what they could carry.
         #[test]
-        fn the_default_changes_pixels_by_less_than_its_roulette_and_cut_bounds(
+        fn the_suggested_weight_changes_pixels_by_less_than_its_roulette_and_cut_bounds(
             ior in (1.05f64..2.4, 1.05f64..2.4),
             t in (0.5f64..1.0, 0.3f64..0.9),
             r in 0.0f64..0.1,
             depth in 4u32..14,
         ) {
-            use super::super::carried::{carried_bound, effective_roulette_below};
-            let default = scene(ior, t, r, depth);
-            let weight = effective_roulette_below(&default);
+            use super::super::carried::{auto_roulette_below, carried_bound};
+            let mut default = scene(ior, t, r, depth);
+            let weight = auto_roulette_below(&default, &default.settings);
+            default.settings.roulette_below = Some(weight);
             prop_assert!(weight > 0.0);
             let carried = carried_bound(&default, depth, default.settings.shadows);
             prop_assert!((weight * carried - 0.01).abs() < 1e-12);
