@@ -311,10 +311,7 @@ impl EffectPlan {
 
 /// The lines of the conductor, Beckmann and anisotropic lobes, present only where some used
 /// material has them (explanations: they change a lobe's formulas, not which rays are traced).
-fn material_lines(
-    scene: &Scene,
-    names: path::Names<'_>,
-) -> Vec<EffectLine> {
+fn material_lines(scene: &Scene, names: path::Names<'_>) -> Vec<EffectLine> {
     let mats: Vec<&crate::scene::Material> = scene.used_materials().collect();
     let mut out = Vec::new();
     let mut push = |effect: &str, pred: &dyn Fn(&crate::scene::Material) -> bool, what: &str| {
