@@ -4,7 +4,7 @@
 
 use criterion::{Criterion, Throughput, criterion_group, criterion_main};
 use glam::{DVec2, DVec3};
-use raytree::bsdf::{Bsdf, Frame, Ggx, Lobe};
+use raytree::bsdf::{Bsdf, Frame, Lobe, Microfacet};
 use raytree::lights::{PlanarEmitter, sample_sphere};
 use raytree::math::Rgb;
 use raytree::sampling::{PixelFilter, SobolSampler, SplitMix64, warp};
@@ -84,7 +84,7 @@ fn bench(c: &mut Criterion) {
         tri.sample(p, Rgb::ONE, u)
             .map_or(DVec3::ZERO, |s| s.direction)
     });
-    let ggx = Ggx::new(0.3);
+    let ggx = Microfacet::new(0.3);
     let wo = DVec3::new(0.5, 0.1, 0.8).normalize();
     warp_bench("ggx_visible_normal", &|u| ggx.sample_visible(wo, u));
     let frame = Frame::from_normal(DVec3::Z);
@@ -107,7 +107,7 @@ fn bench(c: &mut Criterion) {
             "bsdf_rough_mirror",
             Lobe::RoughMirror {
                 weight: Rgb::ONE,
-                ggx,
+                dist: ggx,
             },
         ),
         (
@@ -115,7 +115,7 @@ fn bench(c: &mut Criterion) {
             Lobe::RoughDielectric {
                 weight: Rgb::ONE,
                 eta: 1.5,
-                ggx,
+                dist: ggx,
             },
         ),
     ];

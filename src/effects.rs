@@ -275,6 +275,7 @@ impl EffectPlan {
                 },
             ),
         ];
+        out.extend(material_lines(scene, &names));
         if s.integrator == crate::scene::IntegratorKind::Path {
             path::restate(&mut out, scene);
             out.extend(path::lines(scene, &names));
@@ -307,6 +308,42 @@ impl EffectPlan {
         }
         out
     }
+}
+
+/// The lines of the conductor, Beckmann and anisotropic lobes, present only where some used
+/// material has them (explanations: they change a lobe's formulas, not which rays are traced).
+fn material_lines(scene: &Scene, names: path::Names<'_>) -> Vec<EffectLine> {
+    let mats: Vec<&crate::scene::Material> = scene.used_materials().collect();
+    let mut out = Vec::new();
+    let mut push = |effect: &str, pred: &dyn Fn(&crate::scene::Material) -> bool, what: &str| {
+        if mats.iter().any(|m| pred(m)) {
+            out.push(EffectLine {
+                effect: effect.to_string(),
+                on: true,
+                reason: format!("{}: {what}", names(pred)),
+            });
+        }
+    };
+    push(
+        "conductor Fresnel",
+        &|m| m.conductor.is_some() && nonzero(m.reflectivity),
+        "the mirror lobe's reflectance is the exact unpolarised Fresnel of a complex index eta + i k \
+         per RGB channel (pbrt-v4 FrComplex) times conductor.scale; smooth: a mirror ray of \
+         weight F(cos) per channel, rough: F at each sampled microfacet",
+    );
+    push(
+        "Beckmann microfacets",
+        &|m| m.is_rough() && m.distribution == crate::bsdf::Distribution::Beckmann,
+        "rough lobes use the Beckmann distribution (exact Smith Lambda, visible normals sampled \
+         by Heitz & d'Eon 2014) instead of GGX",
+    );
+    push(
+        "anisotropic roughness",
+        &|m| m.is_rough() && m.is_anisotropic(),
+        "roughness along the tangent, roughness_v across it (anisotropic visible normals, Heitz \
+         2018); the tangent follows the material's tangent direction",
+    );
+    out
 }
 
 /// The largest drop in index a ray can meet, `(n1, n2)` with `n1 > n2`, if any. Media: air

@@ -52,7 +52,13 @@ impl SurfaceInteraction<'_> {
     /// The local shading frame (`z` = outward shading normal), as the BSDFs take it.
     #[must_use]
     pub fn frame(&self) -> Frame {
-        Frame::from_normal(self.outward_shading_normal())
+        let n = self.outward_shading_normal();
+        if self.material.is_anisotropic() {
+            // The first tangent (alpha_u) follows the material's tangent direction.
+            Frame::from_normal_tangent(n, self.material.tangent)
+        } else {
+            Frame::from_normal(n)
+        }
     }
 
     /// `n_inside / n_outside` as the Whitted tracer's interface computes n1 and n2: the outside

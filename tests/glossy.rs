@@ -6,7 +6,7 @@
 mod common;
 use common::raytree;
 
-use raytree::bsdf::{Ggx, Lobe};
+use raytree::bsdf::{Lobe, Microfacet};
 use raytree::trace::{Integrator, SceneIntegrator};
 use raytree::tree::{RayKind, RayTree};
 use raytree::{Scene, render, trace_pixel};
@@ -120,13 +120,13 @@ fn albedo(lobe: &Lobe, wo: glam::DVec3) -> f64 {
 #[test]
 fn glossy_estimate_matches_the_lobe_albedo_under_a_uniform_sky() {
     let wo = glam::DVec3::new(60f64.to_radians().sin(), 0.0, 60f64.to_radians().cos());
-    let ggx = Ggx::new(0.3);
+    let ggx = Microfacet::new(0.3);
     let cases = [
         (
             r#"{"reflectivity": [0.9, 0.9, 0.9], "roughness": 0.3}"#,
             Lobe::RoughMirror {
                 weight: glam::DVec3::splat(0.9),
-                ggx,
+                dist: ggx,
             },
         ),
         (
@@ -134,7 +134,7 @@ fn glossy_estimate_matches_the_lobe_albedo_under_a_uniform_sky() {
             Lobe::RoughDielectric {
                 weight: glam::DVec3::ONE,
                 eta: 1.5,
-                ggx,
+                dist: ggx,
             },
         ),
     ];

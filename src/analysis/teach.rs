@@ -100,10 +100,27 @@ pub fn weight_factors(scene: &Scene, tree: &RayTree, id: NodeId) -> Option<Strin
         .get(hit.object)
         .and_then(|o| scene.materials.get(o.material))?;
     let (want, text) = match (n.kind, &parent.interface) {
-        (RayKind::Reflected, None) => (
-            m.reflectivity,
-            format!("reflectivity {}", value(m.reflectivity, 4)),
-        ),
+        (RayKind::Reflected, None) => match m.conductor {
+            None => (
+                m.reflectivity,
+                format!("reflectivity {}", value(m.reflectivity, 4)),
+            ),
+            Some(ior) => {
+                // A smooth conductor: the mirror ray carries the conductor Fresnel per channel.
+                let f = ior.fresnel(hit.cos_i);
+                let text = format!(
+                    "conductor Fresnel {} at cos_i {:.4}",
+                    value(f, 4),
+                    hit.cos_i
+                );
+                let text = if m.reflectivity == Rgb::ONE {
+                    text
+                } else {
+                    format!("{text} x scale {}", value(m.reflectivity, 4))
+                };
+                (m.reflectivity * f, text)
+            }
+        },
         (RayKind::Reflected, Some(i)) => {
             let dielectric = format!(
                 "R {:.4} x transmissivity {}",
@@ -236,6 +253,28 @@ mod tests {
         let mut bad = tree.clone();
         bad.nodes[2].weight = Rgb::splat(0.5);
         assert_eq!(weight_factors(&scene, &bad, NodeId(2)), None);
+    }
+
+    #[test]
+    fn a_conductor_mirror_weight_is_its_fresnel() {
+        let src = r#"{
+          "camera": {"position": [0,0,5], "look_at": [0,0,0], "fov_y": 40, "width": 9, "height": 9},
+          "background": [1, 1, 1],
+          "materials": {"cu": {"conductor": {"metal": "Cu"}}},
+          "objects": [{"type": "sphere", "center": [0,0,0], "radius": 1, "material": "cu"}]
+        }"#;
+        let scene = Scene::from_json(src).unwrap();
+        let tree = trace_pixel(&scene, 5, 4).unwrap();
+        let n = tree
+            .nodes
+            .iter()
+            .find(|n| n.kind == RayKind::Reflected)
+            .expect("a reflected ray");
+        let text = weight_factors(&scene, &tree, n.id).unwrap();
+        assert!(text.contains("conductor Fresnel ["), "{text}");
+        // The red channel of copper reflects most.
+        let w = n.weight;
+        assert!(w.x > w.y && w.y > w.z && w.x > 0.9, "{w:?}");
     }
 
     #[test]

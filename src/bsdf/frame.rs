@@ -22,6 +22,21 @@ impl Frame {
         Self { s, t, n }
     }
 
+    /// The frame around unit normal `n` whose first tangent `s` is `tangent` projected into the
+    /// tangent plane (`t = n x s`, right-handed like [`Frame::from_normal`]); where `tangent` is
+    /// parallel to `n`, the frame of [`Frame::from_normal`].
+    #[must_use]
+    pub fn from_normal_tangent(n: DVec3, tangent: DVec3) -> Self {
+        match (tangent - tangent.dot(n) * n).try_normalize() {
+            Some(s) if s.dot(n).abs() < 1e-9 => Self {
+                s,
+                t: n.cross(s),
+                n,
+            },
+            _ => Self::from_normal(n),
+        }
+    }
+
     /// World direction to local coordinates.
     #[must_use]
     pub fn to_local(&self, w: DVec3) -> DVec3 {
@@ -45,5 +60,20 @@ mod tests {
         let w = DVec3::new(-0.2, 0.9, 0.1).normalize();
         assert!((f.to_world(f.to_local(w)) - w).length() < 1e-14);
         assert!((f.to_local(f.n) - DVec3::Z).length() < 1e-14);
+    }
+
+    #[test]
+    fn a_tangent_frame_follows_the_tangent_and_keeps_handedness() {
+        let n = DVec3::new(0.3, -0.5, 0.8).normalize();
+        let f = Frame::from_normal_tangent(n, DVec3::X);
+        assert!(f.s.dot(n).abs() < 1e-15 && f.s.x > 0.9);
+        assert!((f.s.cross(f.t) - n).length() < 1e-14);
+        let d = Frame::from_normal(n);
+        assert!((d.s.cross(d.t) - n).length() < 1e-14);
+        // Parallel tangent: the default frame.
+        assert_eq!(
+            Frame::from_normal_tangent(DVec3::X, DVec3::X),
+            Frame::from_normal(DVec3::X)
+        );
     }
 }

@@ -7,7 +7,8 @@
 //! `1 / eta^2` radiance scaling), as the Whitted tracer does: it cancels for a closed object with
 //! camera and lights outside, and it makes `R + T <= 1` hold per sample.
 
-use super::microfacet::{Ggx, SMOOTH_ALPHA};
+use super::conductor::ComplexIor;
+use super::microfacet::{Microfacet, SMOOTH_ALPHA};
 use super::{BsdfSample, LobeKind};
 use crate::math::{self, Rgb};
 use glam::{DVec2, DVec3};
@@ -41,8 +42,26 @@ pub enum Lobe {
     RoughMirror {
         /// Reflectance.
         weight: Rgb,
-        /// GGX microfacet distribution.
-        ggx: Ggx,
+        /// Microfacet distribution.
+        dist: Microfacet,
+    },
+    /// Smooth conductor (delta): a mirror of reflectance `weight * F(cos)` per channel, `F`
+    /// the conductor Fresnel of a complex index (pbrt-v4 `ConductorBxDF`, smooth case).
+    Conductor {
+        /// Tint on the Fresnel reflectance (Mitsuba's `specular_reflectance`).
+        weight: Rgb,
+        /// Complex index of refraction per channel.
+        ior: ComplexIor,
+    },
+    /// Rough conductor: Walter et al. 2007 eq. 20 with the conductor Fresnel at the microfacet,
+    /// `weight F(wo.wm) D G / (4 cos_o cos_i)` (pbrt-v4 `ConductorBxDF`).
+    RoughConductor {
+        /// Tint on the Fresnel reflectance.
+        weight: Rgb,
+        /// Complex index of refraction per channel.
+        ior: ComplexIor,
+        /// Microfacet distribution.
+        dist: Microfacet,
     },
     /// GGX rough dielectric (Walter et al. 2007 eq. 20-21, exact Fresnel).
     RoughDielectric {
@@ -50,8 +69,8 @@ pub enum Lobe {
         weight: Rgb,
         /// `n_inside / n_outside`.
         eta: f64,
-        /// GGX microfacet distribution.
-        ggx: Ggx,
+        /// Microfacet distribution.
+        dist: Microfacet,
     },
 }
 
@@ -97,7 +116,10 @@ impl Lobe {
     /// Whether the lobe is a Dirac delta.
     #[must_use]
     pub fn is_delta(&self) -> bool {
-        matches!(self, Self::Mirror { .. } | Self::Dielectric { .. })
+        matches!(
+            self,
+            Self::Mirror { .. } | Self::Dielectric { .. } | Self::Conductor { .. }
+        )
     }
 
     /// The colour weight used to choose among lobes.
@@ -108,6 +130,8 @@ impl Lobe {
             | Self::Mirror { weight: w }
             | Self::Dielectric { weight: w, .. }
             | Self::RoughMirror { weight: w, .. }
+            | Self::Conductor { weight: w, .. }
+            | Self::RoughConductor { weight: w, .. }
             | Self::RoughDielectric { weight: w, .. } => w,
         }
     }
@@ -117,14 +141,17 @@ impl Lobe {
     pub fn eval(&self, wo: DVec3, wi: DVec3) -> Rgb {
         match *self {
             Self::Lambert { albedo } if same_side(wo, wi) => albedo * FRAC_1_PI,
-            Self::RoughMirror { weight, ggx } if same_side(wo, wi) => {
+            Self::RoughMirror { weight, dist } if same_side(wo, wi) => {
                 let wm = (wo + wi).normalize_or_zero();
                 let wm = if wm.z < 0.0 { -wm } else { wm };
                 let c = (4.0 * wo.z * wi.z).abs();
-                weight * (ggx.d(wm) * ggx.g(wo, wi) / c)
+                weight * (dist.d(wm) * dist.g(wo, wi) / c)
             }
-            Self::RoughDielectric { weight, eta, ggx } => {
-                weight * rough_dielectric_f(ggx, eta, wo, wi)
+            Self::RoughConductor { weight, ior, dist } if same_side(wo, wi) => {
+                rough_conductor_f(weight, ior, dist, wo, wi)
+            }
+            Self::RoughDielectric { weight, eta, dist } => {
+                weight * rough_dielectric_f(dist, eta, wo, wi)
             }
             _ => Rgb::ZERO,
         }
@@ -135,17 +162,19 @@ impl Lobe {
     pub fn pdf(&self, wo: DVec3, wi: DVec3) -> f64 {
         match *self {
             Self::Lambert { .. } if same_side(wo, wi) => wi.z.abs() * FRAC_1_PI,
-            Self::RoughMirror { ggx, .. } if same_side(wo, wi) => {
+            Self::RoughMirror { dist, .. } | Self::RoughConductor { dist, .. }
+                if same_side(wo, wi) =>
+            {
                 let wm = (wo + wi).normalize_or_zero();
                 let wm = if wm.z < 0.0 { -wm } else { wm };
                 let d = wo.dot(wm).abs();
                 if d == 0.0 {
                     0.0
                 } else {
-                    ggx.d_visible(wo, wm) / (4.0 * d)
+                    dist.d_visible(wo, wm) / (4.0 * d)
                 }
             }
-            Self::RoughDielectric { eta, ggx, .. } => rough_dielectric_pdf(ggx, eta, wo, wi),
+            Self::RoughDielectric { eta, dist, .. } => rough_dielectric_pdf(dist, eta, wo, wi),
             _ => 0.0,
         }
     }
@@ -176,13 +205,14 @@ impl Lobe {
                     delta(t.direction, w, 1.0 - f, LobeKind::SpecularTransmission)
                 }
             }
-            Self::RoughMirror { ggx, .. } => {
-                let wm = ggx.sample_visible(wo, u);
+            Self::Conductor { weight, ior } => conductor_sample(weight, ior, wo),
+            Self::RoughMirror { dist, .. } | Self::RoughConductor { dist, .. } => {
+                let wm = dist.sample_visible(wo, u);
                 let wi = -wo + 2.0 * wo.dot(wm) * wm;
                 same_side(wo, wi).then_some(Draw::Direction(wi, LobeKind::GlossyReflection))
             }
-            Self::RoughDielectric { eta, ggx, .. } => {
-                let wm = ggx.sample_visible(wo, u);
+            Self::RoughDielectric { eta, dist, .. } => {
+                let wm = dist.sample_visible(wo, u);
                 let r = fr_dielectric(wo.dot(wm), eta);
                 if uc < r {
                     let wi = -wo + 2.0 * wo.dot(wm) * wm;
@@ -200,6 +230,25 @@ impl Lobe {
             }
         }
     }
+}
+
+/// The rough conductor's `f` (kept out of [`Lobe::eval`], whose common arms stay small).
+#[inline(never)]
+fn rough_conductor_f(weight: Rgb, ior: ComplexIor, dist: Microfacet, wo: DVec3, wi: DVec3) -> Rgb {
+    let wm = (wo + wi).normalize_or_zero();
+    let wm = if wm.z < 0.0 { -wm } else { wm };
+    let c = (4.0 * wo.z * wi.z).abs();
+    if c == 0.0 {
+        return Rgb::ZERO;
+    }
+    weight * ior.fresnel(wo.dot(wm)) * (dist.d(wm) * dist.g(wo, wi) / c)
+}
+
+/// The smooth conductor's mirror event, of weight `weight F(cos)` per channel.
+#[inline(never)]
+fn conductor_sample(weight: Rgb, ior: ComplexIor, wo: DVec3) -> Option<Draw> {
+    let f = weight * ior.fresnel(wo.z);
+    delta(reflect_z(wo), f, 1.0, LobeKind::SpecularReflection)
 }
 
 /// A delta event, or `None` at exactly grazing `wi` (where `f = weight / |cos|` is unbounded and
@@ -243,8 +292,8 @@ fn half_vector(eta: f64, wo: DVec3, wi: DVec3) -> Option<(DVec3, f64, bool)> {
 }
 
 /// The rough dielectric's `f` for unit weight.
-fn rough_dielectric_f(ggx: Ggx, eta: f64, wo: DVec3, wi: DVec3) -> f64 {
-    if ggx.alpha < SMOOTH_ALPHA {
+fn rough_dielectric_f(dist: Microfacet, eta: f64, wo: DVec3, wi: DVec3) -> f64 {
+    if dist.alpha_x.max(dist.alpha_y) < SMOOTH_ALPHA {
         return 0.0;
     }
     let Some((wm, etap, reflect)) = half_vector(eta, wo, wi) else {
@@ -253,21 +302,21 @@ fn rough_dielectric_f(ggx: Ggx, eta: f64, wo: DVec3, wi: DVec3) -> f64 {
     let f = fr_dielectric(wo.dot(wm), eta);
     let (co, ci) = (wo.z, wi.z);
     if reflect {
-        ggx.d(wm) * ggx.g(wo, wi) * f / (4.0 * ci * co).abs()
+        dist.d(wm) * dist.g(wo, wi) * f / (4.0 * ci * co).abs()
     } else {
         let denom = wi.dot(wm) + wo.dot(wm) / etap;
         let denom = denom * denom * ci * co;
         if denom == 0.0 {
             return 0.0;
         }
-        ggx.d(wm) * (1.0 - f) * ggx.g(wo, wi) * (wi.dot(wm) * wo.dot(wm) / denom).abs()
+        dist.d(wm) * (1.0 - f) * dist.g(wo, wi) * (wi.dot(wm) * wo.dot(wm) / denom).abs()
     }
 }
 
 /// The rough dielectric's sampling density: visible normals, the Fresnel choice and the
 /// Jacobian of reflection `1 / (4 |wo.wm|)` or refraction `|wi.wm| / (wi.wm + wo.wm / etap)^2`
 /// (Walter 2007 eq. 14 and 17).
-fn rough_dielectric_pdf(ggx: Ggx, eta: f64, wo: DVec3, wi: DVec3) -> f64 {
+fn rough_dielectric_pdf(dist: Microfacet, eta: f64, wo: DVec3, wi: DVec3) -> f64 {
     let Some((wm, etap, reflect)) = half_vector(eta, wo, wi) else {
         return 0.0;
     };
@@ -277,13 +326,13 @@ fn rough_dielectric_pdf(ggx: Ggx, eta: f64, wo: DVec3, wi: DVec3) -> f64 {
         if d == 0.0 {
             return 0.0;
         }
-        ggx.d_visible(wo, wm) / (4.0 * d) * r
+        dist.d_visible(wo, wm) / (4.0 * d) * r
     } else {
         let denom = wi.dot(wm) + wo.dot(wm) / etap;
         let denom = denom * denom;
         if denom == 0.0 {
             return 0.0;
         }
-        ggx.d_visible(wo, wm) * wi.dot(wm).abs() / denom * (1.0 - r)
+        dist.d_visible(wo, wm) * wi.dot(wm).abs() / denom * (1.0 - r)
     }
 }

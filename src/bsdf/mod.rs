@@ -2,10 +2,13 @@
 //! `eval`, `sample` and `pdf`; non-delta lobes are combined (one-sample MIS over lobes, pbrt-v3
 //! `BSDF::Sample_f`, Mitsuba 3 `BlendBSDF`), a lobe is chosen in proportion to the luminance of
 //! its weight. Built from a scene [`Material`] as the Whitted tracer reads it: the diffuse albedo
-//! is a Lambert lobe, `reflectivity` a mirror (constant weight, no Fresnel), `transmissivity` a
-//! dielectric interface with exact Fresnel; a `roughness` above [`SMOOTH_ALPHA`] makes the
-//! latter two GGX lobes. See `docs/monte-carlo.md`.
+//! is a Lambert lobe, `reflectivity` a mirror (constant weight, no Fresnel) or, with a
+//! `conductor`, a metal (conductor Fresnel per channel), `transmissivity` a dielectric interface
+//! with exact Fresnel; a `roughness` above [`SMOOTH_ALPHA`] makes the latter two microfacet
+//! lobes (GGX or Beckmann, isotropic or anisotropic). See `docs/monte-carlo.md` and
+//! `docs/materials.md`.
 
+mod conductor;
 mod frame;
 mod lobe;
 mod microfacet;
@@ -14,11 +17,14 @@ mod tests;
 #[cfg(test)]
 mod tests_chi2;
 #[cfg(test)]
+mod tests_conductor;
+#[cfg(test)]
 mod tests_reset;
 
+pub use conductor::{ComplexIor, METALS, fr_complex};
 pub use frame::Frame;
 pub use lobe::{Lobe, fr_dielectric};
-pub use microfacet::{Ggx, SMOOTH_ALPHA};
+pub use microfacet::{Distribution, Microfacet, SMOOTH_ALPHA, roughness_to_alpha};
 
 use crate::math::Rgb;
 use crate::scene::Material;
@@ -221,26 +227,33 @@ impl Bsdf {
     /// normalises their probabilities.
     #[inline(always)]
     fn add_material(&mut self, m: &Material, p: DVec3, roughness: f64, eta: f64) {
-        let rough = roughness >= SMOOTH_ALPHA;
-        let ggx = Ggx::new(roughness);
+        // `roughness` stands for the material's `roughness` (alpha_u); alpha_v follows it on
+        // an isotropic material.
+        let roughness_v = if m.is_anisotropic() {
+            m.roughness_v
+        } else {
+            roughness
+        };
+        let rough = roughness.max(roughness_v) >= SMOOTH_ALPHA;
+        let dist = Microfacet::with(m.distribution, roughness, roughness_v);
         let mut total = 0.0;
         if !m.diffuse.is_black() {
             let albedo = m.diffuse.at(p);
             self.push(Lobe::Lambert { albedo }, &mut total);
         }
         if m.reflectivity != Rgb::ZERO {
-            let weight = m.reflectivity;
-            let lobe = if rough {
-                Lobe::RoughMirror { weight, ggx }
-            } else {
-                Lobe::Mirror { weight }
-            };
+            let mut lobe = m.reflection_lobe(rough);
+            if let Lobe::RoughMirror { dist: d, .. } | Lobe::RoughConductor { dist: d, .. } =
+                &mut lobe
+            {
+                *d = dist;
+            }
             self.push(lobe, &mut total);
         }
         if m.is_transmissive() {
             let weight = m.transmissivity;
             let lobe = if rough && (eta - 1.0).abs() > 1e-9 {
-                Lobe::RoughDielectric { weight, eta, ggx }
+                Lobe::RoughDielectric { weight, eta, dist }
             } else {
                 Lobe::Dielectric { weight, eta }
             };

@@ -55,7 +55,7 @@ fn albedo_uniform(bsdf: &Bsdf, wo: DVec3, n: usize, seed: u64) -> (f64, f64) {
 fn rough_mirror(alpha: f64) -> Lobe {
     Lobe::RoughMirror {
         weight: Rgb::ONE,
-        ggx: Ggx::new(alpha),
+        dist: Microfacet::new(alpha),
     }
 }
 
@@ -63,7 +63,7 @@ fn rough_glass(alpha: f64, eta: f64) -> Lobe {
     Lobe::RoughDielectric {
         weight: Rgb::ONE,
         eta,
-        ggx: Ggx::new(alpha),
+        dist: Microfacet::new(alpha),
     }
 }
 
@@ -87,7 +87,7 @@ fn ggx_d_is_normalised_in_projected_area() {
     // Integral of D(wm) cos(theta_m) over the hemisphere is 1 (Walter 2007 eq. 4); midpoint rule
     // in (cos theta, phi).
     for alpha in [0.2, 0.5, 1.0] {
-        let g = Ggx::new(alpha);
+        let g = Microfacet::new(alpha);
         let (nz, nphi) = (4000, 8);
         let mut sum = 0.0;
         for i in 0..nz {
@@ -240,7 +240,7 @@ fn from_material_reads_the_material_as_whitted_does() {
 
 #[test]
 fn degenerate_directions_give_no_nan() {
-    let ggx = Ggx::new(0.3);
+    let ggx = Microfacet::new(0.3);
     let lobes = [
         Lobe::Lambert { albedo: Rgb::ONE },
         Lobe::Mirror { weight: Rgb::ONE },
@@ -253,7 +253,7 @@ fn degenerate_directions_give_no_nan() {
         rough_glass(SMOOTH_ALPHA, 1.0 / 1.5),
         Lobe::RoughMirror {
             weight: Rgb::ONE,
-            ggx,
+            dist: ggx,
         },
     ];
     let dirs = [

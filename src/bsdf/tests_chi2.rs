@@ -1,7 +1,7 @@
 //! Chi-square tests of GGX visible-normal sampling and of every non-delta BSDF's `sample`
 //! against its own `pdf` (several `wo`, alphas and indices; fixed seeds).
 
-use super::{Bsdf, Frame, Ggx, Lobe};
+use super::{Bsdf, ComplexIor, Distribution, Frame, Lobe, Microfacet};
 use crate::math::Rgb;
 use crate::sampling::chi2::test_directions;
 use glam::DVec3;
@@ -31,7 +31,7 @@ fn ggx_visible_normals_match_their_density() {
     let mut seed = 100;
     for alpha in [0.1, 0.3, 0.8] {
         for theta in [0.0, 45.0, 80.0, 89.9, 135.0] {
-            let g = Ggx::new(alpha);
+            let g = Microfacet::new(alpha);
             let w = dir(theta);
             seed += 1;
             test_directions(
@@ -48,7 +48,7 @@ fn ggx_visible_normals_match_their_density() {
 #[test]
 fn a_vndf_pdf_without_its_masking_term_is_rejected() {
     // D(wm) |w.wm| / cos(w) (G1 left out) integrates above 1 and has the wrong shape.
-    let g = Ggx::new(0.6);
+    let g = Microfacet::new(0.6);
     let w = dir(70.0);
     let r = test_directions(
         (0.0, 1.0),
@@ -80,7 +80,7 @@ fn rough_mirror_sample_matches_pdf() {
             seed += 1;
             let lobe = Lobe::RoughMirror {
                 weight: Rgb::ONE,
-                ggx: Ggx::new(alpha),
+                dist: Microfacet::new(alpha),
             };
             chi2_bsdf(
                 &[lobe],
@@ -103,7 +103,7 @@ fn rough_dielectric_sample_matches_pdf() {
                 let lobe = Lobe::RoughDielectric {
                     weight: Rgb::ONE,
                     eta,
-                    ggx: Ggx::new(alpha),
+                    dist: Microfacet::new(alpha),
                 };
                 let what = format!("rough dielectric eta {eta} a {alpha} th {theta}");
                 chi2_bsdf(&[lobe], dir(theta), seed, &what);
@@ -114,22 +114,127 @@ fn rough_dielectric_sample_matches_pdf() {
 
 #[test]
 fn lobe_mixture_sample_matches_combined_pdf() {
-    let ggx = Ggx::new(0.35);
+    let ggx = Microfacet::new(0.35);
     let lobes = [
         Lobe::Lambert {
             albedo: Rgb::new(0.5, 0.2, 0.1),
         },
         Lobe::RoughMirror {
             weight: Rgb::splat(0.3),
-            ggx,
+            dist: ggx,
         },
         Lobe::RoughDielectric {
             weight: Rgb::splat(0.6),
             eta: 1.5,
-            ggx,
+            dist: ggx,
         },
     ];
     for (i, theta) in [20.0, 70.0, 140.0].into_iter().enumerate() {
         chi2_bsdf(&lobes, dir(theta), 500 + i as u64, "mixture");
+    }
+}
+
+/// A direction at polar angle `theta_deg` and azimuth `phi` (radians).
+fn dir_phi(theta_deg: f64, phi: f64) -> DVec3 {
+    let t = theta_deg.to_radians();
+    DVec3::new(t.sin() * phi.cos(), t.sin() * phi.sin(), t.cos())
+}
+
+#[test]
+fn anisotropic_and_beckmann_visible_normals_match_their_density() {
+    let mut seed = 600;
+    for kind in [Distribution::Ggx, Distribution::Beckmann] {
+        for (ax, ay) in [
+            (0.1f64, 0.1),
+            (0.3, 0.3),
+            (0.8, 0.8),
+            (0.1, 0.5),
+            (0.7, 0.2),
+        ] {
+            for (theta, phi) in [
+                (0.0, 0.0),
+                (45.0, 0.3),
+                (80.0, 1.2),
+                (89.5, 2.0),
+                (135.0, -0.7),
+            ] {
+                // Near grazing with alpha 0.1 the visible normals crowd into a few bins, where
+                // the harness's 8x8-point quadrature of the pdf is too coarse: the unchanged
+                // isotropic GGX sampler fails there at azimuth 2.0 and passes at 0.3
+                // (`ggx_visible_normals_match_their_density` covers 89.9 degrees at 0.3).
+                if theta > 85.0 && ax.min(ay) < 0.2 {
+                    continue;
+                }
+                let m = Microfacet::with(kind, ax, ay);
+                let w = dir_phi(theta, phi);
+                seed += 1;
+                test_directions(
+                    (0.0, 1.0),
+                    seed,
+                    |rng| Some(m.sample_visible(w, rng.next_2d())),
+                    |wm| m.d_visible(w, wm),
+                )
+                .assert_passes(&format!(
+                    "{kind:?} VNDF a ({ax}, {ay}) theta {theta} phi {phi}"
+                ));
+            }
+        }
+    }
+}
+
+#[test]
+fn beckmann_sampled_from_the_wrong_density_is_rejected() {
+    // GGX's visible normals checked against Beckmann's density of the same alpha.
+    let (ggx, beck) = (
+        Microfacet::with(Distribution::Ggx, 0.4, 0.4),
+        Microfacet::with(Distribution::Beckmann, 0.4, 0.4),
+    );
+    let w = dir(50.0);
+    let r = test_directions(
+        (0.0, 1.0),
+        98,
+        |rng| Some(ggx.sample_visible(w, rng.next_2d())),
+        |wm| beck.d_visible(w, wm),
+    );
+    assert!(!r.passes(), "{r:?}");
+    // An anisotropic sampler against the isotropic density of one of its alphas.
+    let ani = Microfacet::with(Distribution::Ggx, 0.15, 0.6);
+    let iso = Microfacet::with(Distribution::Ggx, 0.15, 0.15);
+    let w = dir_phi(40.0, 0.9);
+    let r = test_directions(
+        (0.0, 1.0),
+        97,
+        |rng| Some(ani.sample_visible(w, rng.next_2d())),
+        |wm| iso.d_visible(w, wm),
+    );
+    assert!(!r.passes(), "{r:?}");
+}
+
+#[test]
+fn rough_conductor_and_beckmann_dielectric_samples_match_pdf() {
+    let ior = ComplexIor::metal("Au").unwrap();
+    let mut seed = 700;
+    for kind in [Distribution::Ggx, Distribution::Beckmann] {
+        for (ax, ay) in [(0.2, 0.2), (0.1, 0.6)] {
+            let dist = Microfacet::with(kind, ax, ay);
+            for theta in [0.0, 55.0, 85.0, 125.0] {
+                seed += 1;
+                let lobe = Lobe::RoughConductor {
+                    weight: Rgb::ONE,
+                    ior,
+                    dist,
+                };
+                let what = format!("rough conductor {kind:?} ({ax}, {ay}) th {theta}");
+                chi2_bsdf(&[lobe], dir_phi(theta, 0.4), seed, &what);
+                seed += 1;
+                let lobe = Lobe::RoughDielectric {
+                    weight: Rgb::ONE,
+                    eta: 1.5,
+                    dist,
+                };
+                let what = format!("rough dielectric {kind:?} ({ax}, {ay}) th {theta}");
+                chi2_bsdf(&[lobe], dir_phi(theta, 0.4), seed, &what);
+            }
+        }
     }
 }

@@ -4,7 +4,7 @@ use super::{EffectLine, nonzero};
 use crate::scene::{Material, Scene};
 
 /// The names of the used materials a predicate holds for (`EffectPlan::explain`'s `names`).
-type Names<'a> = &'a dyn Fn(&dyn Fn(&Material) -> bool) -> String;
+pub(super) type Names<'a> = &'a dyn Fn(&dyn Fn(&Material) -> bool) -> String;
 
 /// The Whitted lines the path integrator reads differently, restated for it: it always uses
 /// exact Fresnel, samples area lights by next-event estimation (one light sample per bounce,

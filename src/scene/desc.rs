@@ -117,10 +117,49 @@ pub struct MaterialDesc {
     pub absorption: Triple,
     /// Emitted radiance from the outer side.
     pub emission: Triple,
-    /// GGX (Trowbridge-Reitz) alpha of the `reflectivity` and `transmissivity` lobes, in
-    /// [0, 1]; 0 (the default) is smooth.
+    /// Microfacet alpha of the `reflectivity` (or `conductor`) and `transmissivity` lobes, in
+    /// [0, 1]; 0 (the default) is smooth. With `roughness_v` it is the alpha along the first
+    /// tangent (`alpha_u`).
     #[serde(skip_serializing_if = "is_zero")]
     pub roughness: f64,
+    /// Alpha along the second tangent (`alpha_v`), in [0, 1]: an anisotropic lobe; absent, the
+    /// lobe is isotropic (`roughness` both ways).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub roughness_v: Option<f64>,
+    /// The world direction the first tangent (`alpha_u`) follows on an anisotropic surface,
+    /// projected into the tangent plane; default `[1, 0, 0]`.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub tangent: Option<Triple>,
+    /// The microfacet distribution of the rough lobes: `"ggx"` (default) or `"beckmann"`.
+    #[serde(skip_serializing_if = "is_ggx")]
+    pub distribution: crate::bsdf::Distribution,
+    /// A conductor: the mirror lobe's reflectance is the Fresnel of a complex index of
+    /// refraction per channel (instead of the constant `reflectivity`, which must then be
+    /// absent).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub conductor: Option<ConductorDesc>,
+}
+
+fn is_ggx(d: &crate::bsdf::Distribution) -> bool {
+    *d == crate::bsdf::Distribution::Ggx
+}
+
+/// A conductor's complex index of refraction: a named metal or `eta` and `k` per channel.
+#[derive(Clone, Debug, Default, Serialize, Deserialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct ConductorDesc {
+    /// A named metal: `"Cu"`, `"Au"`, `"Ag"` or `"Al"` (RGB from pbrt-v4's spectra).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub metal: Option<String>,
+    /// Real part of the index per channel (> 0).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub eta: Option<Triple>,
+    /// Imaginary part (extinction) per channel (>= 0).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub k: Option<Triple>,
+    /// Tint on the Fresnel reflectance (Mitsuba's `specular_reflectance`), default `[1, 1, 1]`.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub scale: Option<Triple>,
 }
 
 /// One object: a shape, its material and an optional name.

@@ -108,6 +108,16 @@ pub struct Material {
     /// GGX alpha of the `reflectivity` and `transmissivity` lobes, in [0, 1] (0: smooth; below
     /// [`crate::bsdf::SMOOTH_ALPHA`] the lobes are traced as smooth).
     pub roughness: f64,
+    /// Alpha along the second tangent (equal to `roughness` for an isotropic lobe).
+    pub roughness_v: f64,
+    /// The world direction the first tangent follows where the lobe is anisotropic.
+    pub tangent: DVec3,
+    /// GGX or Beckmann.
+    pub distribution: crate::bsdf::Distribution,
+    /// A conductor's complex index: the `reflectivity` lobe's reflectance is then
+    /// `reflectivity * F_conductor(cos)` per channel (`reflectivity` is the tint, at most the
+    /// reflectance, so every bound on it still holds).
+    pub conductor: Option<crate::bsdf::ComplexIor>,
 }
 
 impl Material {
@@ -121,8 +131,43 @@ impl Material {
     /// [`crate::bsdf::SMOOTH_ALPHA`] on a nonzero `reflectivity` or `transmissivity`.
     #[must_use]
     pub fn is_rough(&self) -> bool {
-        self.roughness >= crate::bsdf::SMOOTH_ALPHA
+        self.roughness.max(self.roughness_v) >= crate::bsdf::SMOOTH_ALPHA
             && (self.reflectivity != Rgb::ZERO || self.is_transmissive())
+    }
+
+    /// Whether the rough lobes are anisotropic (`roughness_v` differs from `roughness`), which
+    /// makes the shading frame follow [`Material::tangent`].
+    #[must_use]
+    pub fn is_anisotropic(&self) -> bool {
+        self.roughness_v != self.roughness
+    }
+
+    /// The microfacet distribution of the rough lobes (alphas clamped to at least
+    /// [`crate::bsdf::SMOOTH_ALPHA`]).
+    #[must_use]
+    pub fn microfacet(&self) -> crate::bsdf::Microfacet {
+        crate::bsdf::Microfacet::with(self.distribution, self.roughness, self.roughness_v)
+    }
+
+    /// The lobe of the `reflectivity` term: a mirror of constant weight, or a conductor with
+    /// Fresnel; GGX/Beckmann-rough where `rough`.
+    #[must_use]
+    pub fn reflection_lobe(&self, rough: bool) -> crate::bsdf::Lobe {
+        use crate::bsdf::Lobe;
+        let weight = self.reflectivity;
+        match (self.conductor, rough) {
+            (None, false) => Lobe::Mirror { weight },
+            (None, true) => Lobe::RoughMirror {
+                weight,
+                dist: self.microfacet(),
+            },
+            (Some(ior), false) => Lobe::Conductor { weight, ior },
+            (Some(ior), true) => Lobe::RoughConductor {
+                weight,
+                ior,
+                dist: self.microfacet(),
+            },
+        }
     }
 }
 

@@ -2,11 +2,13 @@
 
 use super::check::Check;
 use super::desc::{
-    CameraDesc, LightDesc, MaterialDesc, ObjectDesc, SceneDesc, Settings, TextureDesc,
+    CameraDesc, ConductorDesc, LightDesc, MaterialDesc, ObjectDesc, SceneDesc, Settings,
+    TextureDesc,
 };
 use super::error::{bare_message, field_of_tagged, path_of, reword, with_missing_field};
 use super::mesh_object::MeshLoader;
 use super::{Accel, Camera, Light, LightKind, Material, Object, Scene, SceneError, Texture};
+use crate::bsdf::ComplexIor;
 use crate::geometry::Shape;
 use glam::DVec3;
 use std::collections::HashMap;
@@ -221,13 +223,48 @@ fn material(ck: &Check, name: &str, m: &MaterialDesc) -> Result<Material, SceneE
     if shininess < 0.0 {
         return ck.fail(format!("{p}.shininess"), "must not be negative");
     }
-    let roughness = ck.finite(&format!("{p}.roughness"), m.roughness)?;
-    if !(0.0..=1.0).contains(&roughness) {
-        return ck.fail(
-            format!("{p}.roughness"),
-            format!("must be in [0, 1] (the GGX alpha), got {roughness}"),
-        );
-    }
+    let alpha = |key: &str, v: f64| -> Result<f64, SceneError> {
+        let v = ck.finite(&format!("{p}.{key}"), v)?;
+        if (0.0..=1.0).contains(&v) {
+            Ok(v)
+        } else {
+            ck.fail(
+                format!("{p}.{key}"),
+                format!("must be in [0, 1] (the microfacet alpha), got {v}"),
+            )
+        }
+    };
+    let roughness = alpha("roughness", m.roughness)?;
+    let roughness_v = match m.roughness_v {
+        Some(v) => alpha("roughness_v", v)?,
+        None => roughness,
+    };
+    let tangent = match m.tangent {
+        Some(t) => {
+            let v = ck.vec(&format!("{p}.tangent"), t)?;
+            if v.length_squared() == 0.0 {
+                return ck.fail(format!("{p}.tangent"), "must not be the zero vector");
+            }
+            v.normalize()
+        }
+        None => DVec3::X,
+    };
+    let (conductor, reflectivity) = match &m.conductor {
+        None => (
+            None,
+            ck.color(&format!("{p}.reflectivity"), m.reflectivity)?,
+        ),
+        Some(c) => {
+            if m.reflectivity != [0.0; 3] {
+                return ck.fail(
+                    format!("{p}.reflectivity"),
+                    "a conductor's reflectance is its Fresnel: leave reflectivity out and tint \
+                     it with conductor.scale",
+                );
+            }
+            conductor(ck, &format!("{p}.conductor"), c)?
+        }
+    };
     let ior = match m.ior {
         Some(n) => Some(ck.positive(&format!("{p}.ior"), n)?),
         None => None,
@@ -237,13 +274,58 @@ fn material(ck: &Check, name: &str, m: &MaterialDesc) -> Result<Material, SceneE
         diffuse,
         specular: ck.color(&format!("{p}.specular"), m.specular)?,
         shininess,
-        reflectivity: ck.color(&format!("{p}.reflectivity"), m.reflectivity)?,
+        reflectivity,
         transmissivity: ck.color(&format!("{p}.transmissivity"), m.transmissivity)?,
         ior,
         absorption: ck.color(&format!("{p}.absorption"), m.absorption)?,
         emission: ck.color(&format!("{p}.emission"), m.emission)?,
         roughness,
+        roughness_v,
+        tangent,
+        distribution: m.distribution,
+        conductor,
     })
+}
+
+/// A conductor's complex index and tint (the material's `reflectivity`).
+fn conductor(
+    ck: &Check,
+    p: &str,
+    c: &ConductorDesc,
+) -> Result<(Option<ComplexIor>, DVec3), SceneError> {
+    let ior = match (&c.metal, c.eta, c.k) {
+        (Some(name), None, None) => ComplexIor::metal(name).map_or_else(
+            || {
+                let known: Vec<&str> = crate::bsdf::METALS.iter().map(|m| m.0).collect();
+                ck.fail(
+                    format!("{p}.metal"),
+                    format!("unknown metal {name:?} (known: {})", known.join(", ")),
+                )
+            },
+            Ok,
+        )?,
+        (None, Some(eta), Some(k)) => {
+            let eta = ck.vec(&format!("{p}.eta"), eta)?;
+            if eta.min_element() <= 0.0 {
+                return ck.fail(format!("{p}.eta"), "must be positive in every channel");
+            }
+            ComplexIor {
+                eta,
+                k: ck.color(&format!("{p}.k"), k)?,
+            }
+        }
+        _ => {
+            return ck.fail(
+                p.to_string(),
+                "give either \"metal\" or both \"eta\" and \"k\"",
+            );
+        }
+    };
+    let scale = match c.scale {
+        Some(s) => ck.color(&format!("{p}.scale"), s)?,
+        None => DVec3::ONE,
+    };
+    Ok((Some(ior), scale))
 }
 
 fn object(

@@ -156,11 +156,20 @@ impl Terms {
         // F / (4 cos_o) <= weight D_max G1(wo) / (4 cos_o)`, with `D_max = 1 / (pi a^2)` and
         // `G1(wo) / cos_o = 2 / (cos_o + sqrt(cos_o^2 + a^2 sin_o^2)) <= 2 / a` (the
         // denominator grows with cos_o from a), so at most `weight / (2 pi a^3)` (Walter et
-        // al. 2007 eq. 20, 33, 34). Strict, and large for small alpha.
+        // al. 2007 eq. 20, 33, 34). Strict, and large for small alpha. Anisotropic or
+        // Beckmann: `D_max = 1 / (pi a_u a_v) <= 1 / (pi a^2)` with `a` the smaller alpha, and
+        // `G1 / cos <= c 2 / a` with `c = 1` (GGX) or `sqrt(pi)` (Beckmann;
+        // `Microfacet::g1_over_cos_max`). A conductor's Fresnel is at most 1.
         let glossy = if m.is_rough() {
-            let a = m.roughness;
+            let dist = m.microfacet();
+            let a = dist.alpha_x.min(dist.alpha_y);
+            let c = match dist.kind {
+                crate::bsdf::Distribution::Ggx => 1.0,
+                crate::bsdf::Distribution::Beckmann => std::f64::consts::PI.sqrt(),
+            };
             (m.reflectivity + m.transmissivity).max_element().max(0.0)
                 / (2.0 * std::f64::consts::PI * a * a * a)
+                * c
         } else {
             0.0
         };

@@ -28,7 +28,7 @@
 //! sampling, which is not done.
 
 use super::{PathState, RayCounts, Recorder, Secondary, Spawn, Tracer};
-use crate::bsdf::{Bsdf, Ggx, Lobe, LobeKind};
+use crate::bsdf::{Bsdf, Lobe, LobeKind};
 use crate::interaction::SurfaceInteraction;
 use crate::math::Rgb;
 use crate::sampling::PixelSampler;
@@ -46,21 +46,22 @@ pub(super) fn refracts(si: &SurfaceInteraction) -> bool {
 /// The rough lobes of `si`'s material (call only when [`crate::scene::Material::is_rough`]).
 fn rough_lobes(si: &SurfaceInteraction) -> [Option<(GlossyLobe, Lobe)>; 2] {
     let m = si.material;
-    let ggx = Ggx::new(m.roughness);
-    let mirror = (m.reflectivity != Rgb::ZERO).then_some((
-        GlossyLobe::RoughMirror,
-        Lobe::RoughMirror {
-            weight: m.reflectivity,
-            ggx,
-        },
-    ));
+    let dist = m.microfacet();
+    let mirror = (m.reflectivity != Rgb::ZERO).then(|| {
+        let kind = if m.conductor.is_some() {
+            GlossyLobe::RoughConductor
+        } else {
+            GlossyLobe::RoughMirror
+        };
+        (kind, m.reflection_lobe(true))
+    });
     let dielectric = (m.is_transmissive() && refracts(si)).then(|| {
         (
             GlossyLobe::RoughDielectric,
             Lobe::RoughDielectric {
                 weight: m.transmissivity,
                 eta: si.eta(),
-                ggx,
+                dist,
             },
         )
     });

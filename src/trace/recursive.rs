@@ -164,7 +164,11 @@ impl Tracer<'_> {
         // light straight on).
         let rough = self.plan.glossy && m.is_rough();
         let rough_dielectric = rough && m.is_transmissive() && super::glossy::refracts(&si);
-        let mut reflect_w = if rough { Rgb::ZERO } else { m.reflectivity };
+        let mut reflect_w = if rough {
+            Rgb::ZERO
+        } else {
+            mirror_weight(m, cos_i)
+        };
         let mut refraction = None;
         // Dielectric split (only where the material transmits).
         if self.plan.refraction && m.is_transmissive() && !rough_dielectric {
@@ -384,5 +388,15 @@ impl Tracer<'_> {
                 (event, None)
             }
         }
+    }
+}
+
+/// The smooth mirror ray's weight: `reflectivity`, times the conductor Fresnel per channel for
+/// a conductor (so the reflected node's recorded `weight` is `scale * F(cos_i)`; no node field
+/// is added, which would grow every recorded node and the memory-derived ray budgets).
+fn mirror_weight(m: &crate::scene::Material, cos_i: f64) -> Rgb {
+    match m.conductor {
+        None => m.reflectivity,
+        Some(ior) => m.reflectivity * ior.fresnel(cos_i),
     }
 }

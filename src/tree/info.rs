@@ -171,6 +171,9 @@ pub enum GlossyLobe {
     RoughMirror,
     /// The GGX rough dielectric of `transmissivity` (exact Fresnel per microfacet).
     RoughDielectric,
+    /// The rough conductor of `reflectivity` with a `conductor` (conductor Fresnel per
+    /// microfacet and channel).
+    RoughConductor,
 }
 
 impl GlossyLobe {
@@ -180,6 +183,7 @@ impl GlossyLobe {
         match self {
             Self::RoughMirror => "rough mirror",
             Self::RoughDielectric => "rough dielectric",
+            Self::RoughConductor => "rough conductor",
         }
     }
 }

@@ -92,3 +92,91 @@ fn huge_numbers_are_rejected() {
     let e = err(&BASE.replace("\"radius\": 1", "\"radius\": 1e999"));
     assert!(e.line.is_some(), "{e}");
 }
+
+fn with_material(m: &str) -> String {
+    BASE.replace(r#"{"diffuse": [0.5, 0.5, 0.5]}"#, m)
+}
+
+#[test]
+fn conductors_and_microfacets_load() {
+    let s = Scene::from_json(&with_material(
+        r#"{"conductor": {"metal": "Au"}, "roughness": 0.2, "roughness_v": 0.05, "distribution": "beckmann", "tangent": [0, 2, 0]}"#,
+    ))
+    .unwrap();
+    let m = &s.materials[0];
+    assert_eq!(m.conductor, crate::bsdf::ComplexIor::metal("Au"));
+    assert_eq!(m.reflectivity, DVec3::ONE);
+    assert_eq!((m.roughness, m.roughness_v), (0.2, 0.05));
+    assert_eq!(m.distribution, crate::bsdf::Distribution::Beckmann);
+    assert_eq!(m.tangent, DVec3::Y);
+    assert!(m.is_anisotropic() && m.is_rough());
+    let s = Scene::from_json(&with_material(
+        r#"{"conductor": {"eta": [0.2, 0.9, 1.1], "k": [3.9, 2.4, 2.1], "scale": [0.5, 0.5, 0.5]}}"#,
+    ))
+    .unwrap();
+    let m = &s.materials[0];
+    assert_eq!(m.reflectivity, DVec3::splat(0.5));
+    assert_eq!(m.conductor.unwrap().k, DVec3::new(3.9, 2.4, 2.1));
+    // Without the new fields: isotropic GGX, no conductor, the default frame.
+    let m = &Scene::from_json(BASE).unwrap().materials[0];
+    assert!(m.conductor.is_none() && !m.is_anisotropic());
+    assert_eq!(m.distribution, crate::bsdf::Distribution::Ggx);
+}
+
+#[test]
+fn bad_conductors_and_microfacets_are_named() {
+    let cases = [
+        (
+            r#"{"conductor": {"metal": "Pt"}}"#,
+            "materials.m.conductor.metal",
+            "unknown metal",
+        ),
+        (
+            r#"{"conductor": {"eta": [1, 1, 1]}}"#,
+            "materials.m.conductor",
+            "both",
+        ),
+        (
+            r#"{"conductor": {"metal": "Cu", "eta": [1, 1, 1], "k": [1, 1, 1]}}"#,
+            "materials.m.conductor",
+            "either",
+        ),
+        (
+            r#"{"conductor": {"eta": [0, 1, 1], "k": [1, 1, 1]}}"#,
+            "materials.m.conductor.eta",
+            "positive",
+        ),
+        (
+            r#"{"conductor": {"eta": [1, 1, 1], "k": [-1, 1, 1]}}"#,
+            "materials.m.conductor.k",
+            "negative",
+        ),
+        (
+            r#"{"conductor": {"metal": "Cu"}, "reflectivity": [1, 1, 1]}"#,
+            "materials.m.reflectivity",
+            "conductor.scale",
+        ),
+        (
+            r#"{"roughness": 0.2, "roughness_v": 1.5}"#,
+            "materials.m.roughness_v",
+            "[0, 1]",
+        ),
+        (r#"{"tangent": [0, 0, 0]}"#, "materials.m.tangent", "zero"),
+        (
+            r#"{"distribution": "phong"}"#,
+            "materials.m.distribution",
+            "unknown variant",
+        ),
+        (
+            r#"{"conductor": {"metal": "Cu", "tint": [1, 1, 1]}}"#,
+            "materials.m.conductor.tint",
+            "unknown field",
+        ),
+    ];
+    for (m, path, words) in cases {
+        let e = err(&with_material(m));
+        assert_eq!(e.path, path, "{m}: {e}");
+        assert!(e.message.contains(words), "{m}: {e}");
+        assert!(e.line.is_some(), "{m}: {e}");
+    }
+}

@@ -276,19 +276,19 @@ mod nested_dielectrics {
 /// `f cos_i`, for the rough mirror and the rough dielectric's reflection.
 #[test]
 fn the_rough_lobes_highlight_bound_holds_and_is_tight() {
-    use crate::bsdf::{Ggx, Lobe};
+    use crate::bsdf::{Lobe, Microfacet};
     for a in [0.05, 0.2, 0.6, 1.0] {
         let bound = 1.0 / (2.0 * std::f64::consts::PI * a * a * a);
-        let ggx = Ggx::new(a);
+        let ggx = Microfacet::new(a);
         let lobes = [
             Lobe::RoughMirror {
                 weight: Rgb::ONE,
-                ggx,
+                dist: ggx,
             },
             Lobe::RoughDielectric {
                 weight: Rgb::ONE,
                 eta: 1.5,
-                ggx,
+                dist: ggx,
             },
         ];
         let mut most = 0.0f64;
