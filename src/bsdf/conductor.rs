@@ -20,7 +20,7 @@ pub struct ComplexIor {
 
 /// The named metals: RGB `eta` and `k` projected from pbrt-v4's tabulated spectra
 /// (`src/pbrt/util/spectrum.cpp`, `metal-Cu-eta` ... `metal-Al-k`; the same data as Mitsuba
-/// 3's `data/ior`) by `tools/metal_rgb.py`: each spectrum is integrated against the CIE 1931
+/// 3's `data/ior`) by `benches/metal_rgb.py`: each spectrum is integrated against the CIE 1931
 /// colour matching functions as a reflectance lit by D65 and taken to linear sRGB, so a flat
 /// spectrum keeps its value. The normal-incidence reflectance of these RGB values is within
 /// 0.05 of the spectral one projected the same way (gold's red is the worst: 0.975 against

@@ -1,7 +1,7 @@
 #!/usr/bin/env python3
 """RGB eta and k of the named conductors in src/bsdf/metals.rs, from pbrt-v4's tabulated spectra.
 
-Usage: tools/metal_rgb.py PATH/TO/pbrt-v4/src/pbrt/util/spectrum.cpp
+Usage: benches/metal_rgb.py PATH/TO/pbrt-v4/src/pbrt/util/spectrum.cpp
 
 Reads (never copies) pbrt-v4's tables: the CIE 1931 2-degree colour matching functions CIE_X/Y/Z
 (1 nm, 360..830 nm), the CIE D65 illuminant CIE_Illum_D6500 and the metal-*-eta / metal-*-k
