@@ -77,7 +77,8 @@ fn effects_cost_and_compare() {
         "{csv}"
     );
     assert!(
-        csv.lines().any(|l| l.starts_with("roulette_below,suggested (")),
+        csv.lines()
+            .any(|l| l.starts_with("roulette_below,suggested (")),
         "{csv}"
     );
     assert!(

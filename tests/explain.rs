@@ -75,10 +75,9 @@ fn explain_json_shares_add_up() {
 fn explain_tir_and_max_depth() {
     // With the suggested roulette weight (opt-in since issue 32) a weak branch plays roulette:
     // one of its TIR rays' parents followed one ray.
-    let tir = ::raytree::Scene::from_json(
-        &std::fs::read_to_string(fixture("tir-block.json")).unwrap(),
-    )
-    .unwrap();
+    let tir =
+        ::raytree::Scene::from_json(&std::fs::read_to_string(fixture("tir-block.json")).unwrap())
+            .unwrap();
     let w = ::raytree::trace::bound::carried::auto_roulette_below(&tir, &tir.settings);
     let text = ok(&run(&[
         "explain",

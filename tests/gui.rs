@@ -249,9 +249,14 @@ fn exports_warn_or_refuse_as_the_command_line_does_for_non_finite_values() {
 
     // A sphere of radius 1e300: shapes left out of the SVG, with the count, as `diagram` does.
     let files = MemFiles::default();
-    let big = CLASSIC.replace("\"radius\": 1.0,", "\"radius\": 1e300,");
-    assert_ne!(big, CLASSIC);
-    let mut h = classic_harness_with(&files, &big, |_| {});
+    // Past the loader's limit (radii above 1e150 are refused since issue 27), so set on the
+    // validated scene: the export's own guard is what is tested.
+    let mut h = classic_harness_with(&files, CLASSIC, |s| {
+        if let raytree::geometry::Shape::Sphere { radius, .. } = &mut s.objects[1].shape {
+            *radius = 1e300;
+        }
+        s.rebuild_accel();
+    });
     click_pixel(&mut h, 0, 0);
     export(&mut h, ExportKind::DiagramSvg);
     let status = h.state().session.doc.status.clone();

@@ -91,11 +91,12 @@ fn unticking_antialias_edges_only_gives_the_uniform_render() {
     assert_eq!(h.state().session.doc.image, uniform);
 }
 
-/// The roulette below a weight (automatic by default, shown for glass scenes): unticking its
-/// "auto" starts the slider at the automatic weight; dragging it to 0 splits every glass hit,
-/// and the inspector's image is then the render of `roulette_below: 0`.
+/// The roulette below a weight (off by default since issue 32, shown for glass scenes):
+/// unticking its "default (off)" box starts the slider at the weight suggested for the scene,
+/// and the inspector's image is then the render of `roulette_below: 0.01`; the default image is
+/// the split one (`roulette_below: 0`), bit for bit.
 #[test]
-fn the_roulette_weight_is_automatic_and_can_be_turned_off() {
+fn the_roulette_weight_is_opt_in_from_the_suggested_weight() {
     let src = include_str!("../benches/mitsuba-scenes/glass-emitters.json");
     let adjust = Box::new(|s: &mut raytree::Scene| {
         s.camera = s.camera.with_size(40, 24);
@@ -107,11 +108,16 @@ fn the_roulette_weight_is_automatic_and_can_be_turned_off() {
     let mut scene: raytree::Scene = (*h.state().session.doc.scene).clone();
     assert_eq!(scene.settings.roulette_below, None);
     assert!(has(&h, "roulette below"));
-    let auto = raytree::render(&scene, &|_| {}).0;
-    assert_eq!(h.state().session.doc.image, auto);
-    // The "auto" box on the roulette slider's row (the min weight and the diagram's plane have
-    // one too).
-    // (The slider and its text both carry the label, on one row.)
+    let default = raytree::render(&scene, &|_| {}).0;
+    assert_eq!(h.state().session.doc.image, default);
+    let mut split = scene.clone();
+    split.settings.roulette_below = Some(0.0);
+    assert_eq!(
+        raytree::render(&split, &|_| {}).0,
+        default,
+        "the default splits"
+    );
+    // The box on the roulette slider's row (the slider and its text both carry the label).
     let row = h
         .query_all_by_label("roulette below")
         .next()
@@ -120,7 +126,7 @@ fn the_roulette_weight_is_automatic_and_can_be_turned_off() {
         .center()
         .y;
     let theirs = h
-        .query_all_by_label("auto")
+        .query_all_by_label("default (off)")
         .min_by(|a, b| {
             let (da, db) = (a.rect().center().y - row, b.rect().center().y - row);
             da.abs().total_cmp(&db.abs())
@@ -134,16 +140,10 @@ fn the_roulette_weight_is_automatic_and_can_be_turned_off() {
     assert_eq!(
         h.state().session.doc.scene.settings.roulette_below,
         Some(0.01),
-        "the slider starts at the automatic weight"
+        "the slider starts at the suggested weight"
     );
-    let mut s = h.state().session.doc.scene.settings;
-    s.roulette_below = Some(0.0);
-    h.state_mut().session.apply(Command::SetSettings(s));
-    h.run();
-    h.state_mut().session.wait_render();
-    h.run();
-    scene.settings.roulette_below = Some(0.0);
-    let split = raytree::render(&scene, &|_| {}).0;
-    assert_ne!(split, auto);
-    assert_eq!(h.state().session.doc.image, split);
+    scene.settings.roulette_below = Some(0.01);
+    let roulette = raytree::render(&scene, &|_| {}).0;
+    assert_ne!(roulette, default);
+    assert_eq!(h.state().session.doc.image, roulette);
 }

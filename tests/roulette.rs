@@ -117,7 +117,12 @@ fn the_suggested_weight_plays_roulette_only_below_it() {
     assert_eq!(auto_roulette_below(&scene, &scene.settings), 0.01);
     // The default plays no roulette at all.
     let plain = trace_pixel(&scene, 16, 9).unwrap();
-    assert!(plain.nodes.iter().all(|n| n.interface.as_ref().is_none_or(|i| i.roulette.is_none())));
+    assert!(
+        plain
+            .nodes
+            .iter()
+            .all(|n| n.interface.as_ref().is_none_or(|i| i.roulette.is_none()))
+    );
     scene.settings.roulette_below = Some(0.01);
     let image = render(&scene, &|_| {}).0;
     let mut choices = 0;

@@ -134,7 +134,7 @@ impl McView {
             Self::Spp => "samples per pixel".into(),
             Self::PathLength => "mean path rays per sample".into(),
             Self::Roulette => "Russian-roulette terminations per pixel".into(),
-            Self::Dropped => "NaN/Inf samples dropped per pixel".into(),
+            Self::Dropped => "non-finite samples dropped per pixel".into(),
             Self::Share(k) => format!(
                 "share of AOV {} in the pixel (luminance)",
                 aovs.get(*k).copied().unwrap_or("?")

@@ -201,7 +201,7 @@ fn report(
     }
     if let Some((x, y, s)) = r.stats.rays.first_dropped {
         warnln!(
-            "warning: {} samples were NaN or infinite and were dropped (counted black); first: sample {s} of pixel {x},{y}",
+            "warning: {} samples were not a number or infinite and were dropped (counted black); first: sample {s} of pixel {x},{y}",
             r.stats.rays.dropped_samples
         );
     }

@@ -149,7 +149,7 @@ pub fn run(a: &RenderArgs) -> Result<()> {
     }
     if let Some((x, y, s)) = r.first_dropped {
         warnln!(
-            "warning: {} samples were NaN or infinite and were dropped (counted black); first: sample {s} of pixel {x},{y} (`raytree trace --pixel {x},{y}`, sample {s})",
+            "warning: {} samples were not a number or infinite and were dropped (counted black); first: sample {s} of pixel {x},{y} (`raytree trace --pixel {x},{y}`, sample {s})",
             r.dropped_samples
         );
     }

@@ -110,7 +110,7 @@ pub(super) fn suspicious(tree: &RayTree, sentences: &mut Vec<Sentence>) {
         sentences.push(Sentence {
             kind: SentenceKind::Suspicious,
             text: format!(
-                "non-finite value: the pixel is {} and {} ray{} carry NaN or infinity",
+                "non-finite value: the pixel is {} and {} ray{} carry values that are not a number or infinite",
                 rgb(tree.radiance),
                 bad.len(),
                 if bad.len() == 1 { "" } else { "s" }

@@ -168,7 +168,7 @@ pub(super) fn energy(tree: &RayTree, scene: &Scene, sentences: &mut Vec<Sentence
         sentences.push(Sentence {
             kind: SentenceKind::Suspicious,
             text: format!(
-                "{} sample{} NaN or infinite and dropped (counted black) so no NaN reaches the image",
+                "{} sample{} not a number or infinite and dropped (counted black), so no such value reaches the image",
                 dropped.len(),
                 if dropped.len() == 1 { " was" } else { "s were" }
             ),
