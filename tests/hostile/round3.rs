@@ -624,10 +624,19 @@ mod monte_carlo_commands {
             let p = dir.join(f);
             let problem = match p.extension().and_then(|e| e.to_str()) {
                 Some("exr") => exr_problem(&p),
-                Some("json") => std::fs::read_to_string(&p)
-                    .ok()
-                    .filter(|j| j.contains("null"))
-                    .map(|_| "null in JSON".to_string()),
+                // JSON cannot hold a non-finite number (serde_json refuses the tokens); the
+                // versus breakdown may not stand `null` for one either. In converge.json a
+                // `null` is a slope that cannot be fitted, or a rel-RMSE that is not finite
+                // (as cost.json writes it; docs/robustness.md).
+                Some("json") => std::fs::read_to_string(&p).ok().and_then(|j| {
+                    match serde_json::from_str::<serde_json::Value>(&j) {
+                        Err(e) => Some(format!("not JSON: {e}")),
+                        Ok(_) if f.contains("breakdown") && j.contains("null") => {
+                            Some("null in the breakdown".to_string())
+                        }
+                        Ok(_) => None,
+                    }
+                }),
                 _ => std::fs::read_to_string(&p)
                     .ok()
                     .map(|t| nonfinite_tokens(&t))
