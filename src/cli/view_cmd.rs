@@ -20,6 +20,11 @@ impl Files for DiskFiles {
         super::load::read_text(path, raytree::input::MAX_OBJ_BYTES)
     }
 
+    fn read_bytes(&self, path: &Path) -> std::io::Result<Vec<u8>> {
+        super::load::read_limited(path, raytree::input::MAX_OBJ_BYTES)
+            .map_err(std::io::Error::other)
+    }
+
     fn modified(&self, path: &Path) -> Option<SystemTime> {
         std::fs::metadata(path).and_then(|m| m.modified()).ok()
     }

@@ -212,20 +212,22 @@ enum Reader<'a> {
 }
 
 impl Reader<'_> {
-    fn read(&mut self, t: Scalar, what: &str) -> Result<f64, String> {
+    /// One value of entry `i` of element `what` (messages are formatted only on failure).
+    fn read(&mut self, t: Scalar, what: (&str, usize)) -> Result<f64, String> {
+        let (name, i) = what;
         match self {
             Reader::Ascii(words) => {
                 let w = words
                     .next()
-                    .ok_or_else(|| format!("the data ends inside {what}"))?;
+                    .ok_or_else(|| format!("the data ends inside {name} {i}"))?;
                 w.parse::<f64>()
-                    .map_err(|_| format!("{what}: {w:?} is not a number"))
+                    .map_err(|_| format!("{name} {i}: {w:?} is not a number"))
             }
             Reader::Binary { bytes, at, big } => {
                 let n = t.size();
                 let b = bytes
                     .get(*at..*at + n)
-                    .ok_or_else(|| format!("the data ends inside {what} (byte {at})"))?;
+                    .ok_or_else(|| format!("the data ends inside {name} {i} (byte {at})"))?;
                 *at += n;
                 let mut a = [0u8; 8];
                 a[..n].copy_from_slice(b);
@@ -267,11 +269,11 @@ fn vertices(e: &Element, r: &mut Reader, mesh: &mut PlyMesh) -> Result<(), Strin
     for i in 0..e.count {
         for (k, p) in e.props.iter().enumerate() {
             values[k] = match p {
-                Property::Scalar(t, _) => r.read(*t, &format!("vertex {i}"))?,
+                Property::Scalar(t, _) => r.read(*t, ("vertex", i))?,
                 Property::List(c, t, _) => {
-                    let n = r.read(*c, &format!("vertex {i}"))?;
-                    for _ in 0..list_len(n, &format!("vertex {i}"))? {
-                        r.read(*t, &format!("vertex {i}"))?;
+                    let n = r.read(*c, ("vertex", i))?;
+                    for _ in 0..list_len(n, ("vertex", i))? {
+                        r.read(*t, ("vertex", i))?;
                     }
                     0.0
                 }
@@ -292,10 +294,10 @@ fn vertices(e: &Element, r: &mut Reader, mesh: &mut PlyMesh) -> Result<(), Strin
     Ok(())
 }
 
-fn list_len(n: f64, what: &str) -> Result<usize, String> {
+fn list_len(n: f64, (name, i): (&str, usize)) -> Result<usize, String> {
     if n.fract() != 0.0 || !(0.0..=1024.0).contains(&n) {
         return Err(format!(
-            "{what}: list length {n} is not a whole number in 0..=1024"
+            "{name} {i}: list length {n} is not a whole number in 0..=1024"
         ));
     }
     Ok(n as usize)
@@ -313,27 +315,27 @@ fn faces(e: &Element, r: &mut Reader, mesh: &mut PlyMesh, max: usize) -> Result<
     mesh.triangles.reserve(e.count);
     let mut poly: Vec<u32> = Vec::new();
     for i in 0..e.count {
-        let what = format!("face {i}");
+        let what = ("face", i);
         for p in &e.props {
             match p {
                 Property::Scalar(t, _) => {
-                    r.read(*t, &what)?;
+                    r.read(*t, what)?;
                 }
                 Property::List(c, t, name) => {
-                    let n = list_len(r.read(*c, &what)?, &what)?;
+                    let n = list_len(r.read(*c, what)?, what)?;
                     poly.clear();
                     for _ in 0..n {
-                        let v = r.read(*t, &what)?;
+                        let v = r.read(*t, what)?;
                         if is_index(name) {
                             if v < 0.0 || v.fract() != 0.0 || v > f64::from(u32::MAX) {
-                                return Err(format!("{what}: bad vertex index {v}"));
+                                return Err(format!("face {i}: bad vertex index {v}"));
                             }
                             poly.push(v as u32);
                         }
                     }
                     if is_index(name) {
                         if n < 3 {
-                            return Err(format!("{what} has {n} vertices, fewer than 3"));
+                            return Err(format!("face {i} has {n} vertices, fewer than 3"));
                         }
                         for k in 1..poly.len() - 1 {
                             mesh.triangles.push([poly[0], poly[k], poly[k + 1]]);
@@ -351,15 +353,15 @@ fn faces(e: &Element, r: &mut Reader, mesh: &mut PlyMesh, max: usize) -> Result<
 
 fn skip(e: &Element, r: &mut Reader) -> Result<(), String> {
     for i in 0..e.count {
-        let what = format!("{} {i}", e.name);
+        let what = (e.name.as_str(), i);
         for p in &e.props {
             match p {
                 Property::Scalar(t, _) => {
-                    r.read(*t, &what)?;
+                    r.read(*t, what)?;
                 }
                 Property::List(c, t, _) => {
-                    for _ in 0..list_len(r.read(*c, &what)?, &what)? {
-                        r.read(*t, &what)?;
+                    for _ in 0..list_len(r.read(*c, what)?, what)? {
+                        r.read(*t, what)?;
                     }
                 }
             }

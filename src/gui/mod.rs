@@ -44,6 +44,11 @@ use std::time::SystemTime;
 pub trait Files: Send {
     /// The whole file as text.
     fn read(&self, path: &Path) -> std::io::Result<String>;
+    /// The whole file as bytes (binary PLY meshes of pbrt and Mitsuba scenes); by default the
+    /// text of [`Files::read`].
+    fn read_bytes(&self, path: &Path) -> std::io::Result<Vec<u8>> {
+        self.read(path).map(String::into_bytes)
+    }
     /// The file's modification time, if it exists.
     fn modified(&self, path: &Path) -> Option<SystemTime>;
     /// Write `bytes` to `path` (atomically where possible).

@@ -61,7 +61,7 @@ impl Session {
     }
 
     /// Read, validate and adjust the scene at `path`.
-    fn read(&self, path: &Path) -> Result<(Scene, Source), String> {
+    fn read(&self, path: &Path) -> Result<(Scene, Source, Vec<crate::formats::Note>), String> {
         let label = path.display();
         let src = self
             .files
@@ -73,26 +73,53 @@ impl Session {
                 crate::input::MAX_SCENE_BYTES >> 20
             ));
         }
-        // Mesh files are read through the same hook, relative to the scene's directory.
-        let dir = path.parent().unwrap_or(Path::new(""));
-        let mut load_mesh = |file: &str| {
-            let p = dir.join(file);
-            crate::mesh::parse_obj_read(file, &p, self.files.read(&p))
+        let format = crate::formats::Format::detect(&path.to_string_lossy(), src.as_bytes());
+        let (mut scene, notes) = if format == crate::formats::Format::Json {
+            // Mesh files are read through the same hook, relative to the scene's directory.
+            let dir = path.parent().unwrap_or(Path::new(""));
+            let mut load_mesh = |file: &str| {
+                let p = dir.join(file);
+                crate::mesh::parse_obj_read(file, &p, self.files.read(&p))
+            };
+            let scene =
+                Scene::from_json_with(&src, &mut load_mesh).map_err(|e| format!("{label}:{e}"))?;
+            (scene, Vec::new())
+        } else {
+            self.read_foreign(path, format, &src)?
         };
-        let mut scene =
-            Scene::from_json_with(&src, &mut load_mesh).map_err(|e| format!("{label}:{e}"))?;
         (self.adjust)(&mut scene).map_err(|e| format!("{label}: {e}"))?;
         let source = Source {
             path: Some(path.to_path_buf()),
             modified: self.files.modified(path),
         };
-        Ok((scene, source))
+        Ok((scene, source, notes))
+    }
+
+    /// A pbrt or Mitsuba scene: converted (its includes and meshes read through the hook,
+    /// relative to the scene) and validated; the notes say what was approximated.
+    fn read_foreign(
+        &self,
+        path: &Path,
+        format: crate::formats::Format,
+        src: &str,
+    ) -> Result<(Scene, Vec<crate::formats::Note>), String> {
+        let name = path.to_string_lossy().into_owned();
+        let mut res = |f: &str| {
+            self.files
+                .read_bytes(Path::new(f))
+                .map_err(|e| format!("cannot read {f}: {e}"))
+        };
+        let c = crate::formats::convert(format, &name, src.as_bytes(), &[], &mut res)
+            .map_err(|e| crate::input::escape_controls(&e.to_string()).into_owned())?;
+        let scene = crate::scene::validate(&c.desc, "", &mut |_| Err(String::new()))
+            .map_err(|e| format!("{name}: the converted scene is invalid: {e}"))?;
+        Ok((scene, c.notes))
     }
 
     /// Load `path`; on error keep the current scene and show the error.
     fn open(&mut self, path: &Path) -> Result<(), ()> {
         match self.read(path) {
-            Ok((scene, source)) => {
+            Ok((scene, source, notes)) => {
                 let view = self.doc.view;
                 let selection = self.doc.selection;
                 let versions = (self.doc.tree_version, self.doc.image_version);
@@ -109,7 +136,15 @@ impl Session {
                 // Versions keep counting: caches keyed on them must see a new document.
                 self.doc.tree_version = versions.0;
                 self.doc.image_version = versions.1 + 1;
-                self.doc.status = format!("loaded {}", path.display());
+                self.doc.status = match notes.first() {
+                    None => format!("loaded {}", path.display()),
+                    Some(n) => format!(
+                        "loaded {} with {} approximation(s) (raytree effects lists them), first: {}",
+                        path.display(),
+                        notes.len(),
+                        crate::input::escape_controls(&n.to_string())
+                    ),
+                };
                 self.rerender();
                 if let Some([x, y]) = selection {
                     self.select([x, y]);

@@ -67,10 +67,12 @@ pub(super) fn inline(ck: &Check, p: &str, o: &ObjectDesc) -> Result<Shape, Scene
         unreachable!("called for trimesh objects only");
     };
     let mut data = MeshData::default();
-    for (k, v) in positions.iter().enumerate() {
-        data.positions
-            .push(ck.vec(&format!("{p}.positions[{k}]"), *v)?);
+    // Checked in bulk; the path is formatted only for the first bad entry.
+    let finite = |v: &[f64; 3]| v.iter().all(|c| c.is_finite());
+    if let Some(k) = positions.iter().position(|v| !finite(v)) {
+        ck.vec(&format!("{p}.positions[{k}]"), positions[k])?;
     }
+    data.positions = positions.iter().map(|&v| DVec3::from(v)).collect();
     let n = positions.len();
     if let Some(ns) = normals {
         if ns.len() != n {
@@ -79,9 +81,10 @@ pub(super) fn inline(ck: &Check, p: &str, o: &ObjectDesc) -> Result<Shape, Scene
                 format!("has {} normals for {n} positions", ns.len()),
             );
         }
-        for (k, v) in ns.iter().enumerate() {
-            data.normals.push(ck.vec(&format!("{p}.normals[{k}]"), *v)?);
+        if let Some(k) = ns.iter().position(|v| !finite(v)) {
+            ck.vec(&format!("{p}.normals[{k}]"), ns[k])?;
         }
+        data.normals = ns.iter().map(|&v| DVec3::from(v)).collect();
     }
     for (k, t) in indices.iter().enumerate() {
         if let Some(bad) = t.iter().find(|&&i| i as usize >= n) {

@@ -68,6 +68,8 @@ pub struct State<'r> {
     film: (u32, u32),
     world: bool,
     open: Vec<String>,
+    /// `ActiveTransform EndTime`: transforms go to the (unused) end time only.
+    end_only: bool,
 }
 
 /// An error at a token.
@@ -111,6 +113,7 @@ impl<'r> State<'r> {
             film: (1280, 720),
             world: false,
             open: Vec::new(),
+            end_only: false,
         }
     }
 
@@ -333,6 +336,13 @@ impl<'r> State<'r> {
                 {
                     *i += 1;
                 }
+                if name == "ActiveTransform" {
+                    // Only the start-time transformation is used (no motion blur).
+                    self.end_only = w == "EndTime";
+                    if w != "EndTime" {
+                        return Ok(());
+                    }
+                }
                 self.b.note(file, t.line, format!("{name} {w} ignored (raytree has no motion blur, participating media or colour spaces other than linear sRGB)"));
                 return Ok(());
             }
@@ -422,7 +432,9 @@ impl<'r> State<'r> {
         let bad = |what: &str| err_at(file, t, format!("{name}: {what}"));
         let x = match name {
             "Identity" => {
-                self.gs.ctm = Xf::IDENTITY;
+                if !self.end_only {
+                    self.gs.ctm = Xf::IDENTITY;
+                }
                 return Ok(true);
             }
             "Translate" => {
@@ -455,14 +467,18 @@ impl<'r> State<'r> {
                 let m = DMat4::from_cols_slice(&v);
                 let x = Xf::new(m).ok_or_else(|| bad("the matrix is singular"))?;
                 if name == "Transform" {
-                    self.gs.ctm = x;
+                    if !self.end_only {
+                        self.gs.ctm = x;
+                    }
                     return Ok(true);
                 }
                 x
             }
             _ => return Ok(false),
         };
-        self.gs.ctm = self.gs.ctm.then(&x);
+        if !self.end_only {
+            self.gs.ctm = self.gs.ctm.then(&x);
+        }
         Ok(true)
     }
 

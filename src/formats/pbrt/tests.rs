@@ -361,3 +361,16 @@ fn unknown_parameters_and_unsupported_features_are_noted() {
     assert!(c.notes.iter().any(|n| n.message.contains("partial sphere")));
     assert!(c.notes.iter().any(|n| n.message.contains("cylinder")));
 }
+
+#[test]
+fn only_the_start_time_transform_is_used() {
+    let c = run(
+        "ActiveTransform EndTime\nTranslate 5 0 0\nActiveTransform All\nTranslate 1 0 0\nShape \"sphere\"\n",
+    );
+    assert_eq!(sphere_center(&c, 0), DVec3::new(1.0, 0.0, 0.0));
+    assert!(
+        c.notes
+            .iter()
+            .any(|n| n.message.contains("ActiveTransform EndTime"))
+    );
+}
