@@ -76,8 +76,18 @@ impl Files for MemFiles {
 /// live in wasm32's 4 GiB of memory, on one thread. Larger cameras are refused with a message.
 pub const MAX_PIXELS: u64 = 1 << 22;
 
-/// The page's check on every scene it opens (the inspector's `Adjust` hook).
+/// The deepest recursion the page traces: the browser runs wasm on its JavaScript stack (about
+/// 1 MB in Chromium, whatever wasm's own `-zstack-size`), which a recorded recursion of two
+/// facing mirrors overflowed at max_depth 1024 and held at 512 (`web/test.mjs`).
+pub const MAX_DEPTH: u32 = 512;
+
+/// The page's check on every scene it opens (the inspector's `Adjust` hook): its size and
+/// depth.
 pub fn check_size(scene: &mut raytree::Scene) -> Result<(), String> {
+    let depth = scene.settings.max_depth;
+    if depth > MAX_DEPTH {
+        return Err(depth_error(depth));
+    }
     let (w, h) = (scene.camera.width, scene.camera.height);
     let n = u64::from(w) * u64::from(h);
     if n > MAX_PIXELS {
@@ -88,6 +98,15 @@ pub fn check_size(scene: &mut raytree::Scene) -> Result<(), String> {
         ));
     }
     Ok(())
+}
+
+/// The message for a recursion deeper than [`MAX_DEPTH`].
+#[must_use]
+pub fn depth_error(depth: u32) -> String {
+    format!(
+        "settings.max_depth: {depth} is deeper than the web page traces ({MAX_DEPTH}: the \
+         browser's stack); lower it, or use the desktop inspector (raytree view)"
+    )
 }
 
 /// An uploaded file as text, or why not: too large for a scene (as the desktop refuses) or not
@@ -152,6 +171,15 @@ mod tests {
         scene.camera = scene.camera.with_size(65536, 65536);
         let e = check_size(&mut scene).unwrap_err();
         assert!(e.contains("65536x65536 is 4294967296 pixels"), "{e}");
+        let mut scene = raytree::Scene::default_scene();
+        scene.settings.max_depth = MAX_DEPTH;
+        assert!(check_size(&mut scene).is_ok());
+        scene.settings.max_depth = MAX_DEPTH + 1;
+        assert!(
+            check_size(&mut scene)
+                .unwrap_err()
+                .contains("deeper than the web page")
+        );
 
         let e = upload_text("big.json", vec![b' '; 2048], 1024).unwrap_err();
         assert!(e.contains("larger than the limit"), "{e}");

@@ -55,7 +55,13 @@ impl Fragment {
                     );
                 }
                 "spp" => f.spp = Some(value.parse().map_err(|_| bad("a whole number"))?),
-                "depth" => f.depth = Some(value.parse().map_err(|_| bad("a whole number"))?),
+                "depth" => {
+                    let d = value.parse().map_err(|_| bad("a whole number"))?;
+                    if d > crate::files::MAX_DEPTH {
+                        return Err(format!("URL fragment: {}", crate::files::depth_error(d)));
+                    }
+                    f.depth = Some(d);
+                }
                 "seed" => f.seed = Some(value.parse().map_err(|_| bad("a whole number"))?),
                 _ => return Err(format!("URL fragment: unknown key {key:?} (known: {KEYS})")),
             }
@@ -104,6 +110,7 @@ mod tests {
             ("spp=-1", "a whole number"),
             ("zoom=2", "unknown key \"zoom\""),
             ("scene", "is not key=value"),
+            ("depth=1024", "deeper than the web page traces (512"),
         ] {
             let e = Fragment::parse(text).unwrap_err();
             assert!(e.contains(want), "{text}: {e}");
