@@ -1,10 +1,10 @@
 //! The render worker: one background thread renders bands of rows (in parallel over rayon) and
 //! sends each band through a channel, so the UI never blocks and the image appears progressively.
-//! On wasm32, which has no threads, the same job ([`job::JobRun`]) runs on the UI thread in
-//! slices between frames instead ([`Worker::tick`]), a few rows at a time.
-//! It works in two passes: the image on the plain render's path ([`render_rows`]: no recording,
-//! packets for meshes), then the per-pixel debug statistics, which record every ray and cost
-//! a few times more; the image is the same either way, so it is shown as soon as it exists.
+//! On wasm32, which has no threads, the same job (`JobRun`, `worker/job.rs`) runs on the UI
+//! thread in slices between frames instead ([`Worker::tick`]), a pixel at a time.
+//! It works in two passes: the image on the plain render's path
+//! ([`crate::render::render_rows`]: no recording, packets for meshes), then the per-pixel debug
+//! statistics, which record every ray and cost a few times more; the image is the same either way, so it is shown as soon as it exists.
 //!
 //! Every job carries a generation number; starting a new job bumps the shared counter, the worker
 //! abandons a job as soon as it sees a newer generation, and the receiver ignores stale bands.

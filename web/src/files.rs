@@ -184,7 +184,7 @@ mod tests {
         let e = upload_text("big.json", vec![b' '; 2048], 1024).unwrap_err();
         assert!(e.contains("larger than the limit"), "{e}");
         let e = upload_text("a.png", vec![0x89, b'P', b'N', b'G', 0xff], 1024).unwrap_err();
-        assert!(e.contains("not UTF-8 text (byte 3 is not"), "{e}");
+        assert!(e.contains("not UTF-8 text (byte 0 is not"), "{e}");
         assert_eq!(upload_text("a.json", b"{}".to_vec(), 1024).unwrap(), "{}");
         assert_eq!(limit_for("S.JSON"), raytree::input::MAX_SCENE_BYTES);
     }

@@ -87,7 +87,7 @@ impl JobRun {
     }
 
     /// Do the next piece; `false` once the job is finished, cancelled or its receiver is gone.
-    /// `tracer` is the integrator of the job's scene; a job [`JobRun::by_pixels`] goes on to
+    /// `tracer` is the integrator of the job's scene; a job `JobRun::by_pixels` goes on to
     /// the next pixel while `more_time` says so.
     pub(super) fn step(
         &mut self,
