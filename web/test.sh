@@ -35,6 +35,7 @@ fi
 
 [ "${RAYTREE_NO_BUILD:-0}" = 1 ] || "$here/build.sh"
 say "building the native CLI the page is compared with"
-cargo build --release --locked --no-default-features --bin raytree
+# Default features: the binary `cargo test --release` builds (CI runs that first), not a second one.
+cargo build --release --locked --bin raytree
 say "running the browser test"
 RAYTREE_BIN="$target_dir/release/raytree" node "$here/test.mjs"
