@@ -259,7 +259,7 @@ pub fn render_rows<I: Integrator>(
 
 /// Whether a render with recorder `R` traces camera rays as packets: nothing is recorded, the
 /// integrator takes packets and the scene has a mesh.
-fn uses_packets<R: Recorder, I: Integrator>(integrator: &I) -> bool {
+pub(crate) fn uses_packets<R: Recorder, I: Integrator>(integrator: &I) -> bool {
     let scene = integrator.scene();
     !R::RECORDS
         && !R::DIAGNOSE

@@ -10,7 +10,7 @@ use crate::sampling::{PixelSampler, SceneSampler};
 use crate::scene::{IntegratorKind, SamplerKind, Scene};
 use crate::trace::{Integrator, PathStrategy, PathTracer, SceneIntegrator};
 use serde::Serialize;
-use std::time::Instant;
+use web_time::Instant;
 
 /// The relative error's offset: `(img - ref) / (ref + REL_OFFSET)`, as `benches/vs_mitsuba.py`.
 pub const REL_OFFSET: f64 = 0.01;

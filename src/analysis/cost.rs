@@ -8,7 +8,7 @@ use crate::scene::{OffsetStrategy, Scene, Settings};
 use crate::trace::RayCounts;
 use crate::trace::bound::auto_min_weight;
 use serde::Serialize;
-use std::time::Instant;
+use web_time::Instant;
 
 mod sweep;
 pub use sweep::Sweep;

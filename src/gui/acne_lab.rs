@@ -10,7 +10,6 @@ use crate::scene::{OffsetStrategy, Scene};
 use std::sync::Arc;
 use std::sync::atomic::{AtomicU64, Ordering};
 use std::sync::mpsc::{Receiver, Sender, channel};
-use std::thread::JoinHandle;
 
 /// Width of the render that counts the chosen setting's affected pixels.
 pub const CURRENT_WIDTH: u32 = 160;
@@ -102,38 +101,30 @@ struct Job {
     params: LabParams,
 }
 
-/// The lab's thread. Dropping it cancels the job and joins the thread.
+/// The lab's worker ([`super::background::Lane`]: a thread natively). Dropping it cancels the
+/// job (and joins the thread).
 pub struct LabWorker {
-    jobs: Option<Sender<Job>>,
     deliveries: Receiver<LabDelivery>,
     generation: Arc<AtomicU64>,
-    thread: Option<JoinHandle<()>>,
+    jobs: Option<super::background::Lane<Job>>,
 }
 
 impl LabWorker {
-    /// Start the thread (`None` if the system refuses one); `repaint` after each delivery.
+    /// Start the worker (`None` if the system refuses a thread); `repaint` after each
+    /// delivery.
     #[must_use]
     pub fn new(repaint: Repaint) -> Option<Self> {
-        let (jobs, job_rx) = channel::<Job>();
         let (tx, deliveries) = channel();
         let generation = Arc::new(AtomicU64::new(0));
         let current = Arc::clone(&generation);
-        let thread = std::thread::Builder::new()
-            .name("raytree-acne-lab".into())
-            .spawn(move || {
-                while let Ok(mut job) = job_rx.recv() {
-                    while let Ok(newer) = job_rx.try_recv() {
-                        job = newer;
-                    }
-                    run(&job, &current, &tx, &repaint);
-                }
-            })
-            .ok()?;
+        let jobs = super::background::Lane::new("raytree-acne-lab", None, move |job: Job| {
+            run(&job, &current, &tx, &repaint);
+        })
+        .ok()?;
         Some(Self {
-            jobs: Some(jobs),
             deliveries,
             generation,
-            thread: Some(thread),
+            jobs: Some(jobs),
         })
     }
 
@@ -141,7 +132,7 @@ impl LabWorker {
     pub fn start(&self, scene: Arc<Scene>, params: LabParams) -> u64 {
         let generation = self.generation.fetch_add(1, Ordering::SeqCst) + 1;
         if let Some(jobs) = &self.jobs {
-            let _ = jobs.send(Job {
+            jobs.send(Job {
                 generation,
                 scene,
                 params,
@@ -156,9 +147,20 @@ impl LabWorker {
         self.deliveries.try_recv().ok()
     }
 
-    /// Block until the next delivery (`None` if the thread is gone).
+    /// Block until the next delivery (`None` if the thread is gone; on wasm32 the queued job
+    /// runs here first).
     #[must_use]
     pub fn recv(&self) -> Option<LabDelivery> {
+        #[cfg(target_arch = "wasm32")]
+        loop {
+            if let Ok(d) = self.deliveries.try_recv() {
+                return Some(d);
+            }
+            if !super::background::run_pending() {
+                return self.deliveries.try_recv().ok();
+            }
+        }
+        #[cfg(not(target_arch = "wasm32"))]
         self.deliveries.recv().ok()
     }
 }
@@ -166,10 +168,8 @@ impl LabWorker {
 impl Drop for LabWorker {
     fn drop(&mut self) {
         self.generation.fetch_add(1, Ordering::SeqCst);
+        // Dropping the lane ends (and joins) its thread.
         self.jobs = None;
-        if let Some(t) = self.thread.take() {
-            let _ = t.join();
-        }
     }
 }
 

@@ -240,6 +240,11 @@ impl InspectorApp {
         for c in cmds {
             self.session.apply(c);
         }
+        // On wasm32 the background tasks (diagram, comparison, denoiser, acne lab) run here,
+        // one per frame; natively they have threads and this does nothing.
+        if super::background::run_pending() {
+            ctx.request_repaint();
+        }
     }
 
     fn update_texture(&mut self, ctx: &egui::Context) {

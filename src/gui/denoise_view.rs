@@ -11,7 +11,7 @@ use crate::render::Image;
 use crate::trace::SceneIntegrator;
 use std::sync::Arc;
 use std::sync::mpsc::{Receiver, channel};
-use std::time::Instant;
+use web_time::Instant;
 
 /// Which finished render an image belongs to: its generation and the seconds it took (a
 /// re-render of the same generation, as a progressive pass, gets a new key).
@@ -76,10 +76,10 @@ impl DenoiseView {
         if self.pending.as_ref().is_none_or(|(k, _)| *k != key) {
             let scene = Arc::clone(&doc.scene);
             let (tx, rx) = channel();
-            let spawned = std::thread::Builder::new()
-                .name("raytree-denoise".into())
-                .stack_size(crate::trace::THREAD_STACK_BYTES)
-                .spawn(move || {
+            let spawned = super::background::spawn(
+                "raytree-denoise",
+                Some(crate::trace::THREAD_STACK_BYTES),
+                move || {
                     let start = Instant::now();
                     let (raw, _, features) = gather(&SceneIntegrator::new(&scene), &|_| {});
                     let image = denoise(&raw, &features, &DenoiseParams::default());
@@ -87,7 +87,8 @@ impl DenoiseView {
                     if tx.send((image, start.elapsed().as_secs_f64())).is_ok() {
                         repaint();
                     }
-                });
+                },
+            );
             if spawned.is_err() {
                 return (
                     None,

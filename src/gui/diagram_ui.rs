@@ -15,7 +15,7 @@ use crate::tree::NodeId;
 use egui::{
     Align2, Color32, ColorImage, FontId, Pos2, Shape, Stroke, TextureHandle, TextureOptions, pos2,
 };
-use std::sync::mpsc::{Receiver, Sender, channel};
+use std::sync::mpsc::{Receiver, channel};
 
 /// What a cached display list was built from.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -31,37 +31,29 @@ struct Key {
 /// A figure to rasterise: the key it is for, the diagram, and whom to wake when it is done.
 type Job = (Key, Diagram, egui::Context);
 
-/// The rasteriser's thread: always draws the newest job waiting, sends back its pixels.
+/// The rasteriser ([`super::background::Lane`]): always draws the newest job waiting, sends
+/// back its pixels.
 struct Rasteriser {
-    jobs: Sender<Job>,
+    jobs: super::background::Lane<Job>,
     done: Receiver<(Key, ColorImage)>,
 }
 
 impl Rasteriser {
     fn start() -> Option<Self> {
-        let (jobs, job_rx) = channel::<Job>();
         let (tx, done) = channel();
-        std::thread::Builder::new()
-            .name("raytree-diagram".into())
-            .spawn(move || {
-                while let Ok(mut job) = job_rx.recv() {
-                    // Only the newest figure matters (arrow keys held down queue many).
-                    while let Ok(newer) = job_rx.try_recv() {
-                        job = newer;
-                    }
-                    let (key, d, ctx) = job;
-                    let pm = to_pixmap(&d, &Style::new(Theme::Dark));
-                    let img = ColorImage::from_rgba_premultiplied(
-                        [pm.width() as usize, pm.height() as usize],
-                        pm.data(),
-                    );
-                    if tx.send((key, img)).is_err() {
-                        return;
-                    }
-                    ctx.request_repaint();
-                }
-            })
-            .ok()?;
+        // Only the newest figure matters (arrow keys held down queue many).
+        let jobs = super::background::Lane::new("raytree-diagram", None, move |job: Job| {
+            let (key, d, ctx) = job;
+            let pm = to_pixmap(&d, &Style::new(Theme::Dark));
+            let img = ColorImage::from_rgba_premultiplied(
+                [pm.width() as usize, pm.height() as usize],
+                pm.data(),
+            );
+            if tx.send((key, img)).is_ok() {
+                ctx.request_repaint();
+            }
+        })
+        .ok()?;
         Some(Self { jobs, done })
     }
 }
@@ -138,7 +130,7 @@ impl DiagramCache {
             self.rasteriser = Rasteriser::start();
         }
         if let Some(r) = &self.rasteriser {
-            self.pending = r.jobs.send((key, d, ctx.clone())).is_ok();
+            self.pending = r.jobs.send((key, d, ctx.clone()));
         }
     }
 
@@ -176,7 +168,40 @@ pub fn diagram_options(doc: &Document, size: [u32; 2]) -> DiagramOptions {
 #[must_use]
 pub fn export_options(doc: &Document) -> DiagramOptions {
     let v = doc.view.diagram;
-    v.options(doc, [1280, 720], v.export_highlight)
+    let mut opts = v.options(doc, [1280, 720], v.export_highlight);
+    opts.title = export_title(doc, &opts);
+    opts
+}
+
+/// The title line `raytree diagram` draws (`classic.json: pixel (400, 200), 17 rays`), so the
+/// exported figure is the command line's.
+fn export_title(doc: &Document, opts: &DiagramOptions) -> String {
+    let (Some(tree), Some([x, y])) = (doc.tree.as_ref(), doc.selection) else {
+        return String::new();
+    };
+    let name = doc
+        .source
+        .path
+        .as_ref()
+        .and_then(|p| p.file_name())
+        .map_or("built-in classic".to_string(), |n| {
+            n.to_string_lossy().into_owned()
+        });
+    let index = tree.samples.get(opts.sample).map_or(0, |s| s.index);
+    let sample = if tree.samples.len() > 1 && opts.all_samples {
+        format!(
+            ", all {} samples (sample {index} in full)",
+            tree.samples.len()
+        )
+    } else if tree.samples.len() > 1 || index > 0 {
+        format!(", sample {index}")
+    } else {
+        String::new()
+    };
+    format!(
+        "{name}: pixel ({x}, {y}){sample}, {} rays",
+        tree.nodes.len()
+    )
 }
 
 /// Build the display list of the selected pixel's diagram (what the panel paints).

@@ -10,6 +10,7 @@
 pub mod acne_lab;
 mod acne_ui;
 mod app;
+pub mod background;
 pub mod breakdown;
 pub mod compare_ui;
 pub mod denoise_view;

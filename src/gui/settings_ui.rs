@@ -58,11 +58,22 @@ pub fn settings_ui(ui: &mut egui::Ui, doc: &Document, cmds: &mut Vec<Command>) {
             }
         });
     if s.integrator == IntegratorKind::Path {
-        ui.add(Slider::new(&mut s.rr_depth, 0..=64).text("roulette from bounce"));
+        ui.add(
+            Slider::new(&mut s.rr_depth, 0..=64)
+                .clamping(egui::SliderClamping::Edits)
+                .text("roulette from bounce"),
+        );
     }
-    ui.add(Slider::new(&mut s.max_depth, 0..=32).text("max depth"));
+    // `Edits`: a scene's own value beyond the slider (max_depth 1024, spp 256) stays as it is;
+    // egui's default clamped it at the first frame, re-rendering at 32 or 64.
+    ui.add(
+        Slider::new(&mut s.max_depth, 0..=32)
+            .clamping(egui::SliderClamping::Edits)
+            .text("max depth"),
+    );
     ui.add(
         Slider::new(&mut s.spp, 1..=64)
+            .clamping(egui::SliderClamping::Edits)
             .logarithmic(true)
             .text("samples / pixel"),
     );

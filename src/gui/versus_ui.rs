@@ -94,15 +94,16 @@ impl VersusPanel {
                 let scene = Arc::clone(&doc.scene);
                 let (tx, rx) = channel();
                 let repaint = ctx.clone();
-                let spawned = std::thread::Builder::new()
-                    .name("raytree-versus".into())
-                    .stack_size(crate::trace::THREAD_STACK_BYTES)
-                    .spawn(move || {
+                let spawned = super::background::spawn(
+                    "raytree-versus",
+                    Some(crate::trace::THREAD_STACK_BYTES),
+                    move || {
                         let r = versus(&scene, None, &|_| {}).map_err(|e| e.to_string());
                         if tx.send(r).is_ok() {
                             repaint.request_repaint();
                         }
-                    });
+                    },
+                );
                 if spawned.is_ok() {
                     self.pending = Some((generation, rx));
                 }

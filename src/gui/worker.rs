@@ -1,28 +1,29 @@
 //! The render worker: one background thread renders bands of rows (in parallel over rayon) and
 //! sends each band through a channel, so the UI never blocks and the image appears progressively.
-//! It works in two passes: the image on the plain render's path ([`render_rows`]: no recording,
-//! packets for meshes), then the per-pixel debug statistics, which record every ray and cost
-//! a few times more; the image is the same either way, so it is shown as soon as it exists.
+//! On wasm32, which has no threads, the same job (`JobRun`, `worker/job.rs`) runs on the UI
+//! thread in slices between frames instead ([`Worker::tick`]), a pixel at a time.
+//! It works in two passes: the image on the plain render's path
+//! ([`crate::render::render_rows`]: no recording, packets for meshes), then the per-pixel debug
+//! statistics, which record every ray and cost a few times more; the image is the same either way, so it is shown as soon as it exists.
 //!
 //! Every job carries a generation number; starting a new job bumps the shared counter, the worker
 //! abandons a job as soon as it sees a newer generation, and the receiver ignores stale bands.
 
-use super::stats::{PixelStats, StatsRecorder};
+use super::stats::PixelStats;
 use crate::math::Rgb;
-use crate::render::{render_pixel_with, render_rows};
 use crate::scene::Scene;
 use crate::trace::{RayCounts, SceneIntegrator};
-use rayon::prelude::*;
+use job::JobRun;
 use std::sync::Arc;
 use std::sync::atomic::{AtomicU64, Ordering};
 use std::sync::mpsc::{Receiver, Sender, channel};
-use std::thread::JoinHandle;
-use std::time::Instant;
 
 /// Rows of statistics gathered between cancellation checks and deliveries.
 pub const BAND_ROWS: u32 = 8;
 /// Rows of the image rendered between cancellation checks and deliveries (four packet bands).
 pub const IMAGE_ROWS: u32 = 32;
+/// Milliseconds of rendering per frame on the UI thread (wasm32), so a frame stays near 60 Hz.
+pub const SLICE_BUDGET_MS: f64 = 12.0;
 
 /// Called from the worker thread after each delivery (the app passes `ctx.request_repaint`).
 pub type Repaint = Arc<dyn Fn() + Send + Sync>;
@@ -103,16 +104,22 @@ struct Job {
     progressive: Option<super::progressive::Options>,
 }
 
-/// A handle on the render thread. Dropping it cancels the current job and joins the thread.
+/// A handle on the render thread (native) or the job in slices (wasm32). Dropping it cancels
+/// the current job (and joins the thread).
 pub struct Worker {
-    jobs: Option<Sender<Job>>,
-    deliveries: Receiver<Delivery>,
     generation: Arc<AtomicU64>,
-    thread: Option<JoinHandle<()>>,
+    deliveries: Receiver<Delivery>,
+    #[cfg(not(target_arch = "wasm32"))]
+    jobs: Option<Sender<Job>>,
+    #[cfg(not(target_arch = "wasm32"))]
+    thread: Option<std::thread::JoinHandle<()>>,
+    #[cfg(target_arch = "wasm32")]
+    inline: Inline,
 }
 
 impl Worker {
     /// Start the thread. `repaint` is called after every delivery.
+    #[cfg(not(target_arch = "wasm32"))]
     #[must_use]
     pub fn new(repaint: Repaint) -> Self {
         let (jobs, job_rx) = channel::<Job>();
@@ -128,15 +135,32 @@ impl Worker {
                     while let Ok(newer) = job_rx.try_recv() {
                         job = newer;
                     }
-                    run_job(&job, &current, &tx, &repaint);
+                    run_job(job, &current, &tx, &repaint);
                 }
             })
             .expect("can spawn the render thread");
         Self {
-            jobs: Some(jobs),
-            deliveries,
             generation,
+            deliveries,
+            jobs: Some(jobs),
             thread: Some(thread),
+        }
+    }
+
+    /// No thread on wasm32: jobs run in [`Worker::tick`]. `repaint` is called after every
+    /// delivery.
+    #[cfg(target_arch = "wasm32")]
+    #[must_use]
+    pub fn new(repaint: Repaint) -> Self {
+        let (tx, deliveries) = channel();
+        Self {
+            generation: Arc::new(AtomicU64::new(0)),
+            deliveries,
+            inline: Inline {
+                run: std::sync::Mutex::new(None),
+                tx,
+                repaint,
+            },
         }
     }
 
@@ -165,14 +189,21 @@ impl Worker {
         progressive: Option<super::progressive::Options>,
     ) -> u64 {
         let generation = self.generation.fetch_add(1, Ordering::SeqCst) + 1;
+        let job = Job {
+            generation,
+            scene,
+            image_first,
+            progressive,
+        };
+        #[cfg(not(target_arch = "wasm32"))]
         if let Some(jobs) = &self.jobs {
             // The thread only ends when we drop the sender, so this cannot fail.
-            let _ = jobs.send(Job {
-                generation,
-                scene,
-                image_first,
-                progressive,
-            });
+            let _ = jobs.send(job);
+        }
+        #[cfg(target_arch = "wasm32")]
+        {
+            *self.inline.lock() = Some(JobRun::by_pixels(job));
+            (self.inline.repaint)();
         }
         generation
     }
@@ -189,170 +220,122 @@ impl Worker {
         self.deliveries.try_recv().ok()
     }
 
-    /// Block until the next delivery (`None` if the thread is gone).
+    /// Block until the next delivery (`None` if the thread is gone, or on wasm32 when the
+    /// job is finished); on wasm32 the job runs here until it delivers.
     #[must_use]
     pub fn recv(&self) -> Option<Delivery> {
+        #[cfg(target_arch = "wasm32")]
+        loop {
+            if let Ok(d) = self.deliveries.try_recv() {
+                return Some(d);
+            }
+            if !self.tick_for(f64::INFINITY, 1) {
+                return self.deliveries.try_recv().ok();
+            }
+        }
+        #[cfg(not(target_arch = "wasm32"))]
         self.deliveries.recv().ok()
+    }
+
+    /// Run the current job on this thread for about [`SLICE_BUDGET_MS`] (wasm32; natively
+    /// the thread does the work and this does nothing). Returns whether work remains.
+    pub fn tick(&self) -> bool {
+        #[cfg(target_arch = "wasm32")]
+        return self.tick_for(SLICE_BUDGET_MS, usize::MAX);
+        #[cfg(not(target_arch = "wasm32"))]
+        false
+    }
+
+    /// Slices of the current job until `budget_ms` have passed or `max_steps` are done.
+    #[cfg(target_arch = "wasm32")]
+    fn tick_for(&self, budget_ms: f64, max_steps: usize) -> bool {
+        let mut slot = self.inline.lock();
+        let Some(run) = slot.as_mut() else {
+            return false;
+        };
+        let more = run_slices(run, &self.generation, &self.inline.tx, budget_ms, max_steps);
+        if !more {
+            *slot = None;
+        }
+        (self.inline.repaint)();
+        more
+    }
+}
+
+/// The wasm32 worker's state: the job under way and the sending end of its deliveries.
+#[cfg(target_arch = "wasm32")]
+struct Inline {
+    run: std::sync::Mutex<Option<JobRun>>,
+    tx: Sender<Delivery>,
+    repaint: Repaint,
+}
+
+#[cfg(target_arch = "wasm32")]
+impl Inline {
+    fn lock(&self) -> std::sync::MutexGuard<'_, Option<JobRun>> {
+        self.run
+            .lock()
+            .unwrap_or_else(std::sync::PoisonError::into_inner)
     }
 }
 
 impl Drop for Worker {
     fn drop(&mut self) {
         self.generation.fetch_add(1, Ordering::SeqCst);
-        self.jobs = None;
-        if let Some(t) = self.thread.take() {
-            let _ = t.join();
+        #[cfg(not(target_arch = "wasm32"))]
+        {
+            self.jobs = None;
+            if let Some(t) = self.thread.take() {
+                let _ = t.join();
+            }
         }
     }
 }
 
-fn run_job(job: &Job, current: &AtomicU64, tx: &Sender<Delivery>, repaint: &Repaint) {
-    let scene = &*job.scene;
-    let tracer = SceneIntegrator::new(scene);
-    let (w, h) = (scene.camera.width, scene.camera.height);
-    let cancelled = || current.load(Ordering::SeqCst) != job.generation;
+/// Run `job` to its end (or until a newer generation cancels it) on this thread.
+#[cfg(not(target_arch = "wasm32"))]
+fn run_job(job: Job, current: &AtomicU64, tx: &Sender<Delivery>, repaint: &Repaint) {
+    let scene = Arc::clone(&job.scene);
+    let tracer = SceneIntegrator::new(&scene);
+    let generation = job.generation;
+    let cancelled = || current.load(Ordering::SeqCst) != generation;
     let send = |d: Delivery| {
         let sent = tx.send(d).is_ok();
         repaint();
         sent
     };
-    // 1. The image, on the plain render's path.
-    let start = Instant::now();
-    let mut rays = RayCounts::default();
-    if let Some(options) = &job.progressive {
-        match super::progressive::run(&tracer, options, job.generation, &cancelled, &send) {
-            Some(r) => rays = r,
-            None => return,
-        }
-    }
-    let mut y0 = if job.image_first && job.progressive.is_none() {
-        0
-    } else {
-        h
-    };
-    while y0 < h {
-        if cancelled() {
-            return;
-        }
-        let y1 = (y0 + IMAGE_ROWS).min(h);
-        let (mut pixels, counts) = render_rows(&tracer, y0..y1);
-        for p in &mut pixels {
-            if !p.is_finite() {
-                *p = Rgb::ZERO;
-            }
-        }
-        rays += counts;
-        let generation = job.generation;
-        if !send(Delivery::Band {
-            generation,
-            y0,
-            pixels,
-        }) {
-            return;
-        }
-        y0 = y1;
-    }
-    if job.image_first
-        && !send(Delivery::Done {
-            generation: job.generation,
-            seconds: start.elapsed().as_secs_f64(),
-            rays,
-        })
-    {
-        return;
-    }
-    // 2. The debug statistics: every ray recorded, folded per pixel (and the image too, when
-    // it was not rendered first: the recorded pass computes the same pixels).
-    let start = Instant::now();
-    let spp = scene.settings.spp.max(1);
-    let mut y0 = 0;
-    while y0 < h {
-        if cancelled() {
-            return;
-        }
-        let y1 = (y0 + BAND_ROWS).min(h);
-        let rows: Vec<(Vec<Rgb>, Vec<PixelStats>, RayCounts)> = (y0..y1)
-            .into_par_iter()
-            .map(|y| {
-                let mut rec = StatsRecorder::default();
-                let mut counts = RayCounts::default();
-                let (px, st) = (0..w)
-                    .map(|x| {
-                        let l = render_pixel_with(&tracer, x, y, &mut rec, &mut counts, |_| {});
-                        (if l.is_finite() { l } else { Rgb::ZERO }, rec.take(spp))
-                    })
-                    .unzip();
-                (px, st, counts)
-            })
-            .collect();
-        let mut pixels = Vec::new();
-        let mut stats = Vec::new();
-        for (p, st, counts) in rows {
-            pixels.extend(p);
-            stats.extend(st);
-            rays += counts;
-        }
-        if !job.image_first
-            && !send(Delivery::Band {
-                generation: job.generation,
-                y0,
-                pixels,
-            })
-        {
-            return;
-        }
-        if !send(Delivery::Stats {
-            generation: job.generation,
-            y0,
-            stats,
-        }) {
-            return;
-        }
-        y0 = y1;
-    }
-    let seconds = start.elapsed().as_secs_f64();
-    if !job.image_first
-        && !send(Delivery::Done {
-            generation: job.generation,
-            seconds,
-            rays,
-        })
-    {
-        return;
-    }
-    if !send(Delivery::StatsDone {
-        generation: job.generation,
-        seconds,
-    }) {
-        return;
-    }
-    // 3. The tree's growth and, where it grows, the rays of the automatic cut against the
-    // exhaustive tree on a 16x9 sample (cancelled between pixels like the passes above).
-    let growth = crate::analysis::growth::tree_growth(scene);
-    // Under the path integrator the tree and the cut are Whitted's: the line says so.
-    let mut line = if scene.settings.integrator == crate::scene::IntegratorKind::Path {
-        format!(
-            "path integrator: one path per sample, no split, no cut; under Whitted the ray \
-             tree would be {}",
-            growth.growth.word()
-        )
-    } else {
-        format!("ray tree {}", growth.growth.word())
-    };
-    if let Some(r) = growth.reasons.first() {
-        line += &format!(" ({r})");
-    }
-    if growth.growth != crate::analysis::growth::Growth::Bounded {
-        match crate::analysis::growth::cut_savings(scene, 16, 9, &cancelled) {
-            Some(c) => line += &format!("; {}", c.sentence()),
-            None => return,
-        }
-    }
-    send(Delivery::Growth {
-        generation: job.generation,
-        line,
-    });
+    let mut run = JobRun::new(job, IMAGE_ROWS, BAND_ROWS);
+    while run.step(&tracer, &cancelled, &send, &|| true) {}
 }
 
+/// Steps of `run` until it ends, `budget_ms` of wall-clock time have passed or `max_steps` are
+/// done; returns whether it goes on. The UI thread's path (wasm32), tested natively.
+#[cfg(any(target_arch = "wasm32", test))]
+fn run_slices(
+    run: &mut JobRun,
+    current: &AtomicU64,
+    tx: &Sender<Delivery>,
+    budget_ms: f64,
+    max_steps: usize,
+) -> bool {
+    let start = web_time::Instant::now();
+    let scene = Arc::clone(&run.job.scene);
+    let tracer = SceneIntegrator::new(&scene);
+    let generation = run.generation();
+    let cancelled = || current.load(Ordering::SeqCst) != generation;
+    let send = |d: Delivery| tx.send(d).is_ok();
+    let more_time = || start.elapsed().as_secs_f64() * 1e3 < budget_ms;
+    for _ in 0..max_steps {
+        if !run.step(&tracer, &cancelled, &send, &more_time) {
+            return false;
+        }
+        if !more_time() {
+            break;
+        }
+    }
+    true
+}
+
+mod job;
 #[cfg(test)]
 mod tests;

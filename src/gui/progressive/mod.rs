@@ -27,14 +27,14 @@ mod ui;
 
 pub use ui::{progressive_ui, title_ui};
 
-use super::worker::{Delivery, IMAGE_ROWS};
+use super::worker::Delivery;
 use crate::bsdf::luminance;
 use crate::math::Rgb;
 use crate::render::pixel_loop::{self, Beauty};
 use crate::sampling::{PixelSampler, SceneSampler};
 use crate::trace::{Integrator, NoopRecorder, RayCounts};
 use rayon::prelude::*;
-use std::time::Instant;
+use web_time::Instant;
 
 /// Samples per pixel of the first pass.
 pub const FIRST_PASS: u32 = 4;
@@ -256,62 +256,105 @@ pub fn stop_rule(options: &Options, spp: u32, error: f64) -> Option<Stop> {
     }
 }
 
-/// Run a progressive render of `integrator`'s scene for the worker: bands of every pass as
-/// [`Delivery::Band`], a [`Delivery::Pass`] after each pass. Returns the rays traced, or
-/// `None` when cancelled or the receiver is gone.
-pub fn run<I: Integrator>(
-    integrator: &I,
-    options: &Options,
-    generation: u64,
-    cancelled: &(dyn Fn() -> bool + Sync),
-    send: &dyn Fn(Delivery) -> bool,
-) -> Option<RayCounts> {
-    let scene = integrator.scene();
-    let (w, h) = (scene.camera.width, scene.camera.height);
-    let start = Instant::now();
-    let sampler = SceneSampler::for_settings(&scene.settings);
-    let mut acc = Accumulator::new(w, h);
-    let mut rays = RayCounts::default();
-    let cap = options.cap.max(1);
-    let mut count = FIRST_PASS.min(cap);
-    loop {
-        let first = acc.samples();
-        let mut y0 = 0;
-        while y0 < h {
-            if cancelled() {
-                return None;
-            }
-            // Bands shrink as passes grow (32 rows at 4 samples, 8 from 16 on), so the image
-            // still refines every few seconds.
-            let rows = (IMAGE_ROWS * FIRST_PASS / count.max(1)).clamp(8, IMAGE_ROWS);
-            let y1 = (y0 + rows).min(h);
-            rays += acc.trace(integrator, &sampler, (first, count), y0..y1, cancelled);
-            let pixels = acc.rows(y0, y1, first + count);
-            if !send(Delivery::Band {
-                generation,
-                y0,
-                pixels,
-            }) {
-                return None;
-            }
-            y0 = y1;
+/// What [`Run::step`] did.
+pub enum Step {
+    /// A band is delivered; more are to come.
+    More,
+    /// The run stopped (target or cap) after its last pass: the rays traced.
+    Finished(RayCounts),
+    /// Cancelled, or the receiver is gone.
+    Stopped,
+}
+
+/// A progressive render in progress, one band at a time, for the worker: bands of every pass
+/// as [`Delivery::Band`], a [`Delivery::Pass`] after each pass.
+pub struct Run {
+    options: Options,
+    start: Instant,
+    sampler: SceneSampler,
+    acc: Accumulator,
+    rays: RayCounts,
+    /// Samples of the pass under way.
+    count: u32,
+    /// Next row of that pass.
+    y0: u32,
+    /// Rows of a band at the first pass ([`super::worker::IMAGE_ROWS`] on the worker thread).
+    max_rows: u32,
+}
+
+impl Run {
+    /// The first pass of `scene` under `options`, in bands of at most `max_rows` rows.
+    #[must_use]
+    pub fn new(scene: &crate::scene::Scene, options: Options, max_rows: u32) -> Self {
+        let (w, h) = (scene.camera.width, scene.camera.height);
+        Self {
+            options,
+            start: Instant::now(),
+            sampler: SceneSampler::for_settings(&scene.settings),
+            acc: Accumulator::new(w, h),
+            rays: RayCounts::default(),
+            count: FIRST_PASS.min(options.cap.max(1)),
+            y0: 0,
+            max_rows: max_rows.max(1),
         }
-        acc.finish_pass(count);
-        let spp = acc.samples();
-        let error = acc.error();
-        let stop = stop_rule(options, spp, error);
+    }
+
+    /// Trace and deliver the next band of the pass under way (and, after its last band, the
+    /// pass's report). `integrator` is that of the scene given to [`Run::new`].
+    pub fn step<I: Integrator>(
+        &mut self,
+        integrator: &I,
+        generation: u64,
+        cancelled: &(dyn Fn() -> bool + Sync),
+        send: &dyn Fn(Delivery) -> bool,
+    ) -> Step {
+        let h = integrator.scene().camera.height;
+        if cancelled() {
+            return Step::Stopped;
+        }
+        let (first, count, y0) = (self.acc.samples(), self.count, self.y0);
+        // Bands shrink as passes grow (32 rows at 4 samples, 8 from 16 on, on the worker
+        // thread), so the image still refines every few seconds.
+        let max = self.max_rows;
+        let rows = (max * FIRST_PASS / count.max(1)).clamp((max / 4).max(1), max);
+        let y1 = (y0 + rows).min(h);
+        self.rays += self
+            .acc
+            .trace(integrator, &self.sampler, (first, count), y0..y1, cancelled);
+        let pixels = self.acc.rows(y0, y1, first + count);
+        if !send(Delivery::Band {
+            generation,
+            y0,
+            pixels,
+        }) {
+            return Step::Stopped;
+        }
+        self.y0 = y1;
+        if y1 < h {
+            return Step::More;
+        }
+        self.finish_pass(generation, send)
+    }
+
+    fn finish_pass(&mut self, generation: u64, send: &dyn Fn(Delivery) -> bool) -> Step {
+        self.acc.finish_pass(self.count);
+        let spp = self.acc.samples();
+        let error = self.acc.error();
+        let stop = stop_rule(&self.options, spp, error);
         let report = Report {
             spp,
             error,
-            seconds: start.elapsed().as_secs_f64(),
+            seconds: self.start.elapsed().as_secs_f64(),
             stop,
         };
         if !send(Delivery::Pass { generation, report }) {
-            return None;
+            return Step::Stopped;
         }
         if stop.is_some() {
-            return Some(rays);
+            return Step::Finished(self.rays);
         }
-        count = spp.min(cap - spp);
+        self.count = spp.min(self.options.cap.max(1) - spp);
+        self.y0 = 0;
+        Step::More
     }
 }

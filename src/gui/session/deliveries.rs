@@ -11,6 +11,8 @@ use crate::gui::worker::Delivery;
 impl Session {
     /// Fold every waiting delivery into the image. Returns whether anything changed.
     pub fn pump(&mut self) -> bool {
+        // On wasm32 the render runs here, a slice per frame; natively its thread does.
+        self.worker.tick();
         let mut changed = false;
         while let Some(d) = self.worker.try_recv() {
             changed |= self.deliver(d);

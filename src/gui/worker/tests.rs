@@ -128,3 +128,132 @@ fn after_the_statistics_the_tree_growth_and_what_the_cut_saves() {
         assert_eq!(line.contains("x fewer) on a 16x9 sample"), fewer, "{line}");
     }
 }
+
+/// Everything a job delivers, folded: the image, the statistics, the rays, the growth line and
+/// each progressive pass's samples, error and stop (not its seconds).
+#[derive(Debug, PartialEq)]
+struct Folded {
+    pixels: Vec<Rgb>,
+    stats: Vec<PixelStats>,
+    rays: Option<RayCounts>,
+    growth: Option<String>,
+    passes: Vec<(u32, u64, Option<super::super::progressive::Stop>)>,
+}
+
+impl Folded {
+    fn new(scene: &Scene) -> Self {
+        let n = (scene.camera.width * scene.camera.height) as usize;
+        Self {
+            pixels: vec![Rgb::ZERO; n],
+            stats: vec![PixelStats::default(); n],
+            rays: None,
+            growth: None,
+            passes: Vec::new(),
+        }
+    }
+
+    /// Fold `d` in; returns whether the job is over (its growth line came).
+    fn fold(&mut self, d: Delivery, width: u32) -> bool {
+        match d {
+            Delivery::Band { y0, pixels, .. } => {
+                let at = (y0 * width) as usize;
+                self.pixels[at..at + pixels.len()].copy_from_slice(&pixels);
+            }
+            Delivery::Stats { y0, stats, .. } => {
+                let at = (y0 * width) as usize;
+                self.stats[at..at + stats.len()].copy_from_slice(&stats);
+            }
+            Delivery::Done { rays, .. } => self.rays = Some(rays),
+            Delivery::StatsDone { .. } => {}
+            Delivery::Growth { line, .. } => {
+                self.growth = Some(line);
+                return true;
+            }
+            Delivery::Pass { report, .. } => {
+                self.passes
+                    .push((report.spp, report.error.to_bits(), report.stop));
+            }
+        }
+        false
+    }
+}
+
+#[test]
+fn slices_on_the_calling_thread_deliver_what_the_worker_thread_does() {
+    // The wasm32 path: one row per slice, one slice per call, on this thread.
+    let progressive = super::super::progressive::Options {
+        on: true,
+        target: 0.0,
+        cap: 8,
+    };
+    for (json, options) in [
+        (include_str!("../../../fixtures/classic.json"), None),
+        (include_str!("../../../fixtures/nested.json"), None),
+        (
+            include_str!("../../../fixtures/caustic.json"),
+            Some(progressive),
+        ),
+    ] {
+        let mut scene = Scene::from_json(json).unwrap();
+        scene.camera = scene.camera.with_size(40, 24);
+        let scene = Arc::new(scene);
+        let w = Worker::new(Arc::new(|| {}));
+        let g = match options {
+            Some(o) => w.start_progressive(Arc::clone(&scene), o),
+            None => w.start(Arc::clone(&scene), true),
+        };
+        let mut threaded = Folded::new(&scene);
+        while !threaded.fold(w.recv().unwrap(), 40) {}
+        let current = AtomicU64::new(g);
+        // Row bands, one per call; then a pixel per call (no time left after each pixel).
+        for (by_pixels, budget_ms, at_least) in
+            [(false, f64::INFINITY, 2 * 24), (true, 0.0, 40 * 24)]
+        {
+            let (tx, rx) = channel();
+            let job = Job {
+                generation: g,
+                scene: Arc::clone(&scene),
+                image_first: true,
+                progressive: options,
+            };
+            let mut run = if by_pixels {
+                JobRun::by_pixels(job)
+            } else {
+                JobRun::new(job, 1, 1)
+            };
+            let mut inline = Folded::new(&scene);
+            let mut slices = 0;
+            while run_slices(&mut run, &current, &tx, budget_ms, 1) {
+                slices += 1;
+            }
+            while let Ok(d) = rx.try_recv() {
+                inline.fold(d, 40);
+            }
+            assert!(slices >= at_least, "{slices} slices");
+            assert!(inline.growth.is_some());
+            assert_eq!(inline, threaded, "by pixels: {by_pixels}");
+            if options.is_some() {
+                assert_eq!(inline.passes.len(), 2, "4 then 8 samples");
+            }
+        }
+    }
+}
+
+#[test]
+fn a_newer_generation_stops_the_sliced_job() {
+    let mut scene = Scene::default_scene();
+    scene.camera = scene.camera.with_size(16, 8);
+    let current = AtomicU64::new(1);
+    let (tx, rx) = channel();
+    let job = Job {
+        generation: 1,
+        scene: Arc::new(scene),
+        image_first: true,
+        progressive: None,
+    };
+    let mut run = JobRun::new(job, 1, 1);
+    assert!(run_slices(&mut run, &current, &tx, f64::INFINITY, 3));
+    current.store(2, Ordering::SeqCst);
+    assert!(!run_slices(&mut run, &current, &tx, f64::INFINITY, 3));
+    assert_eq!(rx.try_iter().count(), 3, "three bands, then nothing");
+}
