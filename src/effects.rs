@@ -360,6 +360,26 @@ fn max_ior_step(scene: &Scene) -> Option<(f64, f64)> {
     (hi > lo).then_some((hi, lo))
 }
 
+/// `; emitter X emits towards nothing ...` for the area lights that light no surface
+/// ([`crate::lights::dark_emitters`]), else empty.
+#[must_use]
+pub fn dark_note(scene: &Scene) -> String {
+    let dark = crate::lights::dark_emitters(scene);
+    if dark.is_empty() {
+        return String::new();
+    }
+    let (who, verb) = if dark.len() == 1 {
+        ("emitter", "emits")
+    } else {
+        ("emitters", "emit")
+    };
+    format!(
+        "; {who} {} {verb} towards nothing (none of {} rays leaving its emitting side meets a surface): it lights no surface, only its own face can be seen",
+        dark.join(", "),
+        crate::lights::DARK_PROBE
+    )
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -465,24 +485,4 @@ mod tests {
                 .contains("4 shadow rays")
         );
     }
-}
-
-/// `; emitter X emits towards nothing ...` for the area lights that light no surface
-/// ([`crate::lights::dark_emitters`]), else empty.
-#[must_use]
-pub fn dark_note(scene: &Scene) -> String {
-    let dark = crate::lights::dark_emitters(scene);
-    if dark.is_empty() {
-        return String::new();
-    }
-    let (who, verb) = if dark.len() == 1 {
-        ("emitter", "emits")
-    } else {
-        ("emitters", "emit")
-    };
-    format!(
-        "; {who} {} {verb} towards nothing (none of {} rays leaving its emitting side meets a surface): it lights no surface, only its own face can be seen",
-        dark.join(", "),
-        crate::lights::DARK_PROBE
-    )
 }

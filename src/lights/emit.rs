@@ -199,7 +199,7 @@ impl Emitter<'_> {
                     return (0.0, 0.0);
                 };
                 let cos = n.dot(direction);
-                if !(area > 0.0) || cos <= 0.0 {
+                if area.is_nan() || area <= 0.0 || cos <= 0.0 {
                     return (0.0, 0.0);
                 }
                 (1.0 / area, cos / PI)

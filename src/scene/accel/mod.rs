@@ -121,8 +121,9 @@ impl Accel {
         }
     }
 
-    /// Whether object `i` of `n` is a copy of an earlier one ([`Accel::coincident`]), hidden
-    /// by it (false when the accel was built for another object count).
+    /// Whether object `i` of `n` is a copy of an earlier one (bit for bit the same sphere,
+    /// triangle or quad), hidden by it (false when the accel was built for another object
+    /// count).
     #[must_use]
     pub fn is_coincident_copy(&self, i: usize, n: usize) -> bool {
         self.objects == n
