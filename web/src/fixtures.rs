@@ -17,6 +17,7 @@ pub const FIXTURES: &[(&str, &str)] = &[
     ),
     ("diffuse", include_str!("../../fixtures/diffuse.json")),
     ("glossy", include_str!("../../fixtures/glossy.json")),
+    ("metals", include_str!("../../fixtures/metals.json")),
     ("mirrors", include_str!("../../fixtures/mirrors.json")),
     ("nested", include_str!("../../fixtures/nested.json")),
     ("slab", include_str!("../../fixtures/slab.json")),
