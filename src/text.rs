@@ -47,7 +47,9 @@ fn not_finite(v: f64) -> String {
 /// formatted without [`num`] still cannot reach a reader as a token it would parse.
 #[must_use]
 pub fn guard_nonfinite(s: &str) -> std::borrow::Cow<'_, str> {
-    let word = |c: Option<char>| c.is_some_and(|c| c.is_alphanumeric() || c == '_');
+    // A token inside a word or a path (`info`, `inf.png`, `out/NaN.json`) is a name, not a
+    // number: only a token standing alone, or ending a sentence, is replaced.
+    let word = |c: Option<char>| c.is_some_and(|c| c.is_alphanumeric() || "_/\\".contains(c));
     let mut out = String::new();
     let mut last = 0;
     let mut i = 0;
@@ -60,9 +62,17 @@ pub fn guard_nonfinite(s: &str) -> std::borrow::Cow<'_, str> {
             ("NaN", f64::NAN),
         ]
         .into_iter()
-        .find(|(t, _)| rest.starts_with(t) && !word(rest[t.len()..].chars().next()));
+        .find(|(t, _)| {
+            if !rest.starts_with(t) {
+                return false;
+            }
+            let mut after = rest[t.len()..].chars();
+            let next = after.next();
+            let dotted_name = next == Some('.') && word(after.next());
+            !word(next) && !dotted_name && next != Some('-')
+        });
         match hit {
-            Some((t, v)) if !word(before) => {
+            Some((t, v)) if !word(before) && before != Some('.') => {
                 out.push_str(&s[last..i]);
                 out.push_str(&not_finite(v));
                 i += t.len();
@@ -413,6 +423,16 @@ mod tests {
             std::borrow::Cow::Borrowed(_)
         ));
         assert_eq!(guard_nonfinite(">=inf"), ">=<not finite: +infinite>");
+        for name in [
+            "wrote inf.png",
+            "dir/NaN.json",
+            "a.inf",
+            "inf-light",
+            "x\\inf",
+        ] {
+            assert_eq!(guard_nonfinite(name), name, "a name is not a number");
+        }
+        assert_eq!(guard_nonfinite("is inf."), "is <not finite: +infinite>.");
     }
 
     use super::*;
