@@ -36,6 +36,27 @@ impl Mesh {
     /// nothing; the estimator stays unbiased).
     #[must_use]
     pub fn sample_emitter(&self, p: DVec3, radiance: Rgb, u: DVec2) -> Option<LightSample> {
+        let (e, a, total, u) = self.pick_triangle(u)?;
+        let s = e.sample(p, radiance, u)?;
+        // The triangle's pdf d^2 / (cos a) times the chance a / A of having chosen it.
+        Some(LightSample {
+            pdf: s.pdf * (a / total),
+            ..s
+        })
+    }
+
+    /// A point uniform over the mesh's area and the outward (geometric) normal of its triangle:
+    /// `u.x` picks the triangle by area as [`Self::sample_emitter`] does and is rescaled into
+    /// the triangle's own sample. `None` for a mesh of no area.
+    #[must_use]
+    pub fn sample_point(&self, u: DVec2) -> Option<(DVec3, DVec3)> {
+        let (e, _, _, u) = self.pick_triangle(u)?;
+        Some((e.sample_point(u), e.normal()?))
+    }
+
+    /// The triangle `u.x` picks in proportion to area, its area `a`, the mesh's area and `u`
+    /// with `u.x` rescaled into the triangle's own sample; `None` for a mesh of no area.
+    fn pick_triangle(&self, u: DVec2) -> Option<(PlanarEmitter, f64, f64, DVec2)> {
         let total = self.area();
         if !(total > 0.0 && total.is_finite()) {
             return None;
@@ -49,33 +70,12 @@ impl Mesh {
         let a = self.area_cdf[i] - lo;
         let ux = ((target - lo) / a).clamp(0.0, 1.0 - f64::EPSILON / 2.0);
         let [v0, v1, v2] = self.tris[i];
-        let s = PlanarEmitter::triangle(v0, v1, v2).sample(p, radiance, DVec2::new(ux, u.y))?;
-        // The triangle's pdf d^2 / (cos a) times the chance a / A of having chosen it.
-        Some(LightSample {
-            pdf: s.pdf * (a / total),
-            ..s
-        })
-    }
-
-    /// A point uniform over the mesh's area and the outward (geometric) normal of its triangle:
-    /// `u.x` picks the triangle by area as [`Self::sample_emitter`] does and is rescaled into
-    /// the triangle's own sample. `None` for a mesh of no area.
-    #[must_use]
-    pub fn sample_point(&self, u: DVec2) -> Option<(DVec3, DVec3)> {
-        let total = self.area();
-        if !(total > 0.0 && total.is_finite()) {
-            return None;
-        }
-        let target = u.x * total;
-        let i = self
-            .area_cdf
-            .partition_point(|&c| c <= target)
-            .min(self.tris.len() - 1);
-        let lo = if i == 0 { 0.0 } else { self.area_cdf[i - 1] };
-        let ux = ((target - lo) / (self.area_cdf[i] - lo)).clamp(0.0, 1.0 - f64::EPSILON / 2.0);
-        let [v0, v1, v2] = self.tris[i];
-        let e = PlanarEmitter::triangle(v0, v1, v2);
-        Some((e.sample_point(DVec2::new(ux, u.y)), e.normal()?))
+        Some((
+            PlanarEmitter::triangle(v0, v1, v2),
+            a,
+            total,
+            DVec2::new(ux, u.y),
+        ))
     }
 
     /// The solid-angle pdf of [`Self::sample_emitter`] for direction `wi` from `p`: where the
