@@ -372,5 +372,4 @@ impl super::PixelSampler for SobolSampler {
 }
 
 #[cfg(test)]
-#[path = "sobol_tests.rs"]
 mod tests;

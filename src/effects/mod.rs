@@ -450,7 +450,7 @@ mod tests {
     /// ignored (they once stood side by side, one "on", one "off").
     #[test]
     fn path_lines_state_what_the_path_integrator_does() {
-        let mut s = Scene::from_json(include_str!("../fixtures/caustic.json")).unwrap();
+        let mut s = Scene::from_json(include_str!("../../fixtures/caustic.json")).unwrap();
         s.settings.fresnel = FresnelModel::Schlick;
         s.settings.shadows = ShadowMode::Translucent;
         s.settings.light_samples = Some(4);

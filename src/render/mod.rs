@@ -336,15 +336,10 @@ pub fn render_pixel_counted<I: Integrator, S: PixelSampler, R: Recorder>(
     (l, n)
 }
 
-#[path = "render_adaptive.rs"]
 mod adaptive;
-#[path = "render_image.rs"]
 mod image;
-#[path = "render_packets.rs"]
 mod packets;
-#[path = "render_loop.rs"]
 pub mod pixel_loop;
-#[path = "render_plan.rs"]
 mod plan;
 pub use image::{DiagnosticMap, Image, RenderStats};
 use packets::packet_bands;
@@ -352,5 +347,4 @@ use pixel_loop::{Beauty, PixelOut, SinkRow};
 pub use plan::{AUTO_FIRST_DIVISOR, AdaptivePlan, adaptive_plan, antialiasing_note};
 
 #[cfg(test)]
-#[path = "render_tests.rs"]
 mod tests;
