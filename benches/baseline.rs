@@ -18,7 +18,7 @@
 use rayon::prelude::*;
 use raytree::render::render_rows;
 use raytree::render::sample_position;
-use raytree::{Scene, Tracer};
+use raytree::{Scene, Whitted};
 use std::hint::black_box;
 use std::time::Instant;
 
@@ -66,7 +66,7 @@ fn main() {
     );
     for spp in [1, 16] {
         let scene = classic(spp);
-        let tracer = Tracer::new(&scene);
+        let tracer = Whitted::new(&scene);
         let n = if spp == 1 {
             passes
         } else {

@@ -7,7 +7,7 @@ use criterion::{Criterion, criterion_group, criterion_main};
 use raytree::bvh::TraversalCost;
 use raytree::math::Rgb;
 use raytree::scene::Film;
-use raytree::{NoopRecorder, RayCounts, Scene, Tracer, render_pixel_with};
+use raytree::{NoopRecorder, RayCounts, Scene, Whitted, render_pixel_with};
 use std::hint::black_box;
 use std::time::{Duration, Instant};
 
@@ -44,8 +44,12 @@ fn ray_cast(scene: &Scene, film: &Film, x: u32, y: u32) -> Rgb {
     let albedo = scene.material_of(hit.object).diffuse.at(p);
     let mut color = scene.ambient * albedo;
     let eps = scene.settings.offset.epsilon;
-    for light in &scene.lights {
-        let ls = light.sample(p, (0.5, 0.5));
+    // `sample_li` does not read a directional light's bounds.
+    let bounds = (glam::DVec3::ZERO, 1.0);
+    for k in 0..scene.lights.len() {
+        let Some(ls) = scene.delta_light(k, bounds).sample_li(p, (0.5, 0.5)) else {
+            continue;
+        };
         let (wi, dist, e) = (ls.direction, ls.distance, ls.radiance);
         let cos = n.dot(wi);
         if cos > 0.0 {
@@ -60,7 +64,7 @@ fn ray_cast(scene: &Scene, film: &Film, x: u32, y: u32) -> Rgb {
 }
 
 /// One frame with the caster or the tracer; returns a checksum so nothing is optimised away.
-fn frame(scene: &Scene, tracer: &Tracer, caster: bool) -> f64 {
+fn frame(scene: &Scene, tracer: &Whitted, caster: bool) -> f64 {
     let (w, h) = (scene.camera.width, scene.camera.height);
     let mut counts = RayCounts::default();
     let film = scene.camera.film();
@@ -88,7 +92,7 @@ fn frame(scene: &Scene, tracer: &Tracer, caster: bool) -> f64 {
 /// The two loops alternated frame by frame, 60 frames each, keeping each one's fastest frame:
 /// load from other processes slows both alike and only ever adds time, so the ratio of the
 /// minima is steadier on a shared machine than two criterion runs one after the other.
-fn interleaved(scene: &Scene, tracer: &Tracer) {
+fn interleaved(scene: &Scene, tracer: &Whitted) {
     let (mut caster, mut traced) = (f64::INFINITY, f64::INFINITY);
     for _ in 0..60 {
         let t = Instant::now();
@@ -111,7 +115,7 @@ fn bench(c: &mut Criterion) {
     let scene = Scene::from_json(DIFFUSE_ONLY).unwrap();
     let (w, h) = (scene.camera.width, scene.camera.height);
     // Same image (up to rounding), so the two loops do the same work.
-    let tracer = Tracer::new(&scene);
+    let tracer = Whitted::new(&scene);
     let mut counts = RayCounts::default();
     for y in (0..h).step_by(7) {
         for x in (0..w).step_by(5) {

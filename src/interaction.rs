@@ -7,7 +7,16 @@ use crate::media::MediaStack;
 use crate::scene::Material;
 use glam::DVec3;
 
-/// A hit as shading sees it, built once per hit ([`crate::trace::Tracer`]) and passed to local
+/// A surface a ray leaves or hits: an object and, for a mesh, its stored triangle.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct SurfaceId {
+    /// Object index.
+    pub object: usize,
+    /// For meshes: the stored triangle (`None` for other shapes).
+    pub triangle: Option<u32>,
+}
+
+/// A hit as shading sees it, built once per hit ([`crate::integrator::Shading::surface`]) and passed to local
 /// shading, the light loops, the dielectric split and the recorder.
 #[derive(Clone, Copy, Debug)]
 pub struct SurfaceInteraction<'a> {
@@ -39,8 +48,11 @@ impl SurfaceInteraction<'_> {
     /// The surface as the offset strategies name it: object and stored triangle.
     #[inline(always)]
     #[must_use]
-    pub fn from(&self) -> (usize, Option<u32>) {
-        (self.object, self.triangle)
+    pub fn from(&self) -> SurfaceId {
+        SurfaceId {
+            object: self.object,
+            triangle: self.triangle,
+        }
     }
 
     /// The shading normal on the outward side of the surface.

@@ -1,6 +1,6 @@
 //! raytree: a recursive (Whitted) ray tracer that records and explains the ray tree of any pixel.
 //!
-//! Data flows one way: scene JSON -> [`Scene`] (validated) -> [`Tracer`] with a [`Recorder`]
+//! Data flows one way: scene JSON -> [`Scene`] (validated) -> [`Whitted`] with a [`Recorder`]
 //! -> radiance, and optionally a [`RayTree`] that every view (text, JSON, diagram, GUI) reads.
 //! The library does no I/O.
 #![forbid(unsafe_code)]
@@ -20,6 +20,7 @@ pub mod geometry;
 #[cfg(feature = "gui")]
 pub mod gui;
 pub mod input;
+pub mod integrator;
 pub mod interaction;
 pub mod lights;
 pub mod lpe;
@@ -30,16 +31,15 @@ pub mod render;
 pub mod sampling;
 pub mod scene;
 pub mod text;
-pub mod trace;
 pub mod tree;
 
+pub use integrator::{
+    DiagnosticRecorder, Integrator, NoopRecorder, RayCounts, Recorder, SceneIntegrator,
+    TreeRecorder, Whitted,
+};
 pub use render::{
     DiagnosticMap, Image, RenderStats, render, render_diagnosed, render_pixel, render_pixel_with,
     render_sample_map, render_with, trace_pixel,
 };
 pub use scene::{Scene, SceneError, Settings};
-pub use trace::{
-    DiagnosticRecorder, Integrator, NoopRecorder, RayCounts, Recorder, SceneIntegrator, Tracer,
-    TreeRecorder, Whitted,
-};
 pub use tree::{NodeId, RayKind, RayNode, RayTree};

@@ -5,9 +5,9 @@
 mod common;
 use common::raytree;
 
+use raytree::integrator::SceneIntegrator;
 use raytree::render::adaptive_plan;
 use raytree::scene::{AdaptiveDesc, Antialiasing, IntegratorKind, SamplerKind};
-use raytree::trace::SceneIntegrator;
 use raytree::{Scene, render, render_sample_map, trace_pixel};
 
 fn fixture(name: &str) -> Scene {

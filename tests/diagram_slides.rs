@@ -346,7 +346,7 @@ fn the_legend_counts_roulette_choices() {
     };
     let mut s = scene("tir-block.json");
     assert_eq!(line(&s), None, "the default splits every hit");
-    s.settings.roulette_below = Some(raytree::trace::bound::carried::auto_roulette_below(
+    s.settings.roulette_below = Some(raytree::integrator::bound::carried::auto_roulette_below(
         &s,
         &s.settings,
     ));

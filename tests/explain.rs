@@ -78,7 +78,7 @@ fn explain_tir_and_max_depth() {
     let tir =
         ::raytree::Scene::from_json(&std::fs::read_to_string(fixture("tir-block.json")).unwrap())
             .unwrap();
-    let w = ::raytree::trace::bound::carried::auto_roulette_below(&tir, &tir.settings);
+    let w = ::raytree::integrator::bound::carried::auto_roulette_below(&tir, &tir.settings);
     let text = ok(&run(&[
         "explain",
         &fixture("tir-block.json"),

@@ -7,7 +7,7 @@ mod common;
 use common::raytree;
 
 use raytree::bsdf::{Lobe, Microfacet};
-use raytree::trace::{Integrator, SceneIntegrator};
+use raytree::integrator::{Integrator, SceneIntegrator};
 use raytree::tree::{RayKind, RayTree};
 use raytree::{Scene, render, trace_pixel};
 use std::path::Path;

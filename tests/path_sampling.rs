@@ -4,11 +4,11 @@
 //! light sample and in the MIS weight of emission found by BSDF sampling agree). Welch t-tests
 //! per 8x8 block over seeds, as tests/path_stats.rs; fixed seeds; 5 standard errors.
 
+use raytree::integrator::{PathStrategy, PathTracer};
 use raytree::math::Rgb;
 use raytree::render::render_sampled;
 use raytree::sampling::SceneSampler;
 use raytree::scene::SamplerKind;
-use raytree::trace::{PathStrategy, PathTracer};
 use raytree::{Scene, render};
 use std::path::PathBuf;
 

@@ -3,11 +3,11 @@
 //! rate against a high-spp render, and convergence to the Whitted image where light transport
 //! has no diffuse interreflection. Fixed seeds; tolerances from measured variances (5 sigma).
 
+use raytree::integrator::{PathStrategy, PathTracer};
 use raytree::math::Rgb;
 use raytree::render::render_sampled;
 use raytree::sampling::{PixelSampler, StratifiedJitter, splitmix64, unit};
 use raytree::scene::IntegratorKind;
-use raytree::trace::{PathStrategy, PathTracer};
 use raytree::{Scene, SceneIntegrator};
 
 fn lum(c: Rgb) -> f64 {

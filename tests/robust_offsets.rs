@@ -7,9 +7,9 @@ mod common;
 use common::Rng;
 use glam::DVec3;
 use raytree::geometry::Shape;
+use raytree::integrator::offset::robust_origin;
 use raytree::math::Ray;
 use raytree::scene::{OffsetStrategy, transformed};
-use raytree::trace::offset::robust_origin;
 use raytree::{Scene, render, render_diagnosed};
 
 impl Rng {

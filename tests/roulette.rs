@@ -108,7 +108,7 @@ fn trees_equal_pixels_with_the_roulette() {
 /// `min_weight` (the exhaustive tree of `min_weight 0`) gets no suggestion.
 #[test]
 fn the_suggested_weight_plays_roulette_only_below_it() {
-    use raytree::trace::bound::carried::{auto_roulette_below, carried_bound};
+    use raytree::integrator::bound::carried::{auto_roulette_below, carried_bound};
     let src = include_str!("../benches/mitsuba-scenes/glass-emitters.json");
     let mut scene = Scene::from_json(src).unwrap();
     scene.camera = scene.camera.with_size(32, 18);

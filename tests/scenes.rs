@@ -229,7 +229,7 @@ fn slab_displaces_but_keeps_direction() {
 #[test]
 fn switching_off_unused_effects_is_bit_identical() {
     use raytree::effects::EffectPlan;
-    use raytree::{Tracer, render_with};
+    use raytree::{Whitted, render_with};
     let mut scenes = fixtures();
     // A diffuse-and-mirror scene in translucent mode: translucent shadows are planned off.
     let mut m = scenes.iter().find(|f| f.0 == "mirrors").unwrap().1.clone();
@@ -239,8 +239,8 @@ fn switching_off_unused_effects_is_bit_identical() {
         let scene = small(scene, 48, 27, 1);
         let planned = EffectPlan::for_scene(&scene);
         let all = EffectPlan::everything(&scene);
-        let a = render_with(&Tracer::with_plan(&scene, planned), &|_| {}).0;
-        let b = render_with(&Tracer::with_plan(&scene, all), &|_| {}).0;
+        let a = render_with(&Whitted::with_plan(&scene, planned), &|_| {}).0;
+        let b = render_with(&Whitted::with_plan(&scene, all), &|_| {}).0;
         assert!(
             a == b,
             "{name}: planned render differs from everything-on ({planned:?})"
@@ -292,7 +292,7 @@ fn direct_only_path_equals_the_recursive_tracer_bit_for_bit() {
     use raytree::effects::EffectPlan;
     use raytree::mesh::{MeshData, generate::icosphere};
     use raytree::scene::OffsetStrategy;
-    use raytree::{Tracer, render_with};
+    use raytree::{Whitted, render_with};
     let diffuse = fixtures().into_iter().find(|f| f.0 == "diffuse").unwrap().1;
     let json = std::fs::read_to_string(
         PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("fixtures/diffuse.json"),
@@ -319,9 +319,9 @@ fn direct_only_path_equals_the_recursive_tracer_bit_for_bit() {
         ] {
             let mut scene = small(scene.clone(), 64, 36, 1);
             scene.settings.offset.strategy = strategy;
-            let (fast, stats) = render_with(&Tracer::with_plan(&scene, planned), &|_| {});
+            let (fast, stats) = render_with(&Whitted::with_plan(&scene, planned), &|_| {});
             let all = EffectPlan::everything(&scene);
-            let (general, general_stats) = render_with(&Tracer::with_plan(&scene, all), &|_| {});
+            let (general, general_stats) = render_with(&Whitted::with_plan(&scene, all), &|_| {});
             assert!(
                 fast == general,
                 "{name} {strategy:?}: direct-only != recursive"

@@ -4,11 +4,11 @@
 //! -1/2 against samples). Pure apart from reading the clock.
 
 use crate::denoise::{DenoiseParams, denoise, gather_sampled};
+use crate::integrator::{Integrator, PathStrategy, PathTracer, SceneIntegrator};
 use crate::math::Rgb;
 use crate::render::{Image, render_sampled};
 use crate::sampling::{PixelSampler, SceneSampler};
 use crate::scene::{IntegratorKind, SamplerKind, Scene};
-use crate::trace::{Integrator, PathStrategy, PathTracer, SceneIntegrator};
 use serde::Serialize;
 use web_time::Instant;
 

@@ -219,10 +219,9 @@ mod tests {
     fn weights_split_into_the_factors_the_tracer_multiplied() {
         let mut scene = Scene::default_scene();
         // With the suggested roulette weight (opt-in), deep weak hits follow one ray.
-        scene.settings.roulette_below = Some(crate::trace::bound::carried::auto_roulette_below(
-            &scene,
-            &scene.settings,
-        ));
+        scene.settings.roulette_below = Some(
+            crate::integrator::bound::carried::auto_roulette_below(&scene, &scene.settings),
+        );
         let tree = trace_pixel(&scene, 400, 200).unwrap();
         // The glass ball's reflected ray: R 0.04 x transmissivity 0.95.
         let reflected = tree.node(NodeId(2));

@@ -31,12 +31,12 @@ pub use recorder::{AovRecorder, MAX_AOVS};
 pub use spec::{Aov, AovSpecError, parse_aovs};
 pub use versus::{ClassShare, Versus, versus};
 
+use crate::integrator::Integrator;
 use crate::lpe::Lpe;
 use crate::math::Rgb;
 use crate::render::{Image, RenderStats, pixel_loop};
 use crate::sampling::SceneSampler;
 use crate::scene::IntegratorKind;
-use crate::trace::Integrator;
 use sink::AovSink;
 
 /// Why an AOV render cannot run.

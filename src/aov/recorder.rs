@@ -2,9 +2,9 @@
 //! (matched against the AOVs' expressions, each distinct path string once) and how each path
 //! ended.
 
+use crate::integrator::Recorder;
 use crate::lpe::Lpe;
 use crate::math::Rgb;
-use crate::trace::Recorder;
 use crate::tree::{EndReason, NodeId, RayNode};
 use std::collections::HashMap;
 

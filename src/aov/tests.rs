@@ -1,8 +1,8 @@
 use super::*;
 use crate::Scene;
+use crate::integrator::SceneIntegrator;
 use crate::lpe::filter_tree;
 use crate::render::render;
-use crate::trace::SceneIntegrator;
 
 fn caustic(spp: u32) -> Scene {
     let mut s = Scene::from_json(include_str!("../../fixtures/caustic.json")).unwrap();

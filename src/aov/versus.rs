@@ -10,9 +10,9 @@
 
 use super::{AovError, AovRender, CLASSES, render_aovs, standard_classes};
 use crate::bsdf::luminance;
+use crate::integrator::SceneIntegrator;
 use crate::render::{Image, RenderStats};
 use crate::scene::{IntegratorKind, Scene};
-use crate::trace::SceneIntegrator;
 
 /// One class's part of the difference.
 #[derive(Clone, Debug, PartialEq)]

@@ -62,7 +62,7 @@ pub fn load(path: Option<&Path>, o: &Overrides) -> Result<Loaded> {
         warnln!("{note}");
     }
     if scene.settings.integrator == IntegratorKind::Path {
-        let over = raytree::trace::overflowing_lights(&scene);
+        let over = scene.overflowing_lights();
         if !over.is_empty() {
             warnln!(
                 "warning: the power of {} overflows a 64-bit float; the path integrator's light sampling chooses it as if its power were the largest finite one",

@@ -44,7 +44,7 @@ pub fn run() -> ExitCode {
     // Deep recursion (max_depth up to 1024) needs more than std's 2 MiB thread stacks. Fails
     // only if a global pool already exists, which then keeps its own.
     let _ = rayon::ThreadPoolBuilder::new()
-        .stack_size(raytree::trace::THREAD_STACK_BYTES)
+        .stack_size(raytree::integrator::THREAD_STACK_BYTES)
         .build_global();
     let cli = Cli::parse();
     let result = match cli.command {

@@ -93,7 +93,7 @@ pub fn run(a: &RenderArgs) -> Result<()> {
         r.refracted,
         r.shadow
     )?;
-    let integrator = raytree::trace::SceneIntegrator::new(scene);
+    let integrator = raytree::integrator::SceneIntegrator::new(scene);
     if let Some(plan) = raytree::render::adaptive_plan(&integrator) {
         let pixels = u64::from(w) * u64::from(h);
         let per_pixel = stats.samples as f64 / pixels.max(1) as f64;
@@ -122,7 +122,7 @@ pub fn run(a: &RenderArgs) -> Result<()> {
             Some(d) => format!("from depth {d}"),
             None => format!(
                 "where the throughput was below {:.2e}",
-                raytree::trace::bound::carried::effective_roulette_below(scene)
+                raytree::integrator::bound::carried::effective_roulette_below(scene)
             ),
         };
         sayln!(

@@ -5,9 +5,9 @@
 //! leaves the beauty samples untouched.
 
 use crate::bsdf::{Bsdf, Lobe, LobeKind, MAX_LOBES, luminance};
+use crate::integrator::Whitted;
 use crate::math::{Ray, Rgb};
 use crate::media::MediaStack;
-use crate::trace::Tracer;
 use glam::{DVec2, DVec3};
 
 /// Delta bounces followed before giving up (a ray trapped between mirrors).
@@ -27,7 +27,7 @@ pub struct FeatureSample {
 
 /// The features along camera `ray` (the tracer's scene, offsets and surface interactions).
 #[must_use]
-pub fn first_non_delta(tracer: &Tracer<'_>, camera: Ray) -> FeatureSample {
+pub fn first_non_delta(tracer: &Whitted<'_>, camera: Ray) -> FeatureSample {
     let scene = tracer.scene();
     let mut media = MediaStack::AIR;
     let mut tint = Rgb::ONE;
@@ -40,7 +40,7 @@ pub fn first_non_delta(tracer: &Tracer<'_>, camera: Ray) -> FeatureSample {
                 normal: DVec3::ZERO,
             };
         };
-        let si = tracer.surface(&ray, &hit, &media);
+        let si = tracer.core().surface(&ray, &hit, &media);
         normal = si.ns;
         let bsdf = Bsdf::at(&si, si.material.roughness);
         if bsdf.lobes().next().is_none() {
@@ -89,7 +89,11 @@ pub fn first_non_delta(tracer: &Tracer<'_>, camera: Ray) -> FeatureSample {
         );
         let (p, n, entering, ior) = (si.p, si.n, si.entering, si.material.ior);
         let side = if s.wi.dot(n) < 0.0 { -n } else { n };
-        ray = tracer.spawn_ray((hit.object, hit.triangle), p, side, s.wi);
+        let from = crate::interaction::SurfaceId {
+            object: hit.object,
+            triangle: hit.triangle,
+        };
+        ray = tracer.core().spawn_ray(from, p, side, s.wi);
         if transmits {
             media = if entering {
                 media.entered(hit.object, ior.unwrap_or(media.ior()))

@@ -8,11 +8,11 @@
 use super::Features;
 use super::features::first_non_delta;
 use crate::bsdf::luminance;
+use crate::integrator::{Integrator, NoopRecorder, Whitted};
 use crate::math::Rgb;
 use crate::render::pixel_loop::{self, Sample, SampleSink};
 use crate::render::{DiagnosticMap, Image, RenderStats};
 use crate::sampling::{PixelSampler, SceneSampler};
-use crate::trace::{Integrator, NoopRecorder, Tracer};
 use glam::DVec3;
 
 /// One pixel's features.
@@ -25,7 +25,7 @@ struct Px {
 
 /// The gather's sink of the pixel loop: each sample's feature ray
 /// ([`first_non_delta`] of its camera ray) and luminance.
-struct FeatureSink<'a>(&'a Tracer<'a>, NoopRecorder);
+struct FeatureSink<'a>(&'a Whitted<'a>, NoopRecorder);
 
 /// One pixel's sums while its samples come in.
 #[derive(Default)]
@@ -107,7 +107,7 @@ pub fn gather_counted<I: Integrator, S: PixelSampler>(
     let scene = integrator.scene();
     let (w, h) = (scene.camera.width, scene.camera.height);
     let spp = scene.settings.spp.max(1);
-    let tracer = Tracer::new(scene);
+    let tracer = Whitted::new(scene);
     let make = || FeatureSink(&tracer, NoopRecorder);
     let rows = pixel_loop::rows(integrator, sampler, make, progress);
     let first = crate::render::first_spp(integrator);

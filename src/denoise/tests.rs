@@ -122,7 +122,7 @@ fn a_deterministic_whitted_render_is_unchanged() {
 #[test]
 fn features_follow_mirrors_and_escaping_rays_have_no_normal() {
     let scene = crate::Scene::default_scene();
-    let tracer = crate::trace::Tracer::new(&scene);
+    let tracer = crate::integrator::Whitted::new(&scene);
     let film = scene.camera.film();
     // Top-left corner: the sky.
     let sky = first_non_delta(&tracer, film.ray(0.5, 0.5));

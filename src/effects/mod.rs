@@ -3,7 +3,9 @@
 use crate::math::{FresnelModel, Rgb, critical_angle};
 use crate::scene::{LightKind, Scene, ShadowMode};
 
+mod dark;
 mod path;
+pub use dark::{DARK_PROBE, dark_emitters};
 
 /// The effects the tracer evaluates for one scene and its settings. Computed once per tracer.
 ///
@@ -235,13 +237,13 @@ impl EffectPlan {
                 },
             ),
             {
-                let (on, why) = crate::trace::bound::carried::roulette_note(scene);
+                let (on, why) = crate::integrator::bound::carried::roulette_note(scene);
                 line("glass roulette", on, why)
             },
             line(
                 "supersampling",
                 self.supersampling,
-                crate::render::antialiasing_note(&crate::trace::SceneIntegrator::new(scene)),
+                crate::render::antialiasing_note(&crate::integrator::SceneIntegrator::new(scene)),
             ),
             line("area lights", self.area_lights, {
                 let emitters: Vec<&str> = (0..scene.objects.len())
@@ -361,10 +363,10 @@ fn max_ior_step(scene: &Scene) -> Option<(f64, f64)> {
 }
 
 /// `; emitter X emits towards nothing ...` for the area lights that light no surface
-/// ([`crate::lights::dark_emitters`]), else empty.
+/// ([`dark_emitters`]), else empty.
 #[must_use]
 pub fn dark_note(scene: &Scene) -> String {
-    let dark = crate::lights::dark_emitters(scene);
+    let dark = dark_emitters(scene);
     if dark.is_empty() {
         return String::new();
     }
@@ -376,7 +378,7 @@ pub fn dark_note(scene: &Scene) -> String {
     format!(
         "; {who} {} {verb} towards nothing (none of {} rays leaving its emitting side meets a surface): it lights no surface, only its own face can be seen",
         dark.join(", "),
-        crate::lights::DARK_PROBE
+        DARK_PROBE
     )
 }
 

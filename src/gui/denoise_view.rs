@@ -7,8 +7,8 @@
 
 use super::document::Document;
 use crate::denoise::{DenoiseParams, denoise, gather};
+use crate::integrator::SceneIntegrator;
 use crate::render::Image;
-use crate::trace::SceneIntegrator;
 use std::sync::Arc;
 use std::sync::mpsc::{Receiver, channel};
 use web_time::Instant;
@@ -78,7 +78,7 @@ impl DenoiseView {
             let (tx, rx) = channel();
             let spawned = super::background::spawn(
                 "raytree-denoise",
-                Some(crate::trace::THREAD_STACK_BYTES),
+                Some(crate::integrator::THREAD_STACK_BYTES),
                 move || {
                     let start = Instant::now();
                     let (raw, _, features) = gather(&SceneIntegrator::new(&scene), &|_| {});

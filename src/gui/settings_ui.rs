@@ -82,7 +82,7 @@ pub fn settings_ui(ui: &mut egui::Ui, doc: &Document, cmds: &mut Vec<Command>) {
     let mut auto = s.antialiasing == Antialiasing::Auto;
     ui.checkbox(&mut auto, "antialias edges only")
         .on_hover_ui(|ui| {
-            let integrator = crate::trace::SceneIntegrator::new(&doc.scene);
+            let integrator = crate::integrator::SceneIntegrator::new(&doc.scene);
             ui.label(crate::render::antialiasing_note(&integrator));
         });
     s.antialiasing = if auto {
@@ -179,9 +179,9 @@ fn stochastic_ui(ui: &mut egui::Ui, doc: &Document, s: &mut crate::scene::Settin
 }
 
 /// The min-weight cut: "auto" shows the cut chosen from the tolerance and the scene
-/// ([`crate::trace::bound`]); unticking starts the slider there; 0 is the exhaustive tree.
+/// ([`crate::integrator::bound`]); unticking starts the slider there; 0 is the exhaustive tree.
 fn min_weight_ui(ui: &mut egui::Ui, doc: &Document, s: &mut crate::scene::Settings) {
-    let auto_value = crate::trace::bound::auto_min_weight(&doc.scene, s);
+    let auto_value = crate::integrator::bound::auto_min_weight(&doc.scene, s);
     s.min_weight = auto_weight_ui(
         ui,
         s.min_weight,
@@ -193,14 +193,14 @@ fn min_weight_ui(ui: &mut egui::Ui, doc: &Document, s: &mut crate::scene::Settin
 
 /// The roulette below a weight at glass (Whitted scenes with a transmissive material): off by
 /// default ("default" ticked: every glass hit splits, the image is deterministic); unticking
-/// starts the slider at the weight suggested for the scene ([`crate::trace::bound::carried`]).
+/// starts the slider at the weight suggested for the scene ([`crate::integrator::bound::carried`]).
 fn roulette_ui(ui: &mut egui::Ui, doc: &Document, s: &mut crate::scene::Settings) {
     if s.integrator != IntegratorKind::Whitted
         || !doc.scene.used_materials().any(|m| m.is_transmissive())
     {
         return;
     }
-    let suggested = crate::trace::bound::carried::auto_roulette_below(&doc.scene, s);
+    let suggested = crate::integrator::bound::carried::auto_roulette_below(&doc.scene, s);
     let hover = format!(
         "off by default: every glass hit splits and the image is deterministic. Unticked, glass \
          hits weaker than the weight follow one of their two rays (Russian roulette, exact in \

@@ -2,8 +2,8 @@
 //! the same pass that renders the image (so the colour is bit-identical to `raytree render`).
 
 use crate::aov::CLASSES;
+use crate::integrator::Recorder;
 use crate::math::Rgb;
-use crate::trace::Recorder;
 use crate::tree::{EndReason, NodeId, RayNode};
 
 /// What the debug views show for one pixel (summed over its samples).

@@ -96,7 +96,7 @@ impl VersusPanel {
                 let repaint = ctx.clone();
                 let spawned = super::background::spawn(
                     "raytree-versus",
-                    Some(crate::trace::THREAD_STACK_BYTES),
+                    Some(crate::integrator::THREAD_STACK_BYTES),
                     move || {
                         let r = versus(&scene, None, &|_| {}).map_err(|e| e.to_string());
                         if tx.send(r).is_ok() {

@@ -7,12 +7,17 @@
 //! (pbrt-v4 `Shape::PDF(ctx, wi)` default; Veach's thesis eq. 8.10). See `docs/monte-carlo.md`.
 
 mod emit;
+mod light;
+pub mod mesh;
 mod prepared;
+mod sampler;
 #[cfg(test)]
 mod tests;
 
-pub use emit::{DARK_PROBE, EmittedRay, Emitter, bounding_sphere, dark_emitters, emitters};
-pub use prepared::{PreparedEmitter, PreparedPlanar};
+pub use emit::EmittedRay;
+pub use light::{AreaShape, Light};
+pub use prepared::PreparedPlanar;
+pub use sampler::LightSampler;
 
 use crate::math::Rgb;
 use crate::sampling::warp::{

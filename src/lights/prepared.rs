@@ -1,12 +1,11 @@
 //! Area lights with what does not depend on the shading point computed once per light, for
-//! the path tracer's light table: a quad's or triangle's unit normal, `edge_u x edge_v` and
+//! every light sampler ([`super::AreaShape::Planar`]): a quad's or triangle's unit normal, `edge_u x edge_v` and
 //! area (a cross product, a square root and a division per light sample before). The samples
 //! and pdfs are those of [`PlanarEmitter::sample`] and [`PlanarEmitter::pdf`] bit for bit (the
 //! same code, given the same values).
 
 use super::{LightSample, PlanarEmitter};
 use crate::math::Rgb;
-use crate::scene::AreaEmitter;
 use glam::{DVec2, DVec3};
 
 /// A [`PlanarEmitter`] with its normal (`None` when degenerate), `edge_u x edge_v`, its
@@ -34,6 +33,30 @@ impl PreparedPlanar {
         }
     }
 
+    /// The emitter.
+    #[must_use]
+    pub fn emitter(&self) -> &PlanarEmitter {
+        &self.emitter
+    }
+
+    /// Area (0 for degenerate edges), as [`PlanarEmitter::area`].
+    #[must_use]
+    pub fn area(&self) -> f64 {
+        self.area
+    }
+
+    /// Unit normal on the outer side (`None` when degenerate).
+    #[must_use]
+    pub fn normal(&self) -> Option<DVec3> {
+        self.normal
+    }
+
+    /// A point uniform in area ([`PlanarEmitter::sample_point`]).
+    #[must_use]
+    pub fn sample_point(&self, u: DVec2) -> DVec3 {
+        self.emitter.sample_point(u)
+    }
+
     /// [`PlanarEmitter::sample`].
     #[inline]
     #[must_use]
@@ -51,47 +74,6 @@ impl PreparedPlanar {
         };
         let c = (self.cross, self.cross2);
         self.emitter.pdf_given(n, c, || self.area, p, wi)
-    }
-}
-
-/// An [`AreaEmitter`] prepared for many light samples: planar emitters as
-/// [`PreparedPlanar`], spheres and meshes as they are.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub enum PreparedEmitter<'a> {
-    /// A quad or triangle.
-    Planar(PreparedPlanar),
-    /// A sphere or a mesh.
-    Other(AreaEmitter<'a>),
-}
-
-impl<'a> PreparedEmitter<'a> {
-    /// `e` prepared.
-    #[must_use]
-    pub fn new(e: AreaEmitter<'a>) -> Self {
-        match e {
-            AreaEmitter::Planar(p) => Self::Planar(PreparedPlanar::new(p)),
-            other => Self::Other(other),
-        }
-    }
-
-    /// [`AreaEmitter::sample`].
-    #[inline]
-    #[must_use]
-    pub fn sample(&self, p: DVec3, emission: Rgb, u: (f64, f64)) -> Option<LightSample> {
-        match self {
-            Self::Planar(e) => e.sample(p, emission, DVec2::new(u.0, u.1)),
-            Self::Other(e) => e.sample(p, emission, u),
-        }
-    }
-
-    /// [`AreaEmitter::pdf`].
-    #[inline]
-    #[must_use]
-    pub fn pdf(&self, p: DVec3, wi: DVec3) -> f64 {
-        match self {
-            Self::Planar(e) => e.pdf(p, wi),
-            Self::Other(e) => e.pdf(p, wi),
-        }
     }
 }
 
@@ -120,11 +102,11 @@ mod tests {
         let radiance = Rgb::new(1.0, 2.0, 3.0);
         let mut made = 0;
         for e in [quad, tri, flat] {
-            let prepared = PreparedEmitter::new(AreaEmitter::Planar(e));
+            let prepared = PreparedPlanar::new(e);
             for _ in 0..2000 {
                 let p = 4.0 * (DVec3::new(rng.next_f64(), rng.next_f64(), rng.next_f64()) - 0.5);
                 let u = (rng.next_f64(), rng.next_f64());
-                let got = prepared.sample(p, radiance, u);
+                let got = prepared.sample(p, radiance, DVec2::new(u.0, u.1));
                 assert_eq!(got, e.sample(p, radiance, DVec2::new(u.0, u.1)));
                 made += usize::from(got.is_some());
                 let wi =

@@ -3,7 +3,6 @@
 use super::*;
 use crate::sampling::SplitMix64;
 use crate::sampling::chi2::test_directions;
-use crate::scene::{Light, LightKind};
 use std::f64::consts::PI;
 
 /// Mean and standard error of `L max(0, n.wi) / pdf` over `n` samples (failures count 0).
@@ -242,28 +241,25 @@ fn back_sides_and_insides_emit_nothing() {
 #[test]
 fn delta_lights_match_the_scene_lights() {
     let p = DVec3::new(1.0, 2.0, 3.0);
-    let light = Light {
-        name: "key".into(),
-        kind: LightKind::Point {
-            position: DVec3::new(1.0, 6.0, 3.0),
-            intensity: Rgb::splat(32.0),
-        },
+    let light = Light::Point {
+        position: DVec3::new(1.0, 6.0, 3.0),
+        intensity: Rgb::splat(32.0),
     };
-    let s = light.sample(p, (0.5, 0.5));
+    let s = light.sample_li(p, (0.5, 0.5)).unwrap();
     assert_eq!(
         s,
         sample_point_light(p, DVec3::new(1.0, 6.0, 3.0), Rgb::splat(32.0))
     );
     assert!(s.delta && s.pdf == 1.0 && s.distance == 4.0 && s.radiance == Rgb::splat(2.0));
-    let sun = Light {
-        name: "sun".into(),
-        kind: LightKind::Directional {
-            direction: -DVec3::Y,
-            irradiance: Rgb::ONE,
-        },
+    let sun = Light::Directional {
+        direction: -DVec3::Y,
+        irradiance: Rgb::ONE,
+        center: DVec3::ZERO,
+        radius: 1.0,
     };
     assert_eq!(
-        sun.sample(p, (0.5, 0.5)),
-        sample_directional_light(-DVec3::Y, Rgb::ONE)
+        sun.sample_li(p, (0.5, 0.5)),
+        Some(sample_directional_light(-DVec3::Y, Rgb::ONE))
     );
+    assert_eq!(sun.pdf_li(p, DVec3::Y), 0.0, "no direction has a density");
 }

@@ -17,9 +17,9 @@
 
 use super::AdaptivePlan;
 use super::pixel_loop::{Beauty, Camera, PixelOut, SampleSink, SinkRow, diag, one_sample};
+use crate::integrator::{Integrator, NoopRecorder, RayCounts, Recorder};
 use crate::math::Rgb;
 use crate::sampling::{PixelSampler, SobolSampler, Spread};
-use crate::trace::{Integrator, NoopRecorder, RayCounts, Recorder};
 use rayon::prelude::*;
 
 /// Automatic antialiasing's sampler: the pixel's Owen-scrambled

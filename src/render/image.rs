@@ -1,7 +1,7 @@
 //! The render's outputs: the image, what the render did, per-pixel diagnostic counts.
 
+use crate::integrator::RayCounts;
 use crate::math::Rgb;
-use crate::trace::RayCounts;
 
 /// A linear-radiance image, row-major, top row first.
 #[derive(Clone, Debug, PartialEq)]

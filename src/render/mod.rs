@@ -7,13 +7,13 @@
 //! render and the denoiser's gather are sinks of the same loop.
 
 use crate::geometry::Shape;
-use crate::math::{Ray, Rgb};
-use crate::sampling::{PixelFilter, PixelSampler, SceneSampler, StratifiedJitter};
-use crate::scene::{Film, Scene};
-use crate::trace::{
+use crate::integrator::{
     DiagnosticRecorder, Integrator, NoopRecorder, RayCounts, Recorder, SceneIntegrator,
     TreeRecorder,
 };
+use crate::math::{Ray, Rgb};
+use crate::sampling::{PixelFilter, PixelSampler, SceneSampler, StratifiedJitter};
+use crate::scene::{Film, Scene};
 use crate::tree::{RayTree, SampleRecord, TREE_SCHEMA};
 use glam::DVec2;
 use rayon::prelude::*;
@@ -135,9 +135,9 @@ pub fn trace_pixel(scene: &Scene, x: u32, y: u32) -> Option<RayTree> {
         .map(|p| samples.len() > p.first as usize);
     // The settings as traced: the automatic cut and roulette weight are recorded as the values
     // they took (an automatic roulette that is off stays absent).
-    let roulette = crate::trace::bound::carried::effective_roulette_below(scene);
+    let roulette = crate::integrator::bound::carried::effective_roulette_below(scene);
     let settings = crate::scene::Settings {
-        min_weight: Some(crate::trace::bound::effective_min_weight(scene)),
+        min_weight: Some(crate::integrator::bound::effective_min_weight(scene)),
         roulette_below: (roulette > 0.0 || scene.settings.roulette_below.is_some())
             .then_some(roulette),
         ..scene.settings

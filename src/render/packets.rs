@@ -4,9 +4,9 @@
 use super::camera_sample;
 use crate::bvh::TraversalCost;
 use crate::bvh::wide::PACKET;
+use crate::integrator::{Integrator, RayCounts, Recorder};
 use crate::math::Rgb;
 use crate::sampling::PixelSampler;
-use crate::trace::{Integrator, RayCounts, Recorder};
 use rayon::prelude::*;
 
 /// Rows `rows` in bands of [`TILE`] rows from `rows.start`, in parallel, each traced by

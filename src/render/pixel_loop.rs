@@ -11,10 +11,10 @@
 //! pixel data is `()`, so the render's loop compiles to the plain loop.
 
 use super::{Image, RenderStats, camera_sample};
+use crate::integrator::{Integrator, RayCounts, Recorder};
 use crate::math::{Ray, Rgb};
 use crate::sampling::{PixelFilter, PixelSampler};
 use crate::scene::{Film, IntegratorKind};
-use crate::trace::{Integrator, RayCounts, Recorder};
 use crate::tree::{NodeId, SampleRecord};
 use rayon::prelude::*;
 

@@ -2,8 +2,8 @@
 //! automatic antialiasing (`settings.antialiasing: "auto"`), and the words `raytree effects`
 //! and the inspector use for it.
 
+use crate::integrator::Integrator;
 use crate::scene::{AUTO_THRESHOLD, Antialiasing};
-use crate::trace::Integrator;
 
 /// Which samples the pixels of a render take when some take more than others.
 #[derive(Clone, Copy, Debug, PartialEq)]

@@ -6,6 +6,7 @@ mod check;
 pub mod desc;
 mod error;
 mod generated;
+mod lights;
 mod locate;
 mod mesh_object;
 mod packet;
@@ -201,57 +202,6 @@ pub enum LightKind {
     },
 }
 
-/// The sampling geometry of an area light ([`Scene::area_light`]).
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub enum AreaEmitter<'a> {
-    /// Sampled uniformly in the cone it subtends.
-    Sphere {
-        /// Centre.
-        center: DVec3,
-        /// Radius.
-        radius: f64,
-    },
-    /// A quad or triangle, sampled uniformly by area.
-    Planar(crate::lights::PlanarEmitter),
-    /// A triangle mesh, sampled uniformly over its whole area ([`crate::mesh::Mesh::sample_emitter`]).
-    Mesh(&'a crate::mesh::Mesh),
-}
-
-impl AreaEmitter<'_> {
-    /// A [`crate::lights::LightSample`] towards this emitter (radiance `emission`) from `p`,
-    /// `None` where `p` cannot see its outer side.
-    #[must_use]
-    pub fn sample(
-        &self,
-        p: DVec3,
-        emission: Rgb,
-        u: (f64, f64),
-    ) -> Option<crate::lights::LightSample> {
-        let u = glam::DVec2::new(u.0, u.1);
-        match *self {
-            AreaEmitter::Sphere { center, radius } => {
-                crate::lights::sample_sphere(p, center, radius, emission, u)
-            }
-            AreaEmitter::Planar(e) => e.sample(p, emission, u),
-            AreaEmitter::Mesh(m) => m.sample_emitter(p, emission, u),
-        }
-    }
-
-    /// The solid-angle pdf of [`Self::sample`] for direction `wi` from `p` (0 where the ray
-    /// misses the emitter's outer side): what multiple importance sampling weighs a direction
-    /// found by BSDF sampling with.
-    #[must_use]
-    pub fn pdf(&self, p: DVec3, wi: DVec3) -> f64 {
-        match *self {
-            AreaEmitter::Sphere { center, radius } => {
-                crate::lights::sphere_pdf(p, center, radius, wi)
-            }
-            AreaEmitter::Planar(e) => e.pdf(p, wi),
-            AreaEmitter::Mesh(m) => m.emitter_pdf(p, wi),
-        }
-    }
-}
-
 /// A named light.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Light {
@@ -354,32 +304,6 @@ impl Scene {
             (Shape::Mesh(m), Some(t)) => Cow::Owned(Shape::mesh_triangle(m, t as usize)),
             (shape, _) => Cow::Borrowed(shape),
         }
-    }
-
-    /// Object `i` as an area light, when its material emits and its shape can be sampled
-    /// (sphere by its cone, quad, triangle and mesh by area; boxes and planes are not
-    /// sampled): the sampler and the emitted radiance.
-    #[must_use]
-    #[inline]
-    pub fn area_light(&self, i: usize) -> Option<(AreaEmitter<'_>, Rgb)> {
-        let emission = self.material_of(i).emission;
-        if emission.max_element() <= 0.0 || self.accel.is_coincident_copy(i, self.objects.len()) {
-            return None;
-        }
-        let e = match self.objects[i].shape {
-            Shape::Sphere { center, radius } => AreaEmitter::Sphere { center, radius },
-            Shape::Quad {
-                vertices: [a, b, _, d],
-                ..
-            } => AreaEmitter::Planar(crate::lights::PlanarEmitter::quad(a, b - a, d - a)),
-            Shape::Triangle {
-                vertices: [a, b, c],
-                ..
-            } => AreaEmitter::Planar(crate::lights::PlanarEmitter::triangle(a, b, c)),
-            Shape::Mesh(ref m) => AreaEmitter::Mesh(m),
-            _ => return None,
-        };
-        Some((e, emission))
     }
 
     /// The material of object `i`.

@@ -1,12 +1,12 @@
 //! What accuracy costs in time: error metrics, the settings sweep against a reference, and the
 //! Pareto front of error versus time. Pure apart from reading the clock.
 
+use crate::integrator::RayCounts;
+use crate::integrator::bound::auto_min_weight;
 use crate::math::FresnelModel;
 use crate::math::{Rgb, linear_to_srgb};
 use crate::render::{Image, render};
 use crate::scene::{OffsetStrategy, Scene, Settings};
-use crate::trace::RayCounts;
-use crate::trace::bound::auto_min_weight;
 use serde::Serialize;
 use web_time::Instant;
 

@@ -3,14 +3,14 @@
 
 use super::with_settings;
 use crate::effects::EffectPlan;
+use crate::integrator::SceneIntegrator;
+use crate::integrator::bound::auto_min_weight;
 use crate::math::FresnelModel;
 use crate::render::adaptive_plan;
 use crate::scene::{
     AdaptiveDesc, Antialiasing, FilterDesc, IntegratorKind, OffsetStrategy, SamplerKind, Scene,
     Settings,
 };
-use crate::trace::SceneIntegrator;
-use crate::trace::bound::auto_min_weight;
 
 /// The sweep: which values each axis takes.
 #[derive(Clone, Debug, PartialEq)]
@@ -23,7 +23,7 @@ pub struct Sweep {
     pub spps: Vec<u32>,
     /// Offset strategies.
     pub offsets: Vec<OffsetStrategy>,
-    /// Min weights; `None` is the automatic cut (the default, `crate::trace::bound`).
+    /// Min weights; `None` is the automatic cut (the default, `crate::integrator::bound`).
     pub min_weights: Vec<Option<f64>>,
     /// Shadow rays per area light (rows only when the scene has an emissive sphere, quad or
     /// triangle to sample and something it lights).
@@ -271,7 +271,7 @@ impl Sweep {
             let label = match w {
                 Some(w) => format!("{w:e}"),
                 None => {
-                    let auto = crate::trace::bound::carried::auto_roulette_below(scene, &s);
+                    let auto = crate::integrator::bound::carried::auto_roulette_below(scene, &s);
                     s.roulette_below = Some(auto);
                     format!("suggested ({auto:.1e})")
                 }

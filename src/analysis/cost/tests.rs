@@ -41,7 +41,7 @@ fn the_sweep_has_an_auto_min_weight_row_and_an_exhaustive_reference() {
     let r = run(&scene, &sweep, &|_, _| {});
     assert_eq!(r.reference.min_weight, Some(0.0));
     assert_eq!(r.base.min_weight, None);
-    let auto = crate::trace::bound::auto_min_weight(&scene, &r.base);
+    let auto = crate::integrator::bound::auto_min_weight(&scene, &r.base);
     assert!(auto > 0.0 && auto == r.base_min_weight);
     let values: Vec<&str> = r.rows.iter().map(|row| row.value.as_str()).collect();
     assert_eq!(values, ["0e0", &format!("auto ({auto:.1e})"), "1e-2"]);

@@ -1,9 +1,9 @@
 //! What the bounded-error cut saves, measured on a grid of pixels.
 
+use crate::integrator::bound::carried::effective_roulette_below;
+use crate::integrator::bound::effective_min_weight;
+use crate::integrator::{NoopRecorder, RayCounts};
 use crate::scene::{Scene, Settings};
-use crate::trace::bound::carried::effective_roulette_below;
-use crate::trace::bound::effective_min_weight;
-use crate::trace::{NoopRecorder, RayCounts};
 
 /// Rays of the default (automatic `min_weight`) tree against the exhaustive one on a grid of
 /// pixels.
@@ -111,7 +111,7 @@ pub fn cut_savings(
     let (cut, full) = (with(None, None), with(Some(0.0), Some(0.0)));
     let pixels = grid_pixels(scene.camera.width, scene.camera.height, cols, rows);
     let count = |s: &Scene| {
-        let tracer = crate::trace::Tracer::new(s);
+        let tracer = crate::integrator::Whitted::new(s);
         let mut counts = RayCounts::default();
         for &(x, y) in &pixels {
             if cancelled() {

@@ -29,10 +29,10 @@ pub use ui::{progressive_ui, title_ui};
 
 use super::worker::Delivery;
 use crate::bsdf::luminance;
+use crate::integrator::{Integrator, NoopRecorder, RayCounts};
 use crate::math::Rgb;
 use crate::render::pixel_loop::{self, Beauty};
 use crate::sampling::{PixelSampler, SceneSampler};
-use crate::trace::{Integrator, NoopRecorder, RayCounts};
 use rayon::prelude::*;
 use web_time::Instant;
 

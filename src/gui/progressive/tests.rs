@@ -1,7 +1,7 @@
 use super::*;
 use crate::gui::worker::Worker;
+use crate::integrator::SceneIntegrator;
 use crate::scene::{SamplerKind, Scene};
-use crate::trace::SceneIntegrator;
 use std::sync::Arc;
 
 fn cornell(size: u32) -> Scene {

@@ -8,9 +8,9 @@
 use super::{Delivery, Job};
 use crate::gui::progressive;
 use crate::gui::stats::{PixelStats, StatsRecorder};
+use crate::integrator::{NoopRecorder, RayCounts, SceneIntegrator};
 use crate::math::Rgb;
 use crate::render::{render_pixel_with, render_rows};
-use crate::trace::{NoopRecorder, RayCounts, SceneIntegrator};
 use rayon::prelude::*;
 use web_time::Instant;
 

@@ -10,9 +10,9 @@
 //! abandons a job as soon as it sees a newer generation, and the receiver ignores stale bands.
 
 use super::stats::PixelStats;
+use crate::integrator::{RayCounts, SceneIntegrator};
 use crate::math::Rgb;
 use crate::scene::Scene;
-use crate::trace::{RayCounts, SceneIntegrator};
 use job::JobRun;
 use std::sync::Arc;
 use std::sync::atomic::{AtomicU64, Ordering};
@@ -128,7 +128,7 @@ impl Worker {
         let current = Arc::clone(&generation);
         let thread = std::thread::Builder::new()
             .name("raytree-render".into())
-            .stack_size(crate::trace::THREAD_STACK_BYTES)
+            .stack_size(crate::integrator::THREAD_STACK_BYTES)
             .spawn(move || {
                 while let Ok(mut job) = job_rx.recv() {
                     // Only the newest queued job matters.

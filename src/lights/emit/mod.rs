@@ -20,44 +20,14 @@
 //! point light `4 pi I`, directional `pi R^2 E`, area `pi A L`): the powers by which light
 //! sampling chooses lights (`trace::path::lights`), which the tests check.
 
+use super::{AreaShape, Light};
 use crate::math::Rgb;
 use crate::sampling::warp::{
     orthonormal_basis, square_to_concentric_disk, square_to_cosine_hemisphere,
     square_to_uniform_sphere,
 };
-use crate::scene::AreaEmitter;
 use glam::{DVec2, DVec3};
 use std::f64::consts::PI;
-
-/// A light as a source of emitted rays.
-#[derive(Clone, Copy, Debug)]
-pub enum Emitter<'a> {
-    /// A point light of intensity `intensity`.
-    Point {
-        /// Position.
-        position: DVec3,
-        /// Radiant intensity.
-        intensity: Rgb,
-    },
-    /// A directional light over a scene of bounding sphere (`center`, `radius`).
-    Directional {
-        /// Unit direction of travel.
-        direction: DVec3,
-        /// Irradiance on a surface facing the light.
-        irradiance: Rgb,
-        /// Centre of the scene's bounding sphere.
-        center: DVec3,
-        /// Its radius (> 0).
-        radius: f64,
-    },
-    /// An emissive object of radiance `emission` on its outer side.
-    Area {
-        /// Its shape.
-        shape: AreaEmitter<'a>,
-        /// Emitted radiance.
-        emission: Rgb,
-    },
-}
 
 /// A ray leaving a light.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -96,36 +66,36 @@ impl EmittedRay {
 }
 
 /// A point uniform over `shape`'s area and the outward normal there, with the area.
-fn sample_area(shape: &AreaEmitter<'_>, u: DVec2) -> Option<(DVec3, DVec3, f64)> {
+fn sample_area(shape: &AreaShape<'_>, u: DVec2) -> Option<(DVec3, DVec3, f64)> {
     match *shape {
-        AreaEmitter::Sphere { center, radius } => {
+        AreaShape::Sphere { center, radius } => {
             let n = square_to_uniform_sphere(u);
             Some((center + radius * n, n, 4.0 * PI * radius * radius))
         }
-        AreaEmitter::Planar(e) => Some((e.sample_point(u), e.normal()?, e.area())),
-        AreaEmitter::Mesh(m) => {
-            let (p, n) = m.sample_point(u)?;
+        AreaShape::Planar(e) => Some((e.sample_point(u), e.normal()?, e.area())),
+        AreaShape::Mesh(m) => {
+            let (p, n) = super::mesh::sample_point(m, u)?;
             Some((p, n, m.area()))
         }
     }
 }
 
-/// The outward normal of `shape` at `p` (on it), for [`Emitter::pdf_le`].
-fn normal_at(shape: &AreaEmitter<'_>, p: DVec3, hint: Option<DVec3>) -> Option<DVec3> {
+/// The outward normal of `shape` at `p` (on it), for [`Light::pdf_le`].
+fn normal_at(shape: &AreaShape<'_>, p: DVec3, hint: Option<DVec3>) -> Option<DVec3> {
     match *shape {
-        AreaEmitter::Sphere { center, .. } => hint.or_else(|| (p - center).try_normalize()),
-        AreaEmitter::Planar(e) => e.normal(),
-        AreaEmitter::Mesh(_) => hint,
+        AreaShape::Sphere { center, .. } => hint.or_else(|| (p - center).try_normalize()),
+        AreaShape::Planar(e) => e.normal(),
+        AreaShape::Mesh(_) => hint,
     }
 }
 
-impl Emitter<'_> {
+impl Light<'_> {
     /// An emitted ray from `u_pos` (the origin) and `u_dir` (the direction); `None` for a
     /// degenerate light (zero area).
     #[must_use]
     pub fn sample_le(&self, u_pos: DVec2, u_dir: DVec2) -> Option<EmittedRay> {
         match *self {
-            Emitter::Point {
+            Light::Point {
                 position,
                 intensity,
             } => Some(EmittedRay {
@@ -138,7 +108,7 @@ impl Emitter<'_> {
                 delta_pos: true,
                 delta_dir: false,
             }),
-            Emitter::Directional {
+            Light::Directional {
                 direction,
                 irradiance,
                 center,
@@ -157,7 +127,9 @@ impl Emitter<'_> {
                     delta_dir: true,
                 })
             }
-            Emitter::Area { shape, emission } => {
+            Light::Area {
+                shape, emission, ..
+            } => {
                 let (origin, n, area) = sample_area(&shape, u_pos)?;
                 if !(area > 0.0 && area.is_finite()) {
                     return None;
@@ -180,21 +152,17 @@ impl Emitter<'_> {
         }
     }
 
-    /// The densities `(pdf_pos, pdf_dir)` with which [`Emitter::sample_le`] draws a ray from
+    /// The densities `(pdf_pos, pdf_dir)` with which [`Light::sample_le`] draws a ray from
     /// `origin` (on the light; for a mesh, with its outward `normal` there) along `direction`:
     /// for delta parts the other density alone (the delta's own is 1), zero where the light
     /// cannot emit that ray (behind an area light's outer side).
     #[must_use]
     pub fn pdf_le(&self, origin: DVec3, normal: Option<DVec3>, direction: DVec3) -> (f64, f64) {
         match *self {
-            Emitter::Point { .. } => (1.0, 1.0 / (4.0 * PI)),
-            Emitter::Directional { radius, .. } => (1.0 / (PI * radius * radius), 1.0),
-            Emitter::Area { shape, .. } => {
-                let area = match shape {
-                    AreaEmitter::Sphere { radius, .. } => 4.0 * PI * radius * radius,
-                    AreaEmitter::Planar(e) => e.area(),
-                    AreaEmitter::Mesh(m) => m.area(),
-                };
+            Light::Point { .. } => (1.0, 1.0 / (4.0 * PI)),
+            Light::Directional { radius, .. } => (1.0 / (PI * radius * radius), 1.0),
+            Light::Area { shape, .. } => {
+                let area = shape.area();
                 let Some(n) = normal_at(&shape, origin, normal) else {
                     return (0.0, 0.0);
                 };
@@ -206,98 +174,6 @@ impl Emitter<'_> {
             }
         }
     }
-}
-
-/// The sphere around every bounded object of `scene` (centre, radius; radius 1 about the
-/// origin when there is none, or when it is not finite): the disc over which a directional
-/// light's flux is counted and from which its emitted rays start.
-#[must_use]
-pub fn bounding_sphere(scene: &crate::Scene) -> (DVec3, f64) {
-    let mut lo = DVec3::splat(f64::INFINITY);
-    let mut hi = DVec3::splat(f64::NEG_INFINITY);
-    for o in &scene.objects {
-        if let Some((a, b)) = o.shape.bounds() {
-            lo = lo.min(a);
-            hi = hi.max(b);
-        }
-    }
-    let r = 0.5 * (hi - lo).length();
-    if r.is_finite() && r > 0.0 {
-        (0.5 * lo + 0.5 * hi, r)
-    } else {
-        (DVec3::ZERO, 1.0)
-    }
-}
-
-/// Every light of `scene` as an [`Emitter`]: its point and directional lights in order, then
-/// its area lights in object order (as light sampling numbers them), each with its name.
-#[must_use]
-pub fn emitters(scene: &crate::Scene) -> Vec<(String, Emitter<'_>)> {
-    use crate::scene::LightKind;
-    let (center, radius) = bounding_sphere(scene);
-    let delta = scene.lights.iter().map(|l| {
-        let e = match l.kind {
-            LightKind::Point {
-                position,
-                intensity,
-            } => Emitter::Point {
-                position,
-                intensity,
-            },
-            LightKind::Directional {
-                direction,
-                irradiance,
-            } => Emitter::Directional {
-                direction,
-                irradiance,
-                center,
-                radius,
-            },
-        };
-        (l.name.clone(), e)
-    });
-    let area = (0..scene.objects.len()).filter_map(|i| {
-        let (shape, emission) = scene.area_light(i)?;
-        Some((
-            scene.objects[i].name.clone(),
-            Emitter::Area { shape, emission },
-        ))
-    });
-    delta.chain(area).collect()
-}
-
-/// Emitted rays a probe of [`dark_emitters`] traces per area light (an 8 x 8 grid of origins,
-/// each with its own direction).
-pub const DARK_PROBE: u32 = 64;
-
-/// The names of the area lights of `scene` that light nothing: none of [`DARK_PROBE`] emitted
-/// rays (origins stratified over the light, cosine-weighted directions from its emitting side)
-/// meets a surface. Such a lamp faces away from everything (issue 32: an area light whose
-/// emitting side sees no surface got no warning; only its directly seen face shows).
-#[must_use]
-pub fn dark_emitters(scene: &crate::Scene) -> Vec<String> {
-    let side = f64::from(DARK_PROBE).sqrt() as u32;
-    emitters(scene)
-        .into_iter()
-        .filter(|(_, e)| matches!(e, Emitter::Area { .. }))
-        .filter(|(_, e)| {
-            !(0..DARK_PROBE).any(|k| {
-                let cell = DVec2::new(f64::from(k % side), f64::from(k / side));
-                let u_pos = (cell + 0.5) / f64::from(side);
-                // A second, shuffled grid for the directions (golden-ratio steps).
-                let u_dir = DVec2::new(
-                    (f64::from(k) * 0.618_033_988_749_895 + 0.25).fract(),
-                    (f64::from(k) + 0.5) / f64::from(DARK_PROBE),
-                );
-                e.sample_le(u_pos, u_dir).is_some_and(|r| {
-                    let t_min = 1e-7 * (1.0 + r.origin.abs().max_element());
-                    let ray = crate::math::Ray::new(r.origin, r.direction, t_min);
-                    scene.intersect(&ray, f64::INFINITY).is_some()
-                })
-            })
-        })
-        .map(|(name, _)| name)
-        .collect()
 }
 
 #[cfg(test)]

@@ -82,15 +82,15 @@ pub enum ShadowMode {
 /// Which integrator computes a camera ray's radiance (`settings.integrator`).
 ///
 /// `"whitted"` is the lecture's recursion, `"path"` the Monte Carlo path tracer
-/// ([`crate::trace::PathTracer`], `docs/path-tracing.md`).
+/// ([`crate::integrator::PathTracer`], `docs/path-tracing.md`).
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
 #[serde(rename_all = "lowercase", try_from = "String")]
 pub enum IntegratorKind {
-    /// The lecture's recursion ([`crate::trace::Whitted`]).
+    /// The lecture's recursion ([`crate::integrator::Whitted`]).
     #[default]
     Whitted,
     /// Unidirectional path tracing with next-event estimation, MIS and Russian roulette
-    /// ([`crate::trace::PathTracer`]).
+    /// ([`crate::integrator::PathTracer`]).
     Path,
 }
 
@@ -312,7 +312,7 @@ pub struct Settings {
     /// Shadow-ray mode.
     pub shadows: ShadowMode,
     /// Throughput below which recursion stops (`0` = the exhaustive tree); absent (`None`):
-    /// chosen from `tolerance` and the scene ([`crate::trace::bound`]).
+    /// chosen from `tolerance` and the scene ([`crate::integrator::bound`]).
     #[serde(skip_serializing_if = "Option::is_none")]
     pub min_weight: Option<f64>,
     /// What one cut branch may still add to a pixel, in display units (sRGB-encoded, 0..1);
@@ -348,13 +348,13 @@ pub struct Settings {
     pub adaptive: Option<AdaptiveDesc>,
     /// Whitted integrator: from this depth on (0 = the camera ray's hit), a smooth dielectric
     /// hit follows one of reflection and refraction, chosen by Russian roulette with
-    /// probability proportional to their weights, instead of both ([`crate::trace::roulette`]);
+    /// probability proportional to their weights, instead of both ([`crate::integrator::roulette`]);
     /// absent: always both.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub dielectric_roulette: Option<u32>,
     /// Whitted integrator: a smooth dielectric hit whose throughput (max channel) is below this
     /// weight follows one of reflection and refraction, chosen by Russian roulette, instead of
-    /// both (`0`: always both); absent: chosen from the scene ([`crate::trace::roulette`]'s
+    /// both (`0`: always both); absent: chosen from the scene ([`crate::integrator::roulette`]'s
     /// automatic weight, off for an explicit `min_weight` or a tolerance of 0).
     #[serde(skip_serializing_if = "Option::is_none")]
     pub roulette_below: Option<f64>,

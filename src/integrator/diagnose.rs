@@ -21,6 +21,7 @@
 
 use crate::bvh::TraversalCost;
 use crate::geometry::Shape;
+use crate::interaction::SurfaceId;
 use crate::math::Ray;
 use crate::scene::{Hit, Scene};
 use crate::tree::Leak;
@@ -35,17 +36,16 @@ pub struct Diagnosis {
     pub leak: Option<Leak>,
 }
 
-/// Diagnose `ray`, spawned from `point` on object `from.0` (for meshes: stored triangle
-/// `from.1`), whose closest hit is `hit`.
+/// Diagnose `ray`, spawned from `point` on surface `from`, whose closest hit is `hit`.
 #[must_use]
 pub fn diagnose(
     scene: &Scene,
     ray: &Ray,
     point: DVec3,
-    from: (usize, Option<u32>),
+    from: SurfaceId,
     hit: Option<Hit>,
 ) -> Diagnosis {
-    let (object, triangle) = from;
+    let SurfaceId { object, triangle } = from;
     let radius = scene.objects[object].shape.self_hit_radius();
     let self_hit = hit.is_some_and(|h| {
         h.object == object
@@ -73,7 +73,7 @@ fn skipped(
     scene: &Scene,
     ray: &Ray,
     point: DVec3,
-    (object, triangle): (usize, Option<u32>),
+    SurfaceId { object, triangle }: SurfaceId,
     radius: f64,
 ) -> Option<Leak> {
     let mut best: Option<Leak> = None;

@@ -2,17 +2,17 @@
 //! segment, local shading, and the reflected and refracted rays of each hit.
 
 use super::local::Local;
-use super::{PathState, RayCounts, Recorder, Secondary, Spawn, Tracer};
+use super::{PathState, Secondary, Spawn, Whitted};
 use crate::bvh::TraversalCost;
-use crate::interaction::SurfaceInteraction;
-use crate::math::{self, Fresnel, Ray, Rgb, beer, reflect, refract};
-use crate::mesh::shading;
+use crate::integrator::{RayCounts, Recorder};
+use crate::interaction::{SurfaceId, SurfaceInteraction};
+use crate::math::{Ray, Rgb, beer, reflect};
 use crate::sampling::PixelSampler;
 use crate::scene::Hit;
 use crate::tree::{Attenuation, EndReason, HitInfo, Interface, NodeId, RayKind, RayNode};
 use glam::DVec3;
 
-impl Tracer<'_> {
+impl Whitted<'_> {
     /// One ray of the tree; `found` is its closest hit and the traversal work when the caller
     /// already has them (camera rays traced by packet), otherwise they are computed here.
     #[allow(clippy::too_many_arguments)]
@@ -43,25 +43,27 @@ impl Tracer<'_> {
         let (hit, cost) = found.unwrap_or_else(|| {
             let mut cost = TraversalCost::default();
             (
-                self.scene.intersect_counted(&ray, f64::INFINITY, &mut cost),
+                self.core
+                    .scene
+                    .intersect_counted(&ray, f64::INFINITY, &mut cost),
                 cost,
             )
         });
         rec.update(id, |n| n.traversal = cost);
         if R::DIAGNOSE
-            && let Some(object) = spawn.object
+            && let Some(from) = spawn.from
         {
-            let from = (object, spawn.triangle);
-            self.diagnose(&ray, spawn.point, from, hit, id, rec, counts);
+            self.core
+                .diagnose((&ray, spawn.point, from), hit, id, rec, counts);
         }
         // Beer's law on this segment, inside the innermost absorbing medium.
         // (Checked only when the plan has absorption: no per-ray cost otherwise.)
-        let medium = if self.plan.absorption {
+        let medium = if self.core.plan.absorption {
             state.media.top().map(|m| m.object as usize)
         } else {
             None
         };
-        let absorption = medium.map_or(Rgb::ZERO, |o| self.scene.material_of(o).absorption);
+        let absorption = medium.map_or(Rgb::ZERO, |o| self.core.scene.material_of(o).absorption);
         let mut atten = Rgb::ONE;
         if medium.is_some() && absorption != Rgb::ZERO {
             // Path length from the true spawn point, so the offset does not bias Beer's law.
@@ -77,7 +79,7 @@ impl Tracer<'_> {
             });
         }
         let Some(hit) = hit else {
-            let radiance = atten * self.scene.background;
+            let radiance = atten * self.core.scene.background;
             rec.update(id, |n| {
                 n.radiance = radiance;
                 n.end = EndReason::Miss;
@@ -113,9 +115,9 @@ impl Tracer<'_> {
         rec: &mut R,
         counts: &mut RayCounts,
     ) -> Rgb {
-        let scene = self.scene;
+        let scene = self.core.scene;
         let d = ray.direction;
-        let si = self.surface(ray, hit, state.media);
+        let si = self.core.surface(ray, hit, state.media);
         let SurfaceInteraction {
             p,
             entering,
@@ -151,7 +153,7 @@ impl Tracer<'_> {
             node.local = local;
         });
 
-        if !(self.plan.reflection || self.plan.refraction) {
+        if !(self.core.plan.reflection || self.core.plan.refraction) {
             // Nothing in the scene reflects or refracts: no secondary rays, no bookkeeping.
             rec.update(id, |node| {
                 node.end = EndReason::Surface;
@@ -162,7 +164,7 @@ impl Tracer<'_> {
         // Rough lobes are sampled (glossy.rs); the smooth ones split as the lecture's. An
         // index-matched rough interface stays a smooth pass-through (every microfacet sends
         // light straight on).
-        let rough = self.plan.glossy && m.is_rough();
+        let rough = self.core.plan.glossy && m.is_rough();
         let rough_dielectric = rough && m.is_transmissive() && super::glossy::refracts(&si);
         let mut reflect_w = if rough {
             Rgb::ZERO
@@ -171,8 +173,8 @@ impl Tracer<'_> {
         };
         let mut refraction = None;
         // Dielectric split (only where the material transmits).
-        if self.plan.refraction && m.is_transmissive() && !rough_dielectric {
-            let (event, dir) = self.interface(&si, ns, cos_i);
+        if self.core.plan.refraction && m.is_transmissive() && !rough_dielectric {
+            let (event, dir) = self.core.interface(&si, ns, cos_i);
             let f = event.fresnel;
             reflect_w += m.transmissivity * f.r;
             if let Some(dir) = dir {
@@ -205,8 +207,10 @@ impl Tracer<'_> {
             kind: RayKind::Reflected,
             parent: id,
             point: p,
-            object: Some(hit.object),
-            triangle: hit.triangle,
+            from: Some(SurfaceId {
+                object: hit.object,
+                triangle: hit.triangle,
+            }),
             weight: Rgb::ZERO,
         };
         let mut acc = Secondary {
@@ -273,21 +277,6 @@ impl Tracer<'_> {
         total
     }
 
-    /// `ns`, or the geometric normal `si.n` where refracting with `ns` would cross to the wrong
-    /// side of the surface (mesh::shading rule).
-    pub(super) fn consistent_shading_normal(&self, si: &SurfaceInteraction, ns: DVec3) -> DVec3 {
-        let n = si.n;
-        if ns != n && self.plan.refraction && si.material.is_transmissive() {
-            let d = -si.wo;
-            let cos = (-d.dot(ns)).clamp(0.0, 1.0);
-            let (_, t) = self.interface(si, ns, cos);
-            if t.is_some_and(|t| !shading::refraction_consistent(n, t)) {
-                return n;
-            }
-        }
-        ns
-    }
-
     /// Trace one secondary ray (or record why it was cut) and add its weighted radiance;
     /// `state` is the parent's, with the throughput at its hit and the child's media. The
     /// child's node, unless cut.
@@ -310,7 +299,7 @@ impl Tracer<'_> {
             None => child_throughput,
             Some(n) => child_throughput * f64::from(n),
         };
-        let cut = if depth >= self.scene.settings.max_depth {
+        let cut = if depth >= self.core.scene.settings.max_depth {
             Some(EndReason::MaxDepth)
         } else if estimate.max_element() < self.min_weight {
             Some(EndReason::MinWeight)
@@ -330,8 +319,8 @@ impl Tracer<'_> {
         if acc.end == EndReason::Surface {
             acc.end = EndReason::Continued;
         }
-        let object = spawn.object.expect("secondary rays leave a surface");
-        let ray = self.spawn_ray((object, spawn.triangle), spawn.point, side, dir);
+        let from = spawn.from.expect("secondary rays leave a surface");
+        let ray = self.core.spawn_ray(from, spawn.point, side, dir);
         let state = PathState {
             depth: depth + 1,
             throughput: child_throughput,
@@ -340,54 +329,6 @@ impl Tracer<'_> {
         let (l, id) = self.trace_ray(ray, None, spawn, state, sampler, rec, counts);
         acc.total += spawn.weight * l;
         id
-    }
-
-    /// n1, n2, Snell and Fresnel at transmissive `si` with shading normal `n` (incident side)
-    /// and incidence cosine `cos_i`; the refracted direction unless TIR. Inlined: returned
-    /// through memory, its 100-byte record was stored and reloaded at every dielectric hit.
-    #[inline(always)]
-    fn interface(
-        &self,
-        si: &SurfaceInteraction,
-        n: DVec3,
-        cos_i: f64,
-    ) -> (Interface, Option<DVec3>) {
-        let (d, object, m, media) = (-si.wo, si.object, si.material, si.media);
-        let (n1, n2) = if si.entering {
-            let n1 = media.ior();
-            (n1, m.ior.unwrap_or(n1))
-        } else {
-            let n2 = media.ior_outside(object);
-            (m.ior.unwrap_or(n2), n2)
-        };
-        let model = self.scene.settings.fresnel;
-        match refract(d, n, n1 / n2) {
-            Some(t) => {
-                let fresnel: Fresnel = math::fresnel(model, n1, n2, cos_i, t.cos_t);
-                let event = Interface {
-                    n1,
-                    n2,
-                    cos_i,
-                    cos_t: Some(t.cos_t),
-                    fresnel,
-                    tir: false,
-                    roulette: None,
-                };
-                (event, Some(t.direction))
-            }
-            None => {
-                let event = Interface {
-                    n1,
-                    n2,
-                    cos_i,
-                    cos_t: None,
-                    fresnel: math::fresnel_tir(model),
-                    tir: true,
-                    roulette: None,
-                };
-                (event, None)
-            }
-        }
     }
 }
 

@@ -22,7 +22,7 @@ fn scene(extra: &str) -> Scene {
 /// `(max albedo + pi max specular) x max emission` (pbrt's `E <= pi L_max` over the hemisphere).
 #[test]
 fn sampled_area_lights_raise_the_bound_by_their_direct_light() {
-    let src = include_str!("../../../fixtures/soft-shadows.json");
+    let src = include_str!("../../../../fixtures/soft-shadows.json");
     let mut s = Scene::from_json(src).unwrap();
     assert!(s.settings.light_samples.is_some());
     let on = radiance_bound(&s, 0, ShadowMode::Opaque);
@@ -100,8 +100,8 @@ fn distances_never_exceed_the_true_distance() {
 
 #[test]
 fn the_ray_budget_cuts_each_sample_and_keeps_the_tree_whole() {
+    use crate::integrator::{NoopRecorder, RayCounts};
     use crate::render::{render_pixel, trace_pixel};
-    use crate::trace::{NoopRecorder, RayCounts};
     use crate::tree::EndReason;
     let mut s =
         scene(r#", "settings": {"max_depth": 40, "min_weight": 0, "max_rays": 50, "spp": 2}"#);

@@ -8,11 +8,12 @@ use super::nee::{event, transmits};
 use super::{PathStrategy, PathTracer, Prev};
 use crate::bsdf::{Bsdf, LobeKind};
 use crate::bvh::TraversalCost;
+use crate::integrator::{RayCounts, Recorder};
+use crate::interaction::SurfaceId;
 use crate::math::{Ray, Rgb, beer};
 use crate::media::MediaStack;
 use crate::sampling::PixelSampler;
 use crate::scene::Material;
-use crate::trace::{RayCounts, Recorder};
 use crate::tree::{
     Attenuation, DeltaTag, EndReason, HitInfo, NodeId, PathInfo, Pdf, RayKind, RayNode, Roulette,
 };
@@ -96,9 +97,8 @@ impl PathTracer<'_> {
             if R::DIAGNOSE
                 && let Some(p) = prev
             {
-                let from = (p.object, p.triangle);
-                self.tracer
-                    .diagnose(&ray, spawn_point, from, hit, id, rec, counts);
+                self.core
+                    .diagnose((&ray, spawn_point, p.from), hit, id, rec, counts);
             }
             // Beer's law on this segment (from the true spawn point, as Whitted).
             let mut atten = Rgb::ONE;
@@ -148,7 +148,7 @@ impl PathTracer<'_> {
                 }
                 break;
             };
-            let si = self.tracer.surface(&ray, &hit, &media);
+            let si = self.core.surface(&ray, &hit, &media);
             let m = si.material;
             rec.update(id, |n| {
                 n.hit = Some(HitInfo {
@@ -280,14 +280,15 @@ impl PathTracer<'_> {
                 };
             }
             let side = if bs.wi.dot(n) < 0.0 { -n } else { n };
-            ray = self
-                .tracer
-                .spawn_ray((hit.object, hit.triangle), p, side, bs.wi);
+            let from = SurfaceId {
+                object: hit.object,
+                triangle: hit.triangle,
+            };
+            ray = self.core.spawn_ray(from, p, side, bs.wi);
             spawn_point = p;
             prev = Some(Prev {
                 p,
-                object: hit.object,
-                triangle: hit.triangle,
+                from,
                 pdf: bs.pdf,
                 delta: bs.delta,
             });

@@ -12,15 +12,12 @@
 //! background. The recorder sees one node per ray with [`crate::tree::PathInfo`]. The loop
 //! itself is in `walk` ([`PathTracer::trace_camera`]).
 
-mod lights;
-pub use lights::overflowing as overflowing_lights;
 mod nee;
 mod walk;
 
-use lights::LightTable;
-
-use super::Tracer;
+use super::Shading;
 use crate::effects::EffectPlan;
+use crate::interaction::SurfaceId;
 use crate::scene::{Film, Scene};
 use glam::DVec3;
 
@@ -43,13 +40,11 @@ pub enum PathStrategy {
 /// The path integrator (`settings.integrator: "path"`).
 #[derive(Clone, Debug)]
 pub struct PathTracer<'a> {
-    /// The Whitted tracer's machinery: surface interactions, offsets, shadow rays, diagnostics.
-    tracer: Tracer<'a>,
+    /// Surface interactions, offsets, shadow rays, diagnostics and the light sampler (every
+    /// point and directional light, then every emissive sphere, quad, triangle and mesh, chosen
+    /// in proportion to power): shared with every integrator.
+    core: Shading<'a>,
     strategy: PathStrategy,
-    /// Lights that light sampling chooses among, in proportion to power: the scene's point and
-    /// directional lights, then every emissive sphere, quad, triangle and mesh
-    /// ([`Scene::area_light`]); built once here.
-    lights: LightTable<'a>,
 }
 
 /// The scattering event that spawned the current ray, for the MIS weight of the emission it
@@ -57,8 +52,7 @@ pub struct PathTracer<'a> {
 #[derive(Clone, Copy, Debug)]
 struct Prev {
     p: DVec3,
-    object: usize,
-    triangle: Option<u32>,
+    from: SurfaceId,
     pdf: f64,
     delta: bool,
 }
@@ -79,9 +73,8 @@ impl<'a> PathTracer<'a> {
         plan.translucent_shadows = false;
         plan.specular = false;
         Self {
-            tracer: Tracer::with_plan(scene, plan),
+            core: Shading::new(scene, plan),
             strategy,
-            lights: LightTable::new(scene),
         }
     }
 
@@ -94,12 +87,12 @@ impl<'a> PathTracer<'a> {
     /// The scene.
     #[must_use]
     pub fn scene(&self) -> &'a Scene {
-        self.tracer.scene()
+        self.core.scene
     }
 
     /// The camera's image plane.
     #[must_use]
     pub fn film(&self) -> &Film<'a> {
-        self.tracer.film()
+        &self.core.film
     }
 }

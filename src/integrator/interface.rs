@@ -5,18 +5,16 @@
 //! [`Integrator`] is the interface (generic methods, so it is used through generics, never as a
 //! trait object: the recorder stays a generic parameter and costs nothing when off).
 //! [`SceneIntegrator`] is the one a scene's `settings.integrator` chooses: [`Whitted`], the
-//! lecture's recursion ([`Tracer`]), or [`PathTracer`], the Monte Carlo path tracer.
+//! lecture's recursion, or [`PathTracer`], the Monte Carlo path tracer.
 
-use super::{PathTracer, RayCounts, Recorder, Tracer};
+use super::shading::NoSamples;
+use super::{PathTracer, RayCounts, Recorder, Whitted};
 use crate::bvh::TraversalCost;
 use crate::effects::EffectPlan;
 use crate::math::{Ray, Rgb};
 use crate::sampling::PixelSampler;
 use crate::scene::{Film, Hit, IntegratorKind, Scene};
 use crate::tree::NodeId;
-
-/// The Whitted integrator: [`Tracer`] under its integrator name.
-pub type Whitted<'a> = Tracer<'a>;
 
 /// Computes the radiance along camera rays of one scene.
 pub trait Integrator: Sync {
@@ -72,19 +70,19 @@ pub trait Integrator: Sync {
     );
 }
 
-impl Integrator for Tracer<'_> {
+impl Integrator for Whitted<'_> {
     fn kind(&self) -> IntegratorKind {
         IntegratorKind::Whitted
     }
 
     #[inline]
     fn scene(&self) -> &Scene {
-        Tracer::scene(self)
+        Whitted::scene(self)
     }
 
     #[inline]
     fn film(&self) -> &Film<'_> {
-        Tracer::film(self)
+        Whitted::film(self)
     }
 
     /// Whitted ray tracing draws from `sampler` only for area lights' shadow rays.
@@ -161,9 +159,7 @@ impl Integrator for PathTracer<'_> {
         counts: &mut RayCounts,
     ) {
         for (ray, o) in rays.iter().zip(out.iter_mut()) {
-            *o = self
-                .trace_camera(*ray, &mut super::lights::NoSamples, rec, counts)
-                .0;
+            *o = self.trace_camera(*ray, &mut NoSamples, rec, counts).0;
         }
     }
 }
@@ -189,7 +185,7 @@ impl<'a> SceneIntegrator<'a> {
     #[must_use]
     pub fn with_plan(scene: &'a Scene, plan: EffectPlan) -> Self {
         match scene.settings.integrator {
-            IntegratorKind::Whitted => Self::Whitted(Tracer::with_plan(scene, plan)),
+            IntegratorKind::Whitted => Self::Whitted(Whitted::with_plan(scene, plan)),
             // The path tracer runs every effect (its own plan): `plan` is Whitted's.
             IntegratorKind::Path => Self::Path(PathTracer::new(scene)),
         }

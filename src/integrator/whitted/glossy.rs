@@ -27,8 +27,9 @@
 //! glass), so light sampling them too would count them twice without multiple importance
 //! sampling, which is not done.
 
-use super::{PathState, RayCounts, Recorder, Secondary, Spawn, Tracer};
+use super::{PathState, Secondary, Spawn, Whitted};
 use crate::bsdf::{Bsdf, Lobe, LobeKind};
+use crate::integrator::{RayCounts, Recorder};
 use crate::interaction::SurfaceInteraction;
 use crate::math::Rgb;
 use crate::sampling::PixelSampler;
@@ -68,14 +69,14 @@ fn rough_lobes(si: &SurfaceInteraction) -> [Option<(GlossyLobe, Lobe)>; 2] {
     [mirror, dielectric]
 }
 
-impl Tracer<'_> {
+impl Whitted<'_> {
     /// The rough lobes' BSDF value for light arriving from `wi` (world) on the side the ray
     /// came from (reflection only: light through the surface is not sampled, as for smooth
     /// glass). Zero unless the material is rough and the plan has glossy lobes. Never inlined:
     /// its locals would otherwise sit in every recursion level's stack frame.
     #[inline(never)]
     pub(super) fn glossy_brdf(&self, si: &SurfaceInteraction, wi: DVec3) -> Rgb {
-        if !(self.plan.glossy && si.material.is_rough()) {
+        if !(self.core.plan.glossy && si.material.is_rough()) {
             return Rgb::ZERO;
         }
         let frame = si.frame();
@@ -109,7 +110,7 @@ impl Tracer<'_> {
     ) {
         let m = si.material;
         let count = match state.glossy {
-            None => self.scene.settings.glossy_samples.max(1),
+            None => self.core.scene.settings.glossy_samples.max(1),
             Some(_) => 1,
         };
         let split = state.glossy.unwrap_or(count);
