@@ -2,9 +2,8 @@
 //! once per hit by the tracer, read by local shading, the light loops, the dielectric split,
 //! the recorder and the BSDFs ([`crate::bsdf::Bsdf::at`]).
 
-use crate::bsdf::Frame;
+use crate::bsdf::{Bsdf, Frame, Material};
 use crate::media::MediaStack;
-use crate::scene::Material;
 use glam::DVec3;
 
 /// A surface a ray leaves or hits: an object and, for a mesh, its stored triangle.
@@ -84,5 +83,34 @@ impl SurfaceInteraction<'_> {
             self.media.ior_outside(self.object)
         };
         self.material.ior.unwrap_or(outside) / outside
+    }
+}
+
+/// The BSDF at a surface interaction (here, so that the BSDFs do not depend on the
+/// interaction).
+impl Bsdf {
+    /// The BSDF of `m` at `p` as the Whitted tracer reads the material: Lambert (diffuse),
+    /// mirror (`reflectivity`), dielectric (`transmissivity`, `eta = n_inside / n_outside`), the
+    /// last two GGX-rough when `roughness >= SMOOTH_ALPHA`. Index-matched transmission
+    /// (`eta = 1`) stays a smooth pass-through whatever the roughness (every microfacet sends
+    /// light straight on). The Blinn-Phong `specular` term has no lobe here.
+    /// (Built from a surface interaction: its material, point, outward shading frame and eta;
+    /// eta, which reads the media stack, only for a transmissive material, the only lobe that
+    /// uses it.)
+    #[must_use]
+    pub fn at(si: &SurfaceInteraction, roughness: f64) -> Self {
+        let mut out = Bsdf::empty(si.frame());
+        out.reset_at(si, roughness);
+        out
+    }
+
+    /// Makes this the BSDF [`Bsdf::at`] builds, in place: a loop that keeps one `Bsdf` and
+    /// resets it at every hit writes only the lobes the material has (building a 300-byte
+    /// `Bsdf` by value and moving it was a `memcpy` per hit, 2% of a path-traced render).
+    #[inline(always)]
+    pub fn reset_at(&mut self, si: &SurfaceInteraction, roughness: f64) {
+        let m = si.material;
+        let eta = if m.is_transmissive() { si.eta() } else { 1.0 };
+        self.reset_with(si.frame(), m, si.p, roughness, eta);
     }
 }

@@ -11,6 +11,7 @@
 mod conductor;
 mod frame;
 mod lobe;
+mod material;
 mod microfacet;
 #[cfg(test)]
 mod tests;
@@ -27,9 +28,9 @@ pub use lobe::{Lobe, fr_dielectric};
 pub use microfacet::{Distribution, Microfacet, SMOOTH_ALPHA, roughness_to_alpha};
 
 use crate::math::Rgb;
-use crate::scene::Material;
 use glam::{DVec2, DVec3};
 use lobe::Draw;
+pub use material::{Material, Texture};
 
 /// Most lobes a [`Bsdf`] holds: a material has at most three (diffuse, reflectivity,
 /// transmissivity). Three, not four, keeps a `Bsdf` small enough (248 bytes) to be cleared
@@ -152,7 +153,7 @@ impl Bsdf {
 
     /// No lobe yet, in `frame`.
     #[inline(always)]
-    fn empty(frame: Frame) -> Self {
+    pub(crate) fn empty(frame: Frame) -> Self {
         Self {
             frame,
             lobes: [Lobe::Lambert { albedo: Rgb::ZERO }; MAX_LOBES],
@@ -188,31 +189,21 @@ impl Bsdf {
         }
     }
 
-    /// The BSDF of `m` at `p` as the Whitted tracer reads the material: Lambert (diffuse),
-    /// mirror (`reflectivity`), dielectric (`transmissivity`, `eta = n_inside / n_outside`), the
-    /// last two GGX-rough when `roughness >= SMOOTH_ALPHA`. Index-matched transmission
-    /// (`eta = 1`) stays a smooth pass-through whatever the roughness (every microfacet sends
-    /// light straight on). The Blinn-Phong `specular` term has no lobe here.
-    /// (Built from a surface interaction: its material, point, outward shading frame and eta;
-    /// eta, which reads the media stack, only for a transmissive material, the only lobe that
-    /// uses it.)
-    #[must_use]
-    pub fn at(si: &crate::interaction::SurfaceInteraction, roughness: f64) -> Self {
-        let mut out = Self::empty(si.frame());
-        out.reset_at(si, roughness);
-        out
-    }
-
-    /// Makes this the BSDF [`Bsdf::at`] builds, in place: a loop that keeps one `Bsdf` and
-    /// resets it at every hit writes only the lobes the material has (building a 300-byte
-    /// `Bsdf` by value and moving it was a `memcpy` per hit, 2% of a path-traced render).
+    /// Makes this the BSDF of material `m` at `p` in `frame` for GGX `roughness` and relative
+    /// index `eta`, in place (what [`Bsdf::at`] and [`Bsdf::reset_at`] build from a surface
+    /// interaction, `crate::interaction`).
     #[inline(always)]
-    pub fn reset_at(&mut self, si: &crate::interaction::SurfaceInteraction, roughness: f64) {
-        let m = si.material;
-        let eta = if m.is_transmissive() { si.eta() } else { 1.0 };
-        self.frame = si.frame();
+    pub(crate) fn reset_with(
+        &mut self,
+        frame: Frame,
+        m: &Material,
+        p: DVec3,
+        roughness: f64,
+        eta: f64,
+    ) {
+        self.frame = frame;
         self.len = 0;
-        self.add_material(m, si.p, roughness, eta);
+        self.add_material(m, p, roughness, eta);
     }
 
     /// The BSDF of material `m` at `p` in `frame` for GGX `roughness` and relative index `eta`.

@@ -1,6 +1,7 @@
 //! `raytree effects` under the path integrator.
 
-use super::{EffectLine, nonzero};
+use super::EffectLine;
+use crate::integrator::plan::nonzero;
 use crate::scene::{Material, Scene};
 
 /// The names of the used materials a predicate holds for (`EffectPlan::explain`'s `names`).

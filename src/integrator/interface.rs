@@ -10,7 +10,7 @@
 use super::shading::NoSamples;
 use super::{PathTracer, RayCounts, Recorder, Whitted};
 use crate::bvh::TraversalCost;
-use crate::effects::EffectPlan;
+use crate::integrator::EffectPlan;
 use crate::math::{Ray, Rgb};
 use crate::sampling::PixelSampler;
 use crate::scene::{Film, Hit, IntegratorKind, Scene};

@@ -7,8 +7,8 @@
 
 use super::{RayCounts, Recorder, diagnose, offset, shadow};
 use crate::bvh::TraversalCost;
-use crate::effects::EffectPlan;
 use crate::geometry::Shape;
+use crate::integrator::EffectPlan;
 use crate::interaction::{SurfaceId, SurfaceInteraction};
 use crate::lights::LightSampler;
 use crate::math::{self, Fresnel, Ray, Rgb, refract};

@@ -16,6 +16,6 @@ pub mod warp;
 
 pub use adaptive::{CONTRAST_FLOOR, Spread, contrast};
 pub use filter::PixelFilter;
-pub use scene_sampler::SceneSampler;
+pub use scene_sampler::{SamplerKind, SceneSampler};
 pub use sobol::{SobolSampler, SplitMix64, mix64, nested_uniform_scramble, pixel_key, sample_2d};
 pub use stratified::{PixelSampler, StratifiedJitter, splitmix64, unit};

@@ -3,10 +3,10 @@
 //! tree of a pixel draws exactly the numbers its render drew.
 
 use super::{PixelSampler, SobolSampler, StratifiedJitter};
-use crate::scene::{SamplerKind, Settings};
+use serde::{Deserialize, Serialize};
 
 /// [`StratifiedJitter`] or [`SobolSampler`], chosen at run time from the settings
-/// ([`Settings::sampler_kind`]: Sobol for the path integrator, stratified for Whitted unless
+/// (`Settings::sampler_kind`: Sobol for the path integrator, stratified for Whitted unless
 /// the scene or `--sampler` says otherwise).
 ///
 /// The Sobol variant is large (its per-pixel seed cache, about 400 bytes): a render holds one
@@ -22,12 +22,6 @@ pub enum SceneSampler {
 }
 
 impl SceneSampler {
-    /// The sampler of `settings`: its kind, `spp` and `seed`.
-    #[must_use]
-    pub fn for_settings(settings: &Settings) -> Self {
-        Self::new(settings.sampler_kind(), settings.spp, settings.seed)
-    }
-
     /// A sampler of `kind` for `spp` samples per pixel and `seed`.
     #[must_use]
     pub fn new(kind: SamplerKind, spp: u32, seed: u64) -> Self {
@@ -86,6 +80,7 @@ impl PixelSampler for SceneSampler {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::scene::Settings;
     use crate::scene::IntegratorKind;
 
     fn draws<S: PixelSampler>(mut s: S) -> Vec<u64> {
@@ -121,5 +116,56 @@ mod tests {
             SceneSampler::for_settings(&s).kind(),
             SamplerKind::Stratified
         );
+    }
+}
+
+/// Where a path's random numbers come from (`settings.sampler`, `--sampler`).
+///
+/// Absent from the scene: [`SamplerKind::Sobol`] under the path integrator,
+/// [`SamplerKind::Stratified`] under Whitted (`crate::scene::Settings::sampler_kind`).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "lowercase", try_from = "String")]
+pub enum SamplerKind {
+    /// Stratified jittered film offsets, independent hashed values for the other dimensions
+    /// ([`crate::sampling::StratifiedJitter`]).
+    Stratified,
+    /// Owen-scrambled Sobol points, one scrambled 2D pair per draw (Burley 2020;
+    /// [`crate::sampling::SobolSampler`]).
+    Sobol,
+}
+
+impl SamplerKind {
+    /// Every sampler, in documentation order.
+    pub const ALL: [SamplerKind; 2] = [SamplerKind::Stratified, SamplerKind::Sobol];
+
+    /// The name used in JSON and on the command line.
+    #[must_use]
+    pub fn name(self) -> &'static str {
+        match self {
+            SamplerKind::Stratified => "stratified",
+            SamplerKind::Sobol => "sobol",
+        }
+    }
+
+    /// The sampler named `name`, or why there is none.
+    ///
+    /// # Errors
+    /// A message for unknown names.
+    pub fn from_name(name: &str) -> Result<Self, String> {
+        match name {
+            "stratified" => Ok(SamplerKind::Stratified),
+            "sobol" => Ok(SamplerKind::Sobol),
+            _ => Err(format!(
+                "unknown sampler {name:?}, expected \"stratified\" or \"sobol\""
+            )),
+        }
+    }
+}
+
+impl TryFrom<String> for SamplerKind {
+    type Error = String;
+
+    fn try_from(name: String) -> Result<Self, String> {
+        Self::from_name(&name)
     }
 }

@@ -16,7 +16,7 @@ mod nee;
 mod walk;
 
 use super::Shading;
-use crate::effects::EffectPlan;
+use crate::integrator::EffectPlan;
 use crate::interaction::SurfaceId;
 use crate::scene::{Film, Scene};
 use glam::DVec3;

@@ -15,7 +15,7 @@ pub mod roulette;
 use super::shading::{NoSamples, Shading};
 use super::{MediaStack, RayCounts, Recorder};
 use crate::bvh::TraversalCost;
-use crate::effects::EffectPlan;
+use crate::integrator::EffectPlan;
 use crate::interaction::SurfaceId;
 use crate::math::{Ray, Rgb};
 use crate::sampling::PixelSampler;

@@ -3,6 +3,7 @@
 
 use super::antialias::{AdaptiveDesc, Antialiasing};
 use crate::math::FresnelModel;
+pub use crate::sampling::SamplerKind;
 use serde::{Deserialize, Serialize};
 
 /// Where secondary rays start: the lecture's normal offset or a `t_min` along the ray.
@@ -150,54 +151,13 @@ impl TryFrom<String> for IntegratorKind {
     }
 }
 
-/// Where a path's random numbers come from (`settings.sampler`, `--sampler`).
-///
-/// Absent from the scene: [`SamplerKind::Sobol`] under the path integrator,
-/// [`SamplerKind::Stratified`] under Whitted ([`Settings::sampler_kind`]).
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
-#[serde(rename_all = "lowercase", try_from = "String")]
-pub enum SamplerKind {
-    /// Stratified jittered film offsets, independent hashed values for the other dimensions
-    /// ([`crate::sampling::StratifiedJitter`]).
-    Stratified,
-    /// Owen-scrambled Sobol points, one scrambled 2D pair per draw (Burley 2020;
-    /// [`crate::sampling::SobolSampler`]).
-    Sobol,
-}
-
-impl SamplerKind {
-    /// Every sampler, in documentation order.
-    pub const ALL: [SamplerKind; 2] = [SamplerKind::Stratified, SamplerKind::Sobol];
-
-    /// The name used in JSON and on the command line.
+/// The sampler of these settings: its kind, `spp` and `seed` (here, so that sampling does
+/// not depend on the scene).
+impl crate::sampling::SceneSampler {
+    /// The sampler of `settings`: its kind, `spp` and `seed`.
     #[must_use]
-    pub fn name(self) -> &'static str {
-        match self {
-            SamplerKind::Stratified => "stratified",
-            SamplerKind::Sobol => "sobol",
-        }
-    }
-
-    /// The sampler named `name`, or why there is none.
-    ///
-    /// # Errors
-    /// A message for unknown names.
-    pub fn from_name(name: &str) -> Result<Self, String> {
-        match name {
-            "stratified" => Ok(SamplerKind::Stratified),
-            "sobol" => Ok(SamplerKind::Sobol),
-            _ => Err(format!(
-                "unknown sampler {name:?}, expected \"stratified\" or \"sobol\""
-            )),
-        }
-    }
-}
-
-impl TryFrom<String> for SamplerKind {
-    type Error = String;
-
-    fn try_from(name: String) -> Result<Self, String> {
-        Self::from_name(&name)
+    pub fn for_settings(settings: &Settings) -> Self {
+        Self::new(settings.sampler_kind(), settings.spp, settings.seed)
     }
 }
 
