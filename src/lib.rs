@@ -1,8 +1,12 @@
-//! raytree: a recursive (Whitted) ray tracer that records and explains the ray tree of any pixel.
+//! raytree: a ray-path debugger — a Whitted ray tracer and a Monte Carlo path tracer that record
+//! and explain the ray tree of any pixel.
 //!
-//! Data flows one way: scene JSON -> [`Scene`] (validated) -> [`Whitted`] with a [`Recorder`]
-//! -> radiance, and optionally a [`RayTree`] that every view (text, JSON, diagram, GUI) reads.
-//! The library does no I/O.
+//! Data flows one way: scene text (raytree JSON, or pbrt-v4 / Mitsuba 3 through [`formats`]) ->
+//! [`Scene`] (validated) -> an [`Integrator`] ([`Whitted`] or [`PathTracer`], chosen by
+//! [`SceneIntegrator`]) with a [`Recorder`] -> radiance through the [`render`] loop, and
+//! optionally a [`RayTree`] whose contributions sum to the pixel bit for bit, which every view
+//! (text, JSON, diagram, GUI, [`analysis`]) reads. The library does no I/O. Where each concept
+//! lives: `docs/architecture.md`.
 #![forbid(unsafe_code)]
 #![warn(missing_docs)]
 
@@ -34,8 +38,8 @@ pub mod text;
 pub mod tree;
 
 pub use integrator::{
-    DiagnosticRecorder, Integrator, NoopRecorder, RayCounts, Recorder, SceneIntegrator,
-    TreeRecorder, Whitted,
+    DiagnosticRecorder, Integrator, NoopRecorder, PathTracer, RayCounts, Recorder,
+    SceneIntegrator, TreeRecorder, Whitted,
 };
 pub use render::{
     DiagnosticMap, Image, RenderStats, render, render_diagnosed, render_pixel, render_pixel_with,

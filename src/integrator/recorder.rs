@@ -8,7 +8,7 @@ use crate::tree::{EndReason, NodeId, RayNode};
 pub trait Recorder {
     /// Whether this recorder keeps anything. `false` lets the tracer skip optional bookkeeping
     /// and even the hooks themselves: on a plan without secondary rays the render path calls
-    /// none (see `trace::direct_only`), so a recorder that must see every ray says `true`.
+    /// none (see `integrator::whitted::direct_only`), so a recorder that must see every ray says `true`.
     const RECORDS: bool;
     /// Whether the tracer runs the self-hit and leak diagnostics (extra intersections) and
     /// counts them in [`crate::RayCounts`]. Defaults to [`Recorder::RECORDS`], so the no-op

@@ -40,7 +40,7 @@ pub struct RenderStats {
     pub nonfinite_pixels: u64,
     /// The first such pixel, in scan order.
     pub first_nonfinite: Option<(u32, u32)>,
-    /// Pixels with at least one self-hit ray (diagnosed renders only; see `trace::diagnose`).
+    /// Pixels with at least one self-hit ray (diagnosed renders only; see `integrator::diagnose`).
     pub self_hit_pixels: u64,
     /// Pixels with at least one leaking ray (diagnosed renders only).
     pub leak_pixels: u64,

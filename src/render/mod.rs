@@ -320,7 +320,7 @@ fn render_recorded<R: Recorder + Default, I: Integrator, S: PixelSampler>(
 
 /// Trace every sample of pixel (x, y) into `rec`; returns the pixel radiance (the mean of its
 /// samples) and how many samples it took: `spp`, or with `settings.adaptive` `max_spp` where
-/// the pixel is refined (the two passes of `src/render_adaptive.rs`). The pixel loop
+/// the pixel is refined (the two passes of `src/render/adaptive.rs`). The pixel loop
 /// ([`pixel_loop::pixel`]) with the sink that reports each recorded sample through `on_sample`.
 pub fn render_pixel_counted<I: Integrator, S: PixelSampler, R: Recorder>(
     integrator: &I,

@@ -1,5 +1,5 @@
 //! The one pixel loop: for a pixel, choose its samples (the scene's `spp`, or under an
-//! [`AdaptivePlan`](super::AdaptivePlan) the two passes of `src/render_adaptive.rs`), draw each camera sample
+//! [`AdaptivePlan`](super::AdaptivePlan) the two passes of `src/render/adaptive.rs`), draw each camera sample
 //! from the scene's sampler (`camera_sample`), trace it, apply the NaN rule
 //! ([`RayCounts::keep_sample`]) and hand it to a [`SampleSink`]. The render ([`Beauty`]), a
 //! pixel's tree (`render_pixel_counted`), the AOV render (`crate::aov::render_aovs`: the

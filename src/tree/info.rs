@@ -105,7 +105,7 @@ pub struct Blocker {
     pub factor: Rgb,
 }
 
-/// A surface the spawn offset skipped (see `trace::diagnose`).
+/// A surface the spawn offset skipped (see `integrator::diagnose`).
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 pub struct Leak {
     /// Object index.

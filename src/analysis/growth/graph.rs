@@ -56,7 +56,7 @@ pub(super) fn volume(shape: &Shape) -> f64 {
 }
 
 /// Whether a hit on `m` spawns two rays at once: transmissive with a Fresnel model (reflection
-/// and refraction except under TIR) or with reflectivity. A rough material (`trace::glossy`)
+/// and refraction except under TIR) or with reflectivity. A rough material (`integrator::whitted::glossy`)
 /// draws one ray per rough lobe below a path's first rough hit (which fans out
 /// `glossy_samples` rays once, a constant factor), so it branches only with both lobes.
 pub(super) fn branches(scene: &Scene, m: &Material) -> bool {

@@ -18,7 +18,7 @@
 //!
 //! With these, `le |cos| / (pdf_pos pdf_dir)` of every sample is the light's flux `Phi` (for a
 //! point light `4 pi I`, directional `pi R^2 E`, area `pi A L`): the powers by which light
-//! sampling chooses lights (`trace::path::lights`), which the tests check.
+//! sampling chooses lights (`super::LightSampler`), which the tests check.
 
 use super::{AreaShape, Light};
 use crate::math::Rgb;

@@ -19,7 +19,7 @@
 //!   hit's secondary rays sum to `reflectivity + transmissivity (R + T) = reflectivity +
 //!   transmissivity <= s` per channel; a ray sampled from a rough lobe (visible normals) has
 //!   `f cos / pdf = weight G1(wi) <= weight`, so one sample's estimate obeys the same sum (the
-//!   cut compares the throughput of one sample's estimate, `trace::glossy`).
+//!   cut compares the throughput of one sample's estimate, `integrator::whitted::glossy`).
 //!
 //! So a ray with `k` bounces left carries at most `max(background, B) (1 + s + ... + s^k)`, and
 //! `max_depth` bounds `k`. A pixel's 8-bit sRGB value moves at most 12.92 times its linear
