@@ -38,8 +38,8 @@ pub mod text;
 pub mod tree;
 
 pub use integrator::{
-    DiagnosticRecorder, Integrator, NoopRecorder, PathTracer, RayCounts, Recorder,
-    SceneIntegrator, TreeRecorder, Whitted,
+    DiagnosticRecorder, Integrator, NoopRecorder, PathTracer, RayCounts, Recorder, SceneIntegrator,
+    TreeRecorder, Whitted,
 };
 pub use render::{
     DiagnosticMap, Image, RenderStats, render, render_diagnosed, render_pixel, render_pixel_with,

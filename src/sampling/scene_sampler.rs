@@ -80,8 +80,8 @@ impl PixelSampler for SceneSampler {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::scene::Settings;
     use crate::scene::IntegratorKind;
+    use crate::scene::Settings;
 
     fn draws<S: PixelSampler>(mut s: S) -> Vec<u64> {
         let mut out = Vec::new();
