@@ -51,6 +51,10 @@ const EPS_LUMINANCE: f64 = 1e-10;
 /// first frames of a pixel's history).
 const MIN_SPP_FOR_SAMPLE_VARIANCE: u32 = 4;
 
+/// Pixels whose emitter coverage ([`Features::emitter`]) differs by this much weigh each other
+/// `1/e`: a lamp (1), its edge (between) and its surroundings (0) are filtered apart.
+const SIGMA_EMITTER: f64 = 0.02;
+
 /// B3 spline taps for offsets 0, 1, 2.
 const H: [f64; 3] = [3.0 / 8.0, 1.0 / 4.0, 1.0 / 16.0];
 
@@ -77,11 +81,16 @@ pub fn denoise(image: &Image, features: &Features, p: &DenoiseParams) -> Image {
         "features of another image"
     );
     let mut albedo: Vec<Rgb> = features.albedo.iter().map(|&a| demod(a)).collect();
+    // Directly seen emission stays out of the filter (issue 32: a filtered lamp's edge turned
+    // jagged with bright speckles): the reflected part is filtered and the emission added back.
+    let emitted = |c: usize| features.emitted.get(c).copied().unwrap_or(Rgb::ZERO);
+    let coverage = |c: usize| features.emitter.get(c).copied().unwrap_or(0.0);
     let mut illum: Vec<Rgb> = image
         .pixels
         .iter()
         .zip(&albedo)
-        .map(|(c, a)| *c / *a)
+        .enumerate()
+        .map(|(i, (c, a))| (*c - emitted(i)) / *a)
         .collect();
     let mut var = variance(&illum, &albedo, features);
     for i in 0..p.iterations {
@@ -114,7 +123,9 @@ pub fn denoise(image: &Image, features: &Features, p: &DenoiseParams) -> Image {
                     // edge stop by the variance of the difference of the two means.
                     let s2 = p.sigma_albedo * p.sigma_albedo + (vap + features.albedo_variance[q]);
                     let wa = (-(ap - features.albedo[q]).length_squared() / s2).exp();
-                    let wt = kernel * wl * wn * wa;
+                    let dc = coverage(c) - coverage(q);
+                    let we = (-(dc * dc) / (SIGMA_EMITTER * SIGMA_EMITTER)).exp();
+                    let wt = kernel * wl * wn * wa * we;
                     sum += illum[q] * wt;
                     wsum += wt;
                     vsum += wt * wt * var[q];
@@ -139,8 +150,9 @@ pub fn denoise(image: &Image, features: &Features, p: &DenoiseParams) -> Image {
         .iter()
         .zip(&albedo)
         .zip(&image.pixels)
-        .map(|((l, a), orig)| {
-            let v = *l * *a;
+        .enumerate()
+        .map(|(i, ((l, a), orig))| {
+            let v = *l * *a + emitted(i);
             if v.is_finite() { v } else { *orig }
         })
         .collect();

@@ -23,6 +23,10 @@ pub struct FeatureSample {
     pub albedo: Rgb,
     /// Shading normal there, on the side the ray arrived from; zero for an escaping ray.
     pub normal: DVec3,
+    /// The emission the camera ray sees directly: its first hit's outer-side emission (zero
+    /// otherwise). Exactly the first-hit emission term both integrators add to the sample
+    /// (weight 1 for a camera ray), so the denoiser can keep it out of the filter.
+    pub emitted: Rgb,
 }
 
 /// The features along camera `ray` (the tracer's scene, offsets and surface interactions).
@@ -33,20 +37,29 @@ pub fn first_non_delta(tracer: &Whitted<'_>, camera: Ray) -> FeatureSample {
     let mut tint = Rgb::ONE;
     let mut ray = camera;
     let mut normal = DVec3::ZERO;
+    let mut emitted = None;
     for _ in 0..=MAX_DELTA_BOUNCES {
         let Some(hit) = scene.intersect(&ray, f64::INFINITY) else {
             return FeatureSample {
                 albedo: tint,
                 normal: DVec3::ZERO,
+                emitted: emitted.unwrap_or(Rgb::ZERO),
             };
         };
         let si = tracer.core().surface(&ray, &hit, &media);
         normal = si.ns;
+        // Only the first hit's: what the camera sees directly.
+        let seen = *emitted.get_or_insert(if si.entering {
+            si.material.emission
+        } else {
+            Rgb::ZERO
+        });
         let bsdf = Bsdf::at(&si, si.material.roughness);
         if bsdf.lobes().next().is_none() {
             return FeatureSample {
                 albedo: Rgb::ZERO,
                 normal,
+                emitted: seen,
             };
         }
         let albedo: Rgb = bsdf
@@ -77,6 +90,7 @@ pub fn first_non_delta(tracer: &Whitted<'_>, camera: Ray) -> FeatureSample {
             return FeatureSample {
                 albedo: tint * albedo,
                 normal,
+                emitted: seen,
             };
         }
         let Some((s, w)) = branch else {
@@ -105,5 +119,6 @@ pub fn first_non_delta(tracer: &Whitted<'_>, camera: Ray) -> FeatureSample {
     FeatureSample {
         albedo: Rgb::ZERO,
         normal,
+        emitted: emitted.unwrap_or(Rgb::ZERO),
     }
 }

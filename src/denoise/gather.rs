@@ -19,6 +19,8 @@ use glam::DVec3;
 struct Px {
     albedo: Rgb,
     normal: DVec3,
+    emitted: Rgb,
+    emitter: f64,
     variance: f64,
     albedo_variance: f64,
 }
@@ -32,6 +34,9 @@ struct FeatureSink<'a>(&'a Whitted<'a>, NoopRecorder);
 struct Sums {
     albedo: Rgb,
     normal: DVec3,
+    /// Sum of the directly seen emission, and the number of samples that see an emitter.
+    emitted: Rgb,
+    emitters: u32,
     /// Sum and sum of squares of the finite samples' luminance, and their number.
     m: (f64, f64, u32),
     /// Sum and sum of squares of the albedo's luminance.
@@ -61,6 +66,10 @@ impl SampleSink for FeatureSink<'_> {
         px.a.0 += ya;
         px.a.1 += ya * ya;
         px.normal += f.normal;
+        if f.emitted != Rgb::ZERO {
+            px.emitted += f.emitted;
+            px.emitters += 1;
+        }
     }
 
     fn finish(&mut self, px: Sums, taken: u32) -> Px {
@@ -68,6 +77,8 @@ impl SampleSink for FeatureSink<'_> {
         Px {
             albedo: px.albedo / k,
             normal: px.normal / k,
+            emitted: px.emitted / k,
+            emitter: f64::from(px.emitters) / k,
             // Variance of the mean: the unbiased sample variance over n.
             variance: variance_of_mean(px.m.0, px.m.1, px.m.2),
             albedo_variance: variance_of_mean(px.a.0, px.a.1, taken),
@@ -120,6 +131,8 @@ pub fn gather_counted<I: Integrator, S: PixelSampler>(
         normal: Vec::with_capacity(n),
         variance: Vec::with_capacity(n),
         albedo_variance: Vec::with_capacity(n),
+        emitted: Vec::with_capacity(n),
+        emitter: Vec::with_capacity(n),
         spp,
         stochastic: !integrator.traces_packets() || integrator.film().has_lens(),
     };
@@ -130,6 +143,8 @@ pub fn gather_counted<I: Integrator, S: PixelSampler>(
         features.normal.push(finite(p.normal));
         features.variance.push(finite_f(p.variance));
         features.albedo_variance.push(finite_f(p.albedo_variance));
+        features.emitted.push(finite(p.emitted));
+        features.emitter.push(finite_f(p.emitter));
     }
     (image, stats, features, map)
 }

@@ -37,6 +37,13 @@ pub struct Features {
     /// Variance of the mean albedo's luminance (the albedo is an estimate too: a lens or the
     /// pixel footprint averages several surfaces), from the samples (0 with one sample).
     pub albedo_variance: Vec<f64>,
+    /// Mean emission the pixel's camera rays see directly ([`FeatureSample::emitted`]): kept
+    /// out of the filter and added back after it.
+    pub emitted: Vec<Rgb>,
+    /// Fraction of the pixel's samples whose camera ray hits an emitter's outer side: pixels of
+    /// different coverage are filtered apart (a lamp, its antialiased edge and the ceiling
+    /// beside it are three classes the albedo and normal cannot separate).
+    pub emitter: Vec<f64>,
     /// Samples per pixel.
     pub spp: u32,
     /// Whether the samples are random (path tracing, area lights, glossy lobes, a lens): a

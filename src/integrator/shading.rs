@@ -11,12 +11,12 @@ use crate::geometry::Shape;
 use crate::integrator::EffectPlan;
 use crate::interaction::{SurfaceId, SurfaceInteraction};
 use crate::lights::LightSampler;
-use crate::math::{self, Fresnel, Ray, Rgb, refract};
+use crate::math::{self, Fresnel, Ray, Rgb, beer, refract};
 use crate::media::MediaStack;
 use crate::mesh::shading;
 use crate::sampling::PixelSampler;
 use crate::scene::{Film, Hit, OffsetStrategy, Scene};
-use crate::tree::{Blocker, EndReason, Interface, NodeId, RayKind};
+use crate::tree::{Attenuation, Blocker, EndReason, Interface, NodeId, RayKind};
 use glam::DVec3;
 
 /// The shadow ray to a sampled point on an emitter (or to where it meets the emitter first)
@@ -41,6 +41,15 @@ pub struct Shading<'a> {
     pub film: Film<'a>,
     /// Every light (point, directional, area), chosen in proportion to power.
     pub lights: LightSampler<'a>,
+}
+
+/// What a ray's segment found ([`Shading::segment`]): its closest hit and the attenuation of
+/// the medium it crossed (Beer's law; 1 outside absorbing media).
+pub(crate) struct Segment {
+    /// The closest hit, if any.
+    pub hit: Option<Hit>,
+    /// Beer's law along the segment (from the true spawn point to the hit; 0 or 1 for a miss).
+    pub atten: Rgb,
 }
 
 /// What a cast shadow ray found ([`Shading::cast_shadow`]).
@@ -168,6 +177,58 @@ impl<'a> Shading<'a> {
     ) -> Ray {
         let shape = || self.scene.surface_shape(from.object, from.triangle);
         offset::spawn(self.scene.settings.offset, shape, point, side, direction)
+    }
+
+    /// The segment of a recorded ray (node `id`) spawned at `point` on `from` (`None`: a camera
+    /// ray) through `media`: its closest hit (`found` when the caller already has it and the
+    /// work it took, e.g. from a packet), the traversal work recorded, the diagnostics when the
+    /// recorder runs them, and Beer's law inside the innermost absorbing medium, recorded as
+    /// the node's attenuation. Absorption is looked up only when the plan has it (no per-ray
+    /// cost otherwise). The distance runs from the true spawn point, so the offset does not bias
+    /// Beer's law.
+    #[inline(always)]
+    pub(crate) fn segment<R: Recorder>(
+        &self,
+        (ray, found): (&Ray, Option<(Option<Hit>, TraversalCost)>),
+        (point, from): (DVec3, Option<SurfaceId>),
+        media: &MediaStack,
+        id: Option<NodeId>,
+        rec: &mut R,
+        counts: &mut RayCounts,
+    ) -> Segment {
+        let (hit, cost) = found.unwrap_or_else(|| {
+            let mut cost = TraversalCost::default();
+            let hit = self.scene.intersect_counted(ray, f64::INFINITY, &mut cost);
+            (hit, cost)
+        });
+        rec.update(id, |n| n.traversal = cost);
+        if R::DIAGNOSE
+            && let Some(from) = from
+        {
+            self.diagnose((ray, point, from), hit, id, rec, counts);
+        }
+        let medium = if self.plan.absorption {
+            media.top().map(|m| m.object as usize)
+        } else {
+            None
+        };
+        let mut atten = Rgb::ONE;
+        if let Some(medium) = medium {
+            let absorption = self.scene.material_of(medium).absorption;
+            if absorption != Rgb::ZERO {
+                let distance = hit.map_or(f64::INFINITY, |h| (ray.at(h.t) - point).length());
+                atten = beer(absorption, distance);
+                rec.update(id, |n| {
+                    n.attenuation = Some(Attenuation {
+                        medium,
+                        distance,
+                        absorption,
+                        factor: atten,
+                    });
+                });
+            }
+        }
+        Segment { hit, atten }
     }
 
     /// Run the diagnostics for a ray spawned at `point` on `from` whose closest hit is `hit`,

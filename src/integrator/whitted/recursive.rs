@@ -4,12 +4,13 @@
 use super::local::Local;
 use super::{PathState, Secondary, Spawn, Whitted};
 use crate::bvh::TraversalCost;
+use crate::integrator::shading::Segment;
 use crate::integrator::{RayCounts, Recorder};
 use crate::interaction::{SurfaceId, SurfaceInteraction};
-use crate::math::{Ray, Rgb, beer, reflect};
+use crate::math::{Ray, Rgb, reflect};
 use crate::sampling::PixelSampler;
 use crate::scene::Hit;
-use crate::tree::{Attenuation, EndReason, HitInfo, Interface, NodeId, RayKind, RayNode};
+use crate::tree::{EndReason, HitInfo, Interface, NodeId, RayKind, RayNode};
 use glam::DVec3;
 
 impl Whitted<'_> {
@@ -40,44 +41,10 @@ impl Whitted<'_> {
             n.throughput = state.throughput;
             n
         });
-        let (hit, cost) = found.unwrap_or_else(|| {
-            let mut cost = TraversalCost::default();
-            (
-                self.core
-                    .scene
-                    .intersect_counted(&ray, f64::INFINITY, &mut cost),
-                cost,
-            )
-        });
-        rec.update(id, |n| n.traversal = cost);
-        if R::DIAGNOSE
-            && let Some(from) = spawn.from
-        {
+        let seg = (spawn.point, spawn.from);
+        let Segment { hit, atten } =
             self.core
-                .diagnose((&ray, spawn.point, from), hit, id, rec, counts);
-        }
-        // Beer's law on this segment, inside the innermost absorbing medium.
-        // (Checked only when the plan has absorption: no per-ray cost otherwise.)
-        let medium = if self.core.plan.absorption {
-            state.media.top().map(|m| m.object as usize)
-        } else {
-            None
-        };
-        let absorption = medium.map_or(Rgb::ZERO, |o| self.core.scene.material_of(o).absorption);
-        let mut atten = Rgb::ONE;
-        if medium.is_some() && absorption != Rgb::ZERO {
-            // Path length from the true spawn point, so the offset does not bias Beer's law.
-            let distance = hit.map_or(f64::INFINITY, |h| (ray.at(h.t) - spawn.point).length());
-            atten = beer(absorption, distance);
-            rec.update(id, |n| {
-                n.attenuation = Some(Attenuation {
-                    medium: medium.unwrap_or(0),
-                    distance,
-                    absorption,
-                    factor: atten,
-                });
-            });
-        }
+                .segment((&ray, found), seg, state.media, id, rec, counts);
         let Some(hit) = hit else {
             let radiance = atten * self.core.scene.background;
             rec.update(id, |n| {
