@@ -81,6 +81,15 @@ fn the_caustic_firefly_is_blamed_on_the_floor_bounce() {
     let bounce = t.node(f.node);
     assert_eq!(bounce.kind, raytree::RayKind::Diffuse);
     assert!(f.ratio() > firefly::FIREFLY_RATIO);
+    // Issue 32: the rare thing is the event, counted over the pixel's samples, not the pdf.
+    let firefly::Cause::Caustic { events, .. } = f.cause else {
+        unreachable!()
+    };
+    assert!(events >= 1 && events < t.samples.len(), "{events}");
+    let text = f.sentence();
+    let count = format!("{events} of the pixel's {} samples", t.samples.len());
+    assert!(text.contains(&count), "{text}");
+    assert!(!text.contains("rare sample"), "{text}");
     // A black sample is no firefly.
     assert!(firefly::explain(&t, samples::histogram(&t).zero[0]).is_none());
 }

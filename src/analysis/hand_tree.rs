@@ -69,6 +69,7 @@ impl HandTree {
 
     /// A continuation from `parent`'s hit drawn from `lobe` (`pdf` `None` = delta) with weight
     /// `bsdf_cos_pdf`; `q` is the roulette survival probability taken at `parent`'s hit.
+    // One bounce of a hand-built tree: every number a recorded bounce carries, named at the call.
     #[allow(clippy::too_many_arguments)]
     pub fn bounce(
         &mut self,

@@ -205,6 +205,7 @@ pub fn plural(n: usize) -> &'static str {
 }
 
 /// The legend strip at the bottom: its labels, swatches and box.
+// The legend reads the segments, their plane, the kept set and the options: one call, one place.
 #[allow(clippy::too_many_arguments)]
 pub(super) fn legend(
     segs: &[Seg3],

@@ -173,6 +173,7 @@ fn kept((l, kept): (Rgb, bool)) -> Rgb {
 
 /// Samples `plan.first..plan.total` of pixel (x, y) added to `sum` (the first pass's) in
 /// order, from a copy of `sampler` refined for the pass.
+// The pixel loop's own arguments (integrator, sampler, sink, counts) plus the plan, the pixel and its first-pass sum.
 #[allow(clippy::too_many_arguments)]
 fn second_pass<I: Integrator, S: PixelSampler, K: SampleSink>(
     integrator: &I,

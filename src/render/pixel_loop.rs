@@ -125,6 +125,7 @@ impl<'a> Camera<'a> {
 
 /// Sample `s` of pixel (x, y) traced into `sink`: returns its radiance and whether it is kept.
 #[inline(always)]
+// The integrator, camera and sampler of the sample, the sample's index, and the sink, pixel and counts it adds to.
 #[allow(clippy::too_many_arguments)]
 pub(crate) fn one_sample<I: Integrator, S: PixelSampler, K: SampleSink>(
     integrator: &I,

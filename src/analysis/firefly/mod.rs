@@ -41,6 +41,13 @@ pub enum Cause {
         pdf: Option<f64>,
         /// The bounce's lobe (diffuse or glossy).
         lobe: LobeKind,
+        /// The bounce's `f |cos| / pdf` (max channel): an ordinary weight. What is rare is the
+        /// event, not the sample's pdf.
+        weight: Option<f64>,
+        /// How many of the pixel's samples found light this way (a caustic path ending at an
+        /// emitter found by BSDF sampling, with a contribution): the event's estimated
+        /// probability is this over the samples.
+        events: usize,
     },
     /// Emission found by a BSDF-sampled ray with MIS weight `mis` near 1.
     BsdfEmission {
@@ -91,6 +98,11 @@ pub struct Firefly {
     pub node: NodeId,
     /// Why.
     pub cause: Cause,
+    /// The product of `1 / q` of the Russian-roulette survivals along the path (1 without
+    /// any): the gain roulette gave the sample's weight.
+    pub roulette_gain: f64,
+    /// The pixel's samples.
+    pub samples: usize,
 }
 
 impl Firefly {
@@ -114,14 +126,24 @@ impl Firefly {
             self.path.0
         );
         let why = match &self.cause {
-            Cause::Caustic { pdf, lobe } => format!(
-                "a caustic found by BSDF sampling. Light sampling cannot reach the light through the specular chain, so only the {} bounce's rare sample{} finds it, at full MIS weight",
+            Cause::Caustic {
+                pdf,
+                lobe,
+                weight,
+                events,
+            } => format!(
+                "a caustic found by BSDF sampling. Light sampling cannot reach the light through the specular chain, so only the {} bounce's BSDF sample finds it, at full MIS weight; the sample itself is ordinary{}, what is rare is the event: {} of the pixel's {} samples found the light this way",
                 if *lobe == LobeKind::Diffuse {
                     "diffuse"
                 } else {
                     "glossy"
                 },
-                pdf_text(*pdf)
+                match weight {
+                    Some(w) => format!(" (f cos/pdf = {}{})", g(*w), pdf_inner(*pdf)),
+                    None => pdf_text(*pdf),
+                },
+                events,
+                self.samples
             ),
             Cause::BsdfEmission { mis, pdf } => format!(
                 "emission found by BSDF sampling{} with MIS weight {mis:.3}, near 1: the light strategy could hardly have sampled this direction",
@@ -143,7 +165,15 @@ impl Firefly {
                 g(*factor)
             ),
         };
-        format!("{head}{why} (#{}).", self.node.0)
+        let gain = if self.roulette_gain > 1.0 && !matches!(self.cause, Cause::Roulette { .. }) {
+            format!(
+                "; Russian roulette multiplied the path's weight by {}",
+                g(self.roulette_gain)
+            )
+        } else {
+            String::new()
+        };
+        format!("{head}{why}{gain} (#{}).", self.node.0)
     }
 }
 
@@ -157,6 +187,10 @@ fn g(x: f64) -> String {
 
 fn pdf_text(pdf: Option<f64>) -> String {
     pdf.map_or_else(|| " (delta pdf)".into(), |p| format!(" (pdf {})", g(p)))
+}
+
+fn pdf_inner(pdf: Option<f64>) -> String {
+    pdf.map_or_else(|| ", delta pdf".into(), |p| format!(", pdf {}", g(p)))
 }
 
 /// The pixel's typical sample value and whether it is the median (else the mean): `None` when
@@ -231,7 +265,10 @@ pub fn explain(tree: &RayTree, sample: usize) -> Option<Firefly> {
         at = tree.node(p).parent;
     }
     chain.reverse();
-    let (node, cause) = blame(tree, &chain, end)?;
+    let (node, mut cause) = blame(tree, &chain, end)?;
+    if let Cause::Caustic { events, .. } = &mut cause {
+        *events = caustic_samples(tree);
+    }
     Some(Firefly {
         sample,
         value,
@@ -241,7 +278,45 @@ pub fn explain(tree: &RayTree, sample: usize) -> Option<Firefly> {
         lpe: info.lpe.clone(),
         node,
         cause,
+        roulette_gain: roulette_gain(tree, &chain),
+        samples: tree.samples.len(),
     })
+}
+
+/// The product of `1 / q` over the Russian-roulette survivals along `chain`.
+fn roulette_gain(tree: &RayTree, chain: &[NodeId]) -> f64 {
+    chain
+        .iter()
+        .filter_map(|&id| tree.node(id).path.as_ref()?.roulette)
+        .filter(|r| r.survived && r.probability > 0.0)
+        .map(|r| 1.0 / r.probability)
+        .product()
+}
+
+/// Whether `id` ends a caustic found by BSDF sampling (`C.*[DG]S+L`, a ray that found the
+/// emitter, not a shadow ray) with a positive contribution.
+fn is_caustic_end(tree: &RayTree, id: NodeId, caustic: &Lpe) -> bool {
+    let n = tree.node(id);
+    n.kind != RayKind::Shadow
+        && n.depth > 0
+        && n.path.as_ref().is_some_and(|p| {
+            p.lpe.ends_with('L') && luminance(p.contribution) > 0.0 && caustic.matches(&p.lpe)
+        })
+}
+
+/// How many of the tree's samples have a caustic path found by BSDF sampling.
+fn caustic_samples(tree: &RayTree) -> usize {
+    let Ok(caustic) = Lpe::parse("C.*[DG]S+L") else {
+        return 0;
+    };
+    tree.samples
+        .iter()
+        .filter(|s| {
+            tree.depth_first(s.root)
+                .into_iter()
+                .any(|id| is_caustic_end(tree, id, &caustic))
+        })
+        .count()
 }
 
 fn contribution(tree: &RayTree, id: NodeId) -> f64 {
@@ -280,7 +355,17 @@ fn blame(tree: &RayTree, chain: &[NodeId], end: NodeId) -> Option<(NodeId, Cause
             })?;
             let info = tree.node(bounce).path.as_ref()?;
             let (pdf, lobe) = (density(info.pdf), info.lobe?);
-            return Some((bounce, Cause::Caustic { pdf, lobe }));
+            let weight = info.bsdf_cos_pdf.map(|w| w.max_element());
+            let events = 0; // counted over the pixel's samples by `explain`
+            return Some((
+                bounce,
+                Cause::Caustic {
+                    pdf,
+                    lobe,
+                    weight,
+                    events,
+                },
+            ));
         }
         let mis = info.mis_weight.unwrap_or(1.0);
         if mis >= MIS_NEAR_ONE && density(info.pdf).is_some() {

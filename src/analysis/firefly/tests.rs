@@ -64,12 +64,21 @@ fn a_caustic_blames_the_diffuse_bounce() {
         f.cause,
         Cause::Caustic {
             pdf: Some(0.06),
-            lobe: LobeKind::Diffuse
+            lobe: LobeKind::Diffuse,
+            weight: Some(0.7),
+            events: 1,
         }
     );
     assert_eq!(f.lpe, "C<RD><TS><TS>L");
     assert!((f.ratio() - 350.0).abs() < 1e-9, "{}", f.ratio());
-    assert!(f.sentence().contains("caustic"), "{}", f.sentence());
+    // Issue 32: the pdf of the sample is ordinary; the event is what is rare (1 of 10).
+    let text = f.sentence();
+    assert!(text.contains("caustic"), "{text}");
+    assert!(!text.contains("rare sample"), "{text}");
+    assert!(text.contains("f cos/pdf = 0.7000, pdf 0.0600"), "{text}");
+    assert!(text.contains("1 of the pixel's 10 samples"), "{text}");
+    assert_eq!(f.roulette_gain, 1.0);
+    assert!(!text.contains("roulette"), "{text}");
     // The dim samples are not.
     assert!(explain(&t, 0).is_none());
 }
@@ -92,6 +101,7 @@ fn roulette_survival_is_blamed_when_it_is_the_largest_factor() {
     let f = explain(&t, 9).expect("a firefly");
     assert_eq!(f.node, cont);
     assert_eq!(f.cause, Cause::Roulette { q: 0.05 });
+    assert!((f.roulette_gain - 20.0).abs() < 1e-9, "{}", f.roulette_gain);
 }
 
 #[test]

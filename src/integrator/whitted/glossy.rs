@@ -96,6 +96,7 @@ impl Whitted<'_> {
     /// `state` is the parent's with the throughput at the hit. Never inlined into `shade`: its
     /// locals (a BSDF, a media stack) would grow every recursion level's stack frame
     /// (`max_depth` 1024 overflowed a worker's stack).
+    // The accumulator, the hit, the spawn and path state, plus the sampler, recorder and counts every tracing function threads.
     #[allow(clippy::too_many_arguments)]
     #[inline(never)]
     pub(super) fn glossy_rays<R: Recorder, S: PixelSampler>(

@@ -16,6 +16,7 @@ use glam::DVec3;
 impl Whitted<'_> {
     /// One ray of the tree; `found` is its closest hit and the traversal work when the caller
     /// already has them (camera rays traced by packet), otherwise they are computed here.
+    // The ray, its known hit, where it starts and the path state, plus the sampler, recorder and counts every tracing function threads.
     #[allow(clippy::too_many_arguments)]
     pub(super) fn trace_ray<R: Recorder, S: PixelSampler>(
         &self,
@@ -70,6 +71,7 @@ impl Whitted<'_> {
 
     /// Everything at a hit: local shading plus the weighted secondary rays (before the segment's
     /// attenuation).
+    // The ray, its hit and node, the throughput and path state, plus the sampler, recorder and counts every tracing function threads.
     #[allow(clippy::too_many_arguments)]
     fn shade<R: Recorder, S: PixelSampler>(
         &self,
@@ -247,6 +249,7 @@ impl Whitted<'_> {
     /// Trace one secondary ray (or record why it was cut) and add its weighted radiance;
     /// `state` is the parent's, with the throughput at its hit and the child's media. The
     /// child's node, unless cut.
+    // The accumulator, the ray to spawn (origin, direction, side) and the path state, plus the sampler, recorder and counts every tracing function threads.
     #[allow(clippy::too_many_arguments)]
     pub(super) fn secondary<R: Recorder, S: PixelSampler>(
         &self,
