@@ -324,3 +324,36 @@ fn highlight_and_bad_options() {
         assert!(l.size >= 14.0, "{l:?}");
     }
 }
+
+/// Issue 32: lamps are drawn. The Cornell box's ceiling lamp is marked where the shadow rays of
+/// next-event estimation meet it, the caustic scene's lamp where its light samples land, and an
+/// emissive object cut by the plane is filled as an emitter.
+#[test]
+fn lamps_are_drawn_where_rays_meet_them() {
+    let mut s = scene("cornell-box.json");
+    s.settings.spp = 4;
+    let tree = trace_pixel(&s, 128, 200).unwrap();
+    let d = build(&s, &tree, PlaneSpec::Auto);
+    let lamp = s.objects.iter().position(|o| o.name == "lamp").unwrap();
+    let marks: Vec<_> = d.lights.iter().map(|m| (m.light, m.area)).collect();
+    assert!(
+        marks.contains(&(s.lights.len() + lamp, true)),
+        "the ceiling lamp is marked: {marks:?}"
+    );
+    let svg = to_svg(&d, &Style::new(Theme::Light));
+    assert!(svg.contains(">lamp"), "its name is written");
+    // A plane through the lamp cuts it: its slice is an emitter.
+    let cut = build(
+        &s,
+        &tree,
+        PlaneSpec::Axis {
+            axis: 2,
+            value: 0.0,
+        },
+    );
+    assert!(
+        cut.objects.iter().any(|o| o.fill == Fill::Emitter),
+        "the lamp's slice is filled as an emitter: {:?}",
+        cut.objects.iter().map(|o| o.fill).collect::<Vec<_>>()
+    );
+}

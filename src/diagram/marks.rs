@@ -18,39 +18,26 @@ pub(super) fn light_marks(
 ) -> Vec<LightMark> {
     let mut out: Vec<LightMark> = Vec::new();
     for (s, r) in segs.iter().zip(rays) {
-        let Some(info) = &s.node.shadow else { continue };
-        // A shadow ray entirely outside the view marks nothing.
+        // A ray entirely outside the view marks nothing.
         if (r.to - r.from).length() < 0.5 {
             continue;
         }
-        if out.iter().any(|m| m.light == info.light) {
+        let Some(LightAt {
+            light,
+            area,
+            name,
+            point,
+            directional,
+            dist,
+        }) = light_at(scene, s, r, frame)
+        else {
+            continue;
+        };
+        if out.iter().any(|m| m.light == light) {
             continue;
         }
-        let Some(light) = scene.lights.get(info.light) else {
-            continue;
-        };
-        let (point, directional, dist) = match light.kind {
-            LightKind::Point { position, .. } => {
-                let p = frame.to_canvas(position);
-                // A light outside the frame is marked where its shadow ray leaves it.
-                let p = if (p - r.to).length() > 1.0 && r.end == RayEnd::Light {
-                    r.to
-                } else {
-                    p
-                };
-                (p, None, frame.distance(position))
-            }
-            LightKind::Directional { direction, .. } => {
-                if matches!(r.end, RayEnd::Light) {
-                    let d = frame.dir_to_canvas(direction).try_normalize();
-                    (r.to, d, 0.0)
-                } else {
-                    continue;
-                }
-            }
-        };
         let f = fade(dist, extent3);
-        let mut text = light.name.clone();
+        let mut text = name;
         if is_off(dist, extent3) {
             text = format!("{text} ({dist:+.2} off plane)");
         }
@@ -66,7 +53,8 @@ pub(super) fn light_marks(
             0,
         ));
         out.push(LightMark {
-            light: info.light,
+            light,
+            area,
             point,
             directional,
             plane_distance: dist,
@@ -74,6 +62,82 @@ pub(super) fn light_marks(
         });
     }
     out
+}
+
+/// The light a ray meets ([`light_at`]).
+struct LightAt {
+    /// Its index (`scene.lights.len() + object` for an emissive object).
+    light: usize,
+    /// An emissive object.
+    area: bool,
+    name: String,
+    /// The mark's canvas point.
+    point: DVec2,
+    /// A directional light's canvas direction of travel.
+    directional: Option<DVec2>,
+    /// Distance from the plane.
+    dist: f64,
+}
+
+/// The light a ray meets, if any. Shadow rays meet their light (an area light at its sampled
+/// point); a camera, reflected, refracted or bounce ray meets an emissive object it hits on the
+/// outer side.
+fn light_at(scene: &Scene, s: &Seg3, r: &RaySegment, frame: &plane::PlaneFrame) -> Option<LightAt> {
+    let Some(info) = &s.node.shadow else {
+        let hit = s.node.hit.as_ref()?;
+        let emits = scene.material_of(hit.object).emission.max_element() > 0.0;
+        if !(emits && hit.entering) {
+            return None;
+        }
+        return Some(LightAt {
+            light: scene.lights.len() + hit.object,
+            area: true,
+            name: hit.object_name.clone(),
+            point: r.to,
+            directional: None,
+            dist: frame.distance(hit.point),
+        });
+    };
+    if let Some(a) = &info.area {
+        if s.node.end == crate::tree::EndReason::LightBehind {
+            return None;
+        }
+        return Some(LightAt {
+            light: info.light,
+            area: true,
+            name: info.light_name.clone(),
+            point: r.to,
+            directional: None,
+            dist: frame.distance(a.point),
+        });
+    }
+    let light = scene.lights.get(info.light)?;
+    let (point, directional, dist) = match light.kind {
+        LightKind::Point { position, .. } => {
+            let p = frame.to_canvas(position);
+            // A light outside the frame is marked where its shadow ray leaves it.
+            let p = if (p - r.to).length() > 1.0 && r.end == RayEnd::Light {
+                r.to
+            } else {
+                p
+            };
+            (p, None, frame.distance(position))
+        }
+        LightKind::Directional { direction, .. } => {
+            if !matches!(r.end, RayEnd::Light) {
+                return None;
+            }
+            (r.to, frame.dir_to_canvas(direction).try_normalize(), 0.0)
+        }
+    };
+    Some(LightAt {
+        light: info.light,
+        area: false,
+        name: light.name.clone(),
+        point,
+        directional,
+        dist,
+    })
 }
 
 pub(super) fn camera_mark(

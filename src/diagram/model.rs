@@ -62,6 +62,8 @@ pub enum Fill {
         /// Transmittance over one world unit, `exp(-absorption)`.
         tint: [f64; 3],
     },
+    /// Emissive (a lamp or area light): drawn in the light's colour with a glow.
+    Emitter,
     /// Reflective: hatched.
     Mirror,
     /// Anything else: grey.
@@ -198,8 +200,12 @@ pub struct HitMark {
 /// A light's marker.
 #[derive(Clone, Debug, PartialEq)]
 pub struct LightMark {
-    /// Light index.
+    /// Light index (`scene.lights.len() + object` for an emissive object, as in
+    /// [`crate::tree::ShadowInfo::light`]).
     pub light: usize,
+    /// An emissive object (area light) rather than a point or directional light: marked where
+    /// the rays meet it.
+    pub area: bool,
     /// Position (for directional lights, where its rays enter the frame).
     pub point: Point,
     /// For directional lights: unit canvas direction of travel.

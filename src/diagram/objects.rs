@@ -11,7 +11,9 @@ use glam::{DVec2, DVec3};
 #[must_use]
 pub fn fill_of(m: &Material) -> Fill {
     let tint = (-m.absorption).exp().to_array();
-    if m.is_transmissive() {
+    if m.emission.max_element() > 0.0 {
+        Fill::Emitter
+    } else if m.is_transmissive() {
         match m.ior {
             Some(ior) => Fill::Glass { ior, tint },
             None => Fill::Absorbing { tint },

@@ -35,8 +35,10 @@ pub(super) fn seg3<'a>(scene: &Scene, n: &'a RayNode) -> Seg3<'a> {
                 let t = b.map_or(0.0, |b| b.t);
                 (Some(n.origin + t * n.direction), RayEnd::Blocked)
             }
-            _ => match scene.lights.get(s.light).map(|l| &l.kind) {
-                Some(LightKind::Point { position, .. }) => (Some(*position), RayEnd::Light),
+            // An area light's shadow ray ends on the lamp, at its sampled point.
+            _ => match (&s.area, scene.lights.get(s.light).map(|l| &l.kind)) {
+                (Some(a), _) => (Some(a.point), RayEnd::Light),
+                (None, Some(LightKind::Point { position, .. })) => (Some(*position), RayEnd::Light),
                 _ => (None, RayEnd::Light),
             },
         },

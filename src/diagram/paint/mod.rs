@@ -47,7 +47,11 @@ pub fn display_list(d: &Diagram, style: &Style) -> Vec<Prim> {
             }
             Fill::Mirror => (style.mirror, style.ink),
             Fill::Diffuse => (style.diffuse, style.muted),
+            Fill::Emitter => (style.rays[3].fade(0.85), style.rays[3]),
         };
+        if o.fill == Fill::Emitter {
+            lamp_glow(&o.shape, style.rays[3].fade(0.35), 9.0 * ws, &mut out);
+        }
         match &o.shape {
             SliceShape::Circle { center, radius } => out.push(Prim::Circle {
                 center: *center,
@@ -143,6 +147,27 @@ pub fn display_list(d: &Diagram, style: &Style) -> Vec<Prim> {
     for l in &d.lights {
         let c = style.rays[3].fade(l.fade);
         match l.directional {
+            None if l.area => {
+                // Where rays meet a lamp: a small lamp glyph (the lamp itself is drawn where
+                // the plane cuts it).
+                out.push(Prim::Circle {
+                    center: l.point,
+                    radius: 0.3 * fs,
+                    fill: Some(c),
+                    stroke: Some((style.ink.fade(l.fade), 1.0 * ws)),
+                });
+                for k in 0..4 {
+                    let a =
+                        f64::from(k) * std::f64::consts::FRAC_PI_2 + std::f64::consts::FRAC_PI_4;
+                    let v = DVec2::new(a.cos(), a.sin());
+                    out.push(stroke(
+                        vec![l.point + v * 0.4 * fs, l.point + v * 0.7 * fs],
+                        c,
+                        1.6 * ws,
+                        None,
+                    ));
+                }
+            }
             None => {
                 for k in 0..8 {
                     let a = f64::from(k) * std::f64::consts::FRAC_PI_4;
@@ -245,4 +270,29 @@ pub fn display_list(d: &Diagram, style: &Style) -> Vec<Prim> {
         });
     }
     out
+}
+
+/// A wide translucent stroke around a lamp's slice: its glow.
+fn lamp_glow(shape: &SliceShape, color: Rgba, width: f64, out: &mut Vec<Prim>) {
+    match shape {
+        SliceShape::Circle { center, radius } => out.push(Prim::Circle {
+            center: *center,
+            radius: *radius + 0.5 * width,
+            fill: None,
+            stroke: Some((color, width)),
+        }),
+        SliceShape::Polygon(p) => out.push(Prim::Stroke {
+            points: p.clone(),
+            color,
+            width,
+            dash: None,
+            closed: true,
+        }),
+        SliceShape::Segment(a, b) => out.push(stroke(vec![*a, *b], color, 2.0 * width, None)),
+        SliceShape::Segments(s) => {
+            for (a, b) in s {
+                out.push(stroke(vec![*a, *b], color, 2.0 * width, None));
+            }
+        }
+    }
 }
