@@ -15,7 +15,7 @@ pub struct SurfaceId {
     pub triangle: Option<u32>,
 }
 
-/// A hit as shading sees it, built once per hit ([`crate::integrator::Shading::surface`]) and passed to local
+/// A hit as shading sees it, built once per hit (`Shading::surface`) and passed to local
 /// shading, the light loops, the dielectric split and the recorder.
 #[derive(Clone, Copy, Debug)]
 pub struct SurfaceInteraction<'a> {

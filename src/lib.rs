@@ -3,7 +3,7 @@
 //!
 //! Data flows one way: scene text (raytree JSON, or pbrt-v4 / Mitsuba 3 through [`formats`]) ->
 //! [`Scene`] (validated) -> an [`Integrator`] ([`Whitted`] or [`PathTracer`], chosen by
-//! [`SceneIntegrator`]) with a [`Recorder`] -> radiance through the [`render`] loop, and
+//! [`SceneIntegrator`]) with a [`Recorder`] -> radiance through the [`mod@render`] loop, and
 //! optionally a [`RayTree`] whose contributions sum to the pixel bit for bit, which every view
 //! (text, JSON, diagram, GUI, [`analysis`]) reads. The library does no I/O. Where each concept
 //! lives: `docs/architecture.md`.

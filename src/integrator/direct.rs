@@ -29,6 +29,9 @@ pub(crate) struct LightEval {
     pub brdf: Rgb,
     /// What multiplies the arriving light: the shadow node's weight.
     pub weight: Rgb,
+    /// What the light delivers before visibility (the kernel's own, computed once: for
+    /// Whitted the sample's value `radiance / pdf`, for the path tracer its radiance).
+    pub value: Rgb,
     /// The MIS weight of the light sample (1 without MIS).
     pub mis: f64,
     /// The geometric normal on the side the shadow ray leaves from.
@@ -43,8 +46,9 @@ pub(crate) trait DirectKernel {
     /// The weight of light sample `ls` of `light` at `si`.
     fn eval(&self, si: &SurfaceInteraction, light: &Light, ls: &LightSample) -> LightEval;
 
-    /// What arrives at `si` along the sample through a shadow ray of transmittance `t`.
-    fn arriving(&self, si: &SurfaceInteraction, ls: &LightSample, t: Rgb) -> Rgb;
+    /// What arrives at `si` along the sample (weighed as `eval`) through a shadow ray of
+    /// transmittance `t`.
+    fn arriving(&self, si: &SurfaceInteraction, sample: (&LightSample, &LightEval), t: Rgb) -> Rgb;
 
     /// Fill in the integrator's own record of a shadow node when it is pushed (recording only).
     fn annotate(
@@ -130,7 +134,7 @@ impl Shading<'_> {
         }
         let cast = self.cast_shadow((&ray, seg), (si.p, from), id, rec, counts);
         let t = cast.transmittance;
-        let arriving = kernel.arriving(si, &ls, t);
+        let arriving = kernel.arriving(si, (&ls, &eval), t);
         rec.update(id, |node| {
             node.traversal = cast.cost;
             node.radiance = arriving;

@@ -149,21 +149,33 @@ impl<'a> Shading<'a> {
             (m.ior.unwrap_or(n2), n2)
         };
         let model = self.scene.settings.fresnel;
-        let refracted = refract(d, n, n1 / n2);
-        let fresnel: Fresnel = match refracted {
-            Some(t) => math::fresnel(model, n1, n2, cos_i, t.cos_t),
-            None => math::fresnel_tir(model),
-        };
-        let event = Interface {
-            n1,
-            n2,
-            cos_i,
-            cos_t: refracted.map(|t| t.cos_t),
-            fresnel,
-            tir: refracted.is_none(),
-            roulette: None,
-        };
-        (event, refracted.map(|t| t.direction))
+        match refract(d, n, n1 / n2) {
+            Some(t) => {
+                let fresnel: Fresnel = math::fresnel(model, n1, n2, cos_i, t.cos_t);
+                let event = Interface {
+                    n1,
+                    n2,
+                    cos_i,
+                    cos_t: Some(t.cos_t),
+                    fresnel,
+                    tir: false,
+                    roulette: None,
+                };
+                (event, Some(t.direction))
+            }
+            None => {
+                let event = Interface {
+                    n1,
+                    n2,
+                    cos_i,
+                    cos_t: None,
+                    fresnel: math::fresnel_tir(model),
+                    tir: true,
+                    roulette: None,
+                };
+                (event, None)
+            }
+        }
     }
 
     /// Offset a spawn point on surface `from` by the configured strategy ([`offset::spawn`]).

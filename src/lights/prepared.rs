@@ -58,7 +58,7 @@ impl PreparedPlanar {
     }
 
     /// [`PlanarEmitter::sample`].
-    #[inline]
+    #[inline(always)]
     #[must_use]
     pub fn sample(&self, p: DVec3, radiance: Rgb, u: DVec2) -> Option<LightSample> {
         let n = self.normal?;

@@ -59,6 +59,7 @@ impl DirectKernel for PathKernel<'_> {
             cos: cos_s,
             brdf: f,
             weight,
+            value: ls.radiance,
             mis,
             side: if up { si.n } else { -si.n },
             behind: weight == Rgb::ZERO,
@@ -67,7 +68,12 @@ impl DirectKernel for PathKernel<'_> {
 
     /// Unblocked, the whole segment lies in the medium around the point: Beer's law on it.
     #[inline(always)]
-    fn arriving(&self, si: &SurfaceInteraction, ls: &LightSample, t: Rgb) -> Rgb {
+    fn arriving(
+        &self,
+        si: &SurfaceInteraction,
+        (ls, eval): (&LightSample, &LightEval),
+        t: Rgb,
+    ) -> Rgb {
         let medium = si
             .media
             .top()
@@ -76,7 +82,7 @@ impl DirectKernel for PathKernel<'_> {
             Some(a) if a != Rgb::ZERO && t != Rgb::ZERO => beer(a, ls.distance),
             _ => Rgb::ONE,
         };
-        ls.radiance * t * absorbed
+        eval.value * t * absorbed
     }
 
     fn annotate(

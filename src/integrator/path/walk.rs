@@ -126,7 +126,10 @@ impl PathTracer<'_> {
                 rec,
                 counts,
             );
-            w.beta *= seg.atten;
+            // Only inside an absorbing medium (the same bits as multiplying by 1 elsewhere).
+            if seg.atten != Rgb::ONE {
+                w.beta *= seg.atten;
+            }
             let link = Link {
                 id,
                 atten: seg.atten,
@@ -160,6 +163,7 @@ impl PathTracer<'_> {
     }
 
     /// Count and record the current ray (its node, with how it was sampled).
+    #[inline(always)]
     fn push_ray<R: Recorder>(
         &self,
         w: &mut Walk,
@@ -199,6 +203,7 @@ impl PathTracer<'_> {
     }
 
     /// An escaping ray sees the background (not sampled by light sampling: weight 1).
+    #[inline(always)]
     fn miss<R: Recorder>(&self, w: &mut Walk, mut link: Link, rec: &mut R) {
         let background = self.scene().background;
         let c = w.beta * background;
@@ -224,6 +229,7 @@ impl PathTracer<'_> {
     /// Everything at a hit: its record, the MIS-weighted emission, the light sample and the
     /// continuation (roulette, then a direction sampled from the BSDF, spawned as the next
     /// ray). False when the path ends here.
+    #[inline(always)]
     fn scatter<R: Recorder, S: PixelSampler>(
         &self,
         (w, media): (&mut Walk, &mut MediaStack),
@@ -293,6 +299,7 @@ impl PathTracer<'_> {
     }
 
     /// The hit as recorded on the ray's node.
+    #[inline(always)]
     fn record_hit<R: Recorder>(
         &self,
         si: &SurfaceInteraction,
@@ -319,6 +326,7 @@ impl PathTracer<'_> {
 
     /// Emission of the outer side of `object`, weighted against the light sample that could
     /// have found it: added to the path and to the vertex's local term.
+    #[inline(always)]
     fn emission<R: Recorder>(
         &self,
         w: &mut Walk,
@@ -351,6 +359,7 @@ impl PathTracer<'_> {
     /// Russian roulette from bounce `rr_depth` on (this is bounce `depth + 1`): the
     /// continuation's weight `f cos / pdf`, divided by the survival probability
     /// `min(1, max(beta x weight))` when it plays; `None` when the path does not survive.
+    #[inline(always)]
     fn roulette<R: Recorder, S: PixelSampler>(
         &self,
         w: &Walk,
@@ -382,6 +391,7 @@ impl PathTracer<'_> {
     /// The next ray from the sampled direction `bs` where the path leaves `at` (`f_cos_pdf` and
     /// the weight after roulette recorded on it): through the media it enters or leaves,
     /// offset by the scene's strategy.
+    #[inline(always)]
     fn spawn_next(
         &self,
         (w, media): (&mut Walk, &mut MediaStack),
@@ -430,6 +440,7 @@ impl PathTracer<'_> {
     }
 
     /// Record why the path ends (or `Continued`) at the vertex of `link` and its local term.
+    #[inline(always)]
     fn mark_end<R: Recorder>(&self, depth: u32, link: &Link, reason: EndReason, rec: &mut R) {
         if R::PATHS && reason != EndReason::Continued {
             rec.path_end(depth + 1, reason);
@@ -441,6 +452,7 @@ impl PathTracer<'_> {
     }
 
     /// End the path at the vertex of `link` for `reason`: false, for the walk's loop.
+    #[inline(always)]
     fn stop<R: Recorder>(&self, w: &mut Walk, link: Link, reason: EndReason, rec: &mut R) -> bool {
         self.mark_end(w.depth, &link, reason, rec);
         if R::RECORDS {

@@ -54,6 +54,7 @@ impl DirectKernel for WhittedKernel<'_, '_> {
         let (mut brdf, mut weight) =
             Whitted::light_weight(plan.specular, m, self.albedo, si.ns, (wi, si.wo), cos);
         let delta = light.is_delta();
+        let value = ls.value();
         if delta {
             if plan.glossy && cos > 0.0 && m.is_rough() {
                 // The rough lobes' glossy highlight (glossy.rs).
@@ -67,15 +68,21 @@ impl DirectKernel for WhittedKernel<'_, '_> {
             cos,
             brdf,
             weight,
+            value,
             mis: 1.0,
             side: si.n,
-            behind: cos <= 0.0 || (!delta && ls.value() == Rgb::ZERO),
+            behind: cos <= 0.0 || (!delta && value == Rgb::ZERO),
         }
     }
 
     #[inline(always)]
-    fn arriving(&self, _: &SurfaceInteraction, ls: &LightSample, t: Rgb) -> Rgb {
-        ls.value() * t
+    fn arriving(
+        &self,
+        _: &SurfaceInteraction,
+        (_, eval): (&LightSample, &LightEval),
+        t: Rgb,
+    ) -> Rgb {
+        eval.value * t
     }
 }
 

@@ -152,7 +152,7 @@ impl<'a> Whitted<'a> {
     /// what [`Scene::intersect_counted`] returns for it over `(ray.t_min, infinity)` and the work
     /// that took, e.g. from [`Scene::intersect_packet`] over a tile of camera rays. The result
     /// is the same as tracing the ray from scratch (the hit is the same bit for bit). Packets
-    /// are traced only when the plan has no area lights ([`Whitted::traces_packets`]), so no
+    /// are traced only when the plan has no area lights (`Integrator::traces_packets`), so no
     /// random number is drawn here.
     pub fn trace_camera_found<R: Recorder>(
         &self,
