@@ -1,8 +1,8 @@
 //! The inspector's state: the scene, the progressive image, the selection and its tree, and the
 //! view options. Plain data; panels read it and emit [`Command`]s.
 
-use super::export::ExportKind;
-use super::stats::{DebugView, PixelStats};
+use crate::gui::model::export::ExportKind;
+use crate::gui::model::stats::{DebugView, PixelStats};
 use crate::math::Rgb;
 use crate::render::Image;
 use crate::scene::{Scene, Settings};
@@ -41,8 +41,8 @@ pub struct ViewOptions {
     /// Draw the selected pixel's ray path on the image.
     pub overlay: bool,
     /// The diagram panel's options (plane, filters, zoom and pan, export highlight).
-    pub diagram: super::diagram_ui::DiagramView,
-    /// Show the image denoised ([`super::denoise_view`]; trees, overlay, diagram and exports
+    pub diagram: crate::gui::panels::diagram::DiagramView,
+    /// Show the image denoised ([`crate::gui::jobs::denoise`]; trees, overlay, diagram and exports
     /// stay the raw samples).
     pub denoise: bool,
 }
@@ -54,7 +54,7 @@ impl Default for ViewOptions {
             pan: [0.0, 0.0],
             debug: DebugView::Off,
             overlay: true,
-            diagram: super::diagram_ui::DiagramView::default(),
+            diagram: crate::gui::panels::diagram::DiagramView::default(),
             denoise: false,
         }
     }
@@ -94,7 +94,7 @@ pub struct Step {
 #[derive(Clone, Debug, Default)]
 pub struct Lab {
     /// What is rendered.
-    pub params: super::acne_lab::LabParams,
+    pub params: crate::gui::jobs::acne_lab::LabParams,
     /// Whether the lab has been started (it re-runs on every scene or settings change then).
     pub started: bool,
     /// The lab job the results belong to.
@@ -131,7 +131,7 @@ pub struct Document {
     /// Render progress.
     pub progress: Progress,
     /// Progressive rendering: its options and the last pass's noise estimate.
-    pub progressive: super::progressive::State,
+    pub progressive: crate::gui::jobs::progressive::State,
     /// Selected pixel.
     pub selection: Option<[u32; 2]>,
     /// The selected pixel's tree (re-traced synchronously on every change).
@@ -163,7 +163,7 @@ pub struct Document {
     /// The acne lab.
     pub lab: Lab,
     /// The light path expression filter (`tree` is the filtered tree while one applies).
-    pub lpe: super::lpe_filter::LpeState,
+    pub lpe: crate::gui::model::lpe_filter::LpeState,
 }
 
 impl Document {
@@ -229,7 +229,7 @@ impl Document {
     }
 }
 
-/// A change requested by a panel, applied after layout by [`super::Session::apply`].
+/// A change requested by a panel, applied after layout by [`crate::gui::Session::apply`].
 #[must_use]
 #[derive(Clone, Debug, PartialEq)]
 pub enum Command {
@@ -260,9 +260,9 @@ pub enum Command {
     /// Move the step point or change the depth shown.
     SetStep(Step),
     /// Run the acne lab with these parameters (cancelling its last job).
-    SetLab(super::acne_lab::LabParams),
+    SetLab(crate::gui::jobs::acne_lab::LabParams),
     /// New text in the LPE filter field (applied when it parses; empty: no filter).
     SetLpe(String),
     /// Progressive rendering's options (re-renders).
-    SetProgressive(super::progressive::Options),
+    SetProgressive(crate::gui::jobs::progressive::Options),
 }

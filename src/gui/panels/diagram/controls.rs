@@ -3,8 +3,8 @@
 //! contribution threshold, sample, spawn-point insets, whether exports highlight the
 //! selection; zoom about the cursor and pan by dragging.
 
-use super::document::Document;
 use crate::diagram::{DiagramOptions, MIN_SHARE, PlaneFrame, PlaneSpec};
+use crate::gui::model::document::Document;
 use crate::tree::{NodeId, RayKind};
 
 /// Which plane the panel slices with.
@@ -75,7 +75,7 @@ impl Default for DiagramView {
 }
 
 /// The sample holding node `id` (the overlay's rule).
-pub(super) fn sample_of(doc: &Document, id: NodeId) -> Option<usize> {
+pub(crate) fn sample_of(doc: &Document, id: NodeId) -> Option<usize> {
     let tree = doc.tree.as_ref()?;
     let mut cur = id;
     while let Some(p) = tree.nodes.get(cur.index())?.parent {

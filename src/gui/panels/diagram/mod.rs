@@ -1,17 +1,18 @@
 //! The diagram panel: the selected pixel's cross-section (from [`crate::diagram`]), the
-//! selected node highlighted, with its controls (`diagram_controls`: plane, depth, kinds,
+//! selected node highlighted, with its controls (`controls.rs`: plane, depth, kinds,
 //! labels, threshold, sample, insets, export highlight), zoom and pan. The figure is drawn by
 //! the PNG export's rasteriser (dark theme) into a texture, on a thread of its own, once per
 //! change: a frame paints one image instead of tessellating hundreds of rays and labels, and a
 //! click does not wait for the rasteriser (the previous figure stays, marked, until it is done).
 
-use super::diagram_controls as controls;
-pub use super::diagram_controls::DiagramView;
-use super::document::{Command, Document};
+pub(super) mod controls;
+
 use crate::diagram::model::Anchor;
 use crate::diagram::paint::{Prim, Rgba};
 use crate::diagram::{Diagram, DiagramOptions, Style, Theme, display_list, to_pixmap};
+use crate::gui::model::document::{Command, Document};
 use crate::tree::NodeId;
+pub use controls::DiagramView;
 use egui::{
     Align2, Color32, ColorImage, FontId, Pos2, Shape, Stroke, TextureHandle, TextureOptions, pos2,
 };
@@ -31,10 +32,10 @@ struct Key {
 /// A figure to rasterise: the key it is for, the diagram, and whom to wake when it is done.
 type Job = (Key, Diagram, egui::Context);
 
-/// The rasteriser ([`super::background::Lane`]): always draws the newest job waiting, sends
+/// The rasteriser ([`crate::gui::jobs::background::Lane`]): always draws the newest job waiting, sends
 /// back its pixels.
 struct Rasteriser {
-    jobs: super::background::Lane<Job>,
+    jobs: crate::gui::jobs::background::Lane<Job>,
     done: Receiver<(Key, ColorImage)>,
 }
 
@@ -42,18 +43,19 @@ impl Rasteriser {
     fn start() -> Option<Self> {
         let (tx, done) = channel();
         // Only the newest figure matters (arrow keys held down queue many).
-        let jobs = super::background::Lane::new("raytree-diagram", None, move |job: Job| {
-            let (key, d, ctx) = job;
-            let pm = to_pixmap(&d, &Style::new(Theme::Dark));
-            let img = ColorImage::from_rgba_premultiplied(
-                [pm.width() as usize, pm.height() as usize],
-                pm.data(),
-            );
-            if tx.send((key, img)).is_ok() {
-                ctx.request_repaint();
-            }
-        })
-        .ok()?;
+        let jobs =
+            crate::gui::jobs::background::Lane::new("raytree-diagram", None, move |job: Job| {
+                let (key, d, ctx) = job;
+                let pm = to_pixmap(&d, &Style::new(Theme::Dark));
+                let img = ColorImage::from_rgba_premultiplied(
+                    [pm.width() as usize, pm.height() as usize],
+                    pm.data(),
+                );
+                if tx.send((key, img)).is_ok() {
+                    ctx.request_repaint();
+                }
+            })
+            .ok()?;
         Some(Self { jobs, done })
     }
 }
@@ -273,7 +275,7 @@ pub fn diagram_ui(
         let uv = egui::Rect::from_min_max(pos2(0.0, 0.0), pos2(1.0, 1.0));
         painter.image(tex.id(), rect, uv, Color32::WHITE);
         if let Some(frame) = &cache.frame {
-            super::step_ui::paint_on_diagram(&painter, doc, frame, area.min);
+            crate::gui::panels::step::paint_on_diagram(&painter, doc, frame, area.min);
         }
     }
     if cache.pending {

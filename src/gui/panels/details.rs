@@ -2,11 +2,11 @@
 //! numbers of [`crate::analysis::teach`]: angles in degrees, the critical angle, the weight's
 //! factors, medium names) and the contribution breakdown.
 
-use super::breakdown::{Term, pixel_contribution};
-use super::document::{Command, Document};
-use super::style::{SELECTED, amount, kind_colour, num, rgb, vec3};
-use super::tree_ui::TreeView;
 use crate::analysis::teach;
+use crate::gui::model::breakdown::{Term, pixel_contribution};
+use crate::gui::model::document::{Command, Document};
+use crate::gui::panels::tree::TreeView;
+use crate::gui::style::{SELECTED, amount, kind_colour, num, rgb, vec3};
 use crate::math::Rgb;
 use crate::tree::RayKind;
 use egui::RichText;

@@ -1,11 +1,11 @@
 use super::*;
-use crate::gui::worker::Worker;
+use crate::gui::jobs::worker::Worker;
 use crate::integrator::SceneIntegrator;
 use crate::scene::{SamplerKind, Scene};
 use std::sync::Arc;
 
 fn cornell(size: u32) -> Scene {
-    let mut scene = Scene::from_json(include_str!("../../../fixtures/cornell-box.json")).unwrap();
+    let mut scene = Scene::from_json(include_str!("../../../../fixtures/cornell-box.json")).unwrap();
     scene.camera = scene.camera.with_size(size, size);
     scene.settings.adaptive = None;
     scene

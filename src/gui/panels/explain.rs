@@ -3,9 +3,9 @@
 //! it selects its first node (the tree panel opens its levels and scrolls to it); a sentence
 //! about several nodes has a button for each id under it.
 
-use super::document::{Command, Document};
-use super::style::SELECTED;
 use crate::analysis::explain::{Explanation, SentenceKind, explain};
+use crate::gui::model::document::{Command, Document};
+use crate::gui::style::SELECTED;
 use crate::tree::NodeId;
 use egui::{Color32, RichText};
 
@@ -48,7 +48,7 @@ fn heading(kind: SentenceKind) -> &'static str {
 
 fn colour(kind: SentenceKind) -> Color32 {
     match kind {
-        SentenceKind::Suspicious => super::app::WARNING,
+        SentenceKind::Suspicious => crate::gui::app::WARNING,
         _ => Color32::PLACEHOLDER,
     }
 }

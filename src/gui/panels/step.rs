@@ -4,9 +4,9 @@
 //! ([`crate::analysis::teach`]). A step control shows the recursion one depth at a time (the
 //! overlay and the diagram draw rays down to that depth only).
 
-use super::document::{Command, Document};
-use super::style::{SELECTED, num, vec3};
 use crate::analysis::teach;
+use crate::gui::model::document::{Command, Document};
+use crate::gui::style::{SELECTED, num, vec3};
 use crate::tree::{RayNode, RayTree};
 use egui::{Color32, Pos2, RichText, Slider, Stroke, pos2};
 use glam::DVec3;
@@ -163,11 +163,11 @@ pub fn paint_on_image(
         return;
     };
     let cam = &doc.scene.camera;
-    let Some(at) = super::project::film_from_world(cam, p) else {
+    let Some(at) = crate::gui::model::project::film_from_world(cam, p) else {
         return;
     };
     let normal = normal_segment(doc, p, end)
-        .and_then(|(a, b)| super::project::film_segment(cam, a, b))
+        .and_then(|(a, b)| crate::gui::model::project::film_segment(cam, a, b))
         .map(|s| to_screen(s[1]));
     marker(painter, to_screen(at), normal);
 }

@@ -3,7 +3,7 @@
 
 use super::{Bar, SamplesView, select_sample};
 use crate::gui::app::ERROR;
-use crate::gui::document::{Command, Document};
+use crate::gui::model::document::{Command, Document};
 use crate::gui::style::SELECTED;
 use egui::{Color32, Sense, pos2, vec2};
 

@@ -1,12 +1,12 @@
 //! The acne lab panel (issue 17): offset strategy, epsilon from 0, and the scene's scale and
 //! distance from the origin (as `raytree acne` sweeps them); the count of pixels with acne
 //! (self-hits) and leaks for that choice, and the sweep plot (every strategy against epsilon at
-//! that scale and distance), both computed by the lab's worker ([`super::acne_lab`]), never on
+//! that scale and distance), both computed by the lab's worker ([`crate::gui::jobs::acne_lab`]), never on
 //! the UI thread.
 
-use super::acne_lab::{CURRENT_WIDTH, LabParams, SWEEP_WIDTH, job_len, sweep_epsilons};
-use super::document::{Command, Document};
 use crate::analysis::acne::AcneCell;
+use crate::gui::jobs::acne_lab::{CURRENT_WIDTH, LabParams, SWEEP_WIDTH, job_len, sweep_epsilons};
+use crate::gui::model::document::{Command, Document};
 use crate::scene::OffsetStrategy;
 use egui::{Color32, FontId, Pos2, Rect, Sense, Shape, Slider, Stroke, pos2, vec2};
 
@@ -105,7 +105,7 @@ pub fn acne_ui(ui: &mut egui::Ui, doc: &Document, cmds: &mut Vec<Command>) {
             let colour = if c.clean() {
                 Color32::PLACEHOLDER
             } else {
-                super::app::WARNING
+                crate::gui::app::WARNING
             };
             let mut rt = egui::RichText::new(text).strong();
             if colour != Color32::PLACEHOLDER {
@@ -195,7 +195,7 @@ fn plot(ui: &mut egui::Ui, cells: &[AcneCell], p: &LabParams) {
     let x = eps_x(p.epsilon);
     painter.line_segment(
         [at(x, 0.0), at(x, 100.0)],
-        Stroke::new(1.5, super::style::SELECTED),
+        Stroke::new(1.5, crate::gui::style::SELECTED),
     );
     for s in OffsetStrategy::ALL {
         let line: Vec<&AcneCell> = cells.iter().filter(|c| c.strategy == s).collect();

@@ -6,8 +6,8 @@
 //! (bands may be cut at other rows: a row's pixels do not depend on its band).
 
 use super::{Delivery, Job};
-use crate::gui::progressive;
-use crate::gui::stats::{PixelStats, StatsRecorder};
+use crate::gui::jobs::progressive;
+use crate::gui::model::stats::{PixelStats, StatsRecorder};
 use crate::integrator::{NoopRecorder, RayCounts, SceneIntegrator};
 use crate::math::Rgb;
 use crate::render::{render_pixel_with, render_rows};

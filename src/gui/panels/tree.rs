@@ -2,9 +2,9 @@
 //! out), the details pane (every recorded field of the selected node) and the contribution
 //! breakdown.
 
-use super::breakdown::{Term, breakdown, pixel_contribution};
-use super::document::{Command, Document};
-use super::style::{SELECTED, amount, kind_colour, num, rgb, square, swatch, weight};
+use crate::gui::model::breakdown::{Term, breakdown, pixel_contribution};
+use crate::gui::model::document::{Command, Document};
+use crate::gui::style::{SELECTED, amount, kind_colour, num, rgb, square, swatch, weight};
 use crate::tree::{EndReason, NodeId, RayNode, RayTree};
 use egui::text::{LayoutJob, TextWrapping};
 use egui::{FontId, Rect, RichText, Sense, pos2, vec2};

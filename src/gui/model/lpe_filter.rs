@@ -8,7 +8,7 @@
 use crate::lpe::{Lpe, LpeError, filter_tree_all_samples};
 use crate::tree::{NodeId, RayTree};
 
-/// The filter's state (in [`super::Document::lpe`]).
+/// The filter's state (in [`crate::gui::Document::lpe`]).
 #[derive(Clone, Debug, Default)]
 pub struct LpeState {
     /// The text of the field.

@@ -5,8 +5,8 @@
 //! toggle is on. The selected pixel's tree, the overlay, the diagram and the exports stay the
 //! raw samples: the denoiser never changes what a pixel's tree explains.
 
-use super::document::Document;
 use crate::denoise::{DenoiseParams, denoise, gather};
+use crate::gui::model::document::Document;
 use crate::integrator::SceneIntegrator;
 use crate::render::Image;
 use std::sync::Arc;
@@ -76,7 +76,7 @@ impl DenoiseView {
         if self.pending.as_ref().is_none_or(|(k, _)| *k != key) {
             let scene = Arc::clone(&doc.scene);
             let (tx, rx) = channel();
-            let spawned = super::background::spawn(
+            let spawned = crate::gui::jobs::background::spawn(
                 "raytree-denoise",
                 Some(crate::integrator::THREAD_STACK_BYTES),
                 move || {

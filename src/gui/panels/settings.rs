@@ -1,10 +1,10 @@
 //! The left panel: scene file, tracer settings, view options and exports.
 
-use super::app::{ERROR, WARNING};
-use super::document::{Command, Document};
-use super::export::ExportKind;
-use super::stats::DebugView;
-use super::style::{SELECTED, dot, kind_colour};
+use crate::gui::app::{ERROR, WARNING};
+use crate::gui::model::document::{Command, Document};
+use crate::gui::model::export::ExportKind;
+use crate::gui::model::stats::DebugView;
+use crate::gui::style::{SELECTED, dot, kind_colour};
 use crate::math::FresnelModel;
 use crate::scene::{Antialiasing, IntegratorKind, OffsetStrategy, ShadowMode};
 use crate::tree::RayKind;
@@ -143,7 +143,7 @@ pub fn settings_ui(ui: &mut egui::Ui, doc: &Document, cmds: &mut Vec<Command>) {
     if s != old {
         cmds.push(Command::SetSettings(s));
     }
-    super::progressive::progressive_ui(ui, doc, cmds);
+    crate::gui::panels::progressive::progressive_ui(ui, doc, cmds);
 }
 
 /// Area-light and glossy sampling of the Whitted integrator, shown only for scenes that have an

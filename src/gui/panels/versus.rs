@@ -3,8 +3,8 @@
 //! with the signed difference, and the difference broken down by light transport class ("what
 //! Whitted misses here: 79% caustics, 21% indirect").
 
-use super::document::Document;
 use crate::aov::{Versus, versus};
+use crate::gui::model::document::Document;
 use egui::{ColorImage, TextureHandle, TextureOptions};
 use std::sync::Arc;
 use std::sync::mpsc::{Receiver, channel};
@@ -94,7 +94,7 @@ impl VersusPanel {
                 let scene = Arc::clone(&doc.scene);
                 let (tx, rx) = channel();
                 let repaint = ctx.clone();
-                let spawned = super::background::spawn(
+                let spawned = crate::gui::jobs::background::spawn(
                     "raytree-versus",
                     Some(crate::integrator::THREAD_STACK_BYTES),
                     move || {

@@ -4,12 +4,12 @@
 //! highlighted, every changed pair marked with its count of changed fields, and the changed
 //! numbers of the chosen pair listed `pinned -> current`.
 
-use super::app::WARNING;
-use super::document::{Command, Document};
-use super::style::{SELECTED, kind_colour};
-use super::tree_ui::{node_name, node_numbers};
 use crate::analysis::diff::align::{AlignedRow, align};
 use crate::analysis::diff::{TreeDiff, diff};
+use crate::gui::app::WARNING;
+use crate::gui::model::document::{Command, Document};
+use crate::gui::panels::tree::{node_name, node_numbers};
+use crate::gui::style::{SELECTED, kind_colour};
 use crate::tree::{NodeId, RayTree};
 use egui::text::{LayoutJob, TextWrapping};
 use egui::{Color32, FontId, RichText, Sense, pos2, vec2};

@@ -4,8 +4,8 @@
 //! then every strategy at every epsilon of [`sweep_epsilons`] (the sweep plot). Cell by cell,
 //! each sent as it is done; a newer job cancels an older one between cells. No egui here.
 
-use super::worker::Repaint;
 use crate::analysis::acne::{AcneCell, cell, scaled_scene};
+use crate::gui::jobs::worker::Repaint;
 use crate::scene::{OffsetStrategy, Scene};
 use std::sync::Arc;
 use std::sync::atomic::{AtomicU64, Ordering};
@@ -101,12 +101,12 @@ struct Job {
     params: LabParams,
 }
 
-/// The lab's worker ([`super::background::Lane`]: a thread natively). Dropping it cancels the
+/// The lab's worker ([`crate::gui::jobs::background::Lane`]: a thread natively). Dropping it cancels the
 /// job (and joins the thread).
 pub struct LabWorker {
     deliveries: Receiver<LabDelivery>,
     generation: Arc<AtomicU64>,
-    jobs: Option<super::background::Lane<Job>>,
+    jobs: Option<crate::gui::jobs::background::Lane<Job>>,
 }
 
 impl LabWorker {
@@ -117,10 +117,11 @@ impl LabWorker {
         let (tx, deliveries) = channel();
         let generation = Arc::new(AtomicU64::new(0));
         let current = Arc::clone(&generation);
-        let jobs = super::background::Lane::new("raytree-acne-lab", None, move |job: Job| {
-            run(&job, &current, &tx, &repaint);
-        })
-        .ok()?;
+        let jobs =
+            crate::gui::jobs::background::Lane::new("raytree-acne-lab", None, move |job: Job| {
+                run(&job, &current, &tx, &repaint);
+            })
+            .ok()?;
         Some(Self {
             deliveries,
             generation,
@@ -156,7 +157,7 @@ impl LabWorker {
             if let Ok(d) = self.deliveries.try_recv() {
                 return Some(d);
             }
-            if !super::background::run_pending() {
+            if !crate::gui::jobs::background::run_pending() {
                 return self.deliveries.try_recv().ok();
             }
         }

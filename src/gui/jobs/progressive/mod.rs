@@ -23,12 +23,9 @@
 
 #[cfg(test)]
 mod tests;
-mod ui;
 
-pub use ui::{progressive_ui, title_ui};
-
-use super::worker::Delivery;
 use crate::bsdf::luminance;
+use crate::gui::jobs::worker::Delivery;
 use crate::integrator::{Integrator, NoopRecorder, RayCounts};
 use crate::math::Rgb;
 use crate::render::pixel_loop::{self, Beauty};
@@ -278,7 +275,7 @@ pub struct Run {
     count: u32,
     /// Next row of that pass.
     y0: u32,
-    /// Rows of a band at the first pass ([`super::worker::IMAGE_ROWS`] on the worker thread).
+    /// Rows of a band at the first pass ([`crate::gui::jobs::worker::IMAGE_ROWS`] on the worker thread).
     max_rows: u32,
 }
 

@@ -46,7 +46,7 @@ fn a_newer_job_supersedes_an_older_one_and_matches_render() {
     // The statistics are those of each pixel's recorded tree.
     for (x, y) in [(10, 5), (40, 20), (63, 35)] {
         let tree = crate::render::trace_pixel(&scene, x, y).unwrap();
-        let want = super::super::stats::summarize(&tree.nodes, 1);
+        let want = crate::gui::model::stats::summarize(&tree.nodes, 1);
         assert_eq!(stats[(y * 64 + x) as usize], want, "pixel {x},{y}");
     }
 }
@@ -92,17 +92,17 @@ fn with_a_debug_view_one_recorded_pass_delivers_the_same_image_and_statistics() 
 
 #[test]
 fn after_the_statistics_the_tree_growth_and_what_the_cut_saves() {
-    let nested = include_str!("../../../fixtures/nested.json");
+    let nested = include_str!("../../../../fixtures/nested.json");
     for (json, want, fewer) in [
         (nested, "ray tree exponential", true),
         (
-            include_str!("../../../fixtures/diffuse.json"),
+            include_str!("../../../../fixtures/diffuse.json"),
             "ray tree bounded",
             false,
         ),
         // Path-traced: no tree of its own; Whitted's, labelled as such.
         (
-            include_str!("../../../fixtures/caustic.json"),
+            include_str!("../../../../fixtures/caustic.json"),
             "path integrator: one path per sample, no split, no cut; under Whitted the ray tree \
              would be linear",
             true,
@@ -137,7 +137,7 @@ struct Folded {
     stats: Vec<PixelStats>,
     rays: Option<RayCounts>,
     growth: Option<String>,
-    passes: Vec<(u32, u64, Option<super::super::progressive::Stop>)>,
+    passes: Vec<(u32, u64, Option<crate::gui::jobs::progressive::Stop>)>,
 }
 
 impl Folded {
@@ -181,16 +181,16 @@ impl Folded {
 #[test]
 fn slices_on_the_calling_thread_deliver_what_the_worker_thread_does() {
     // The wasm32 path: one row per slice, one slice per call, on this thread.
-    let progressive = super::super::progressive::Options {
+    let progressive = crate::gui::jobs::progressive::Options {
         on: true,
         target: 0.0,
         cap: 8,
     };
     for (json, options) in [
-        (include_str!("../../../fixtures/classic.json"), None),
-        (include_str!("../../../fixtures/nested.json"), None),
+        (include_str!("../../../../fixtures/classic.json"), None),
+        (include_str!("../../../../fixtures/nested.json"), None),
         (
-            include_str!("../../../fixtures/caustic.json"),
+            include_str!("../../../../fixtures/caustic.json"),
             Some(progressive),
         ),
     ] {

@@ -9,7 +9,7 @@
 //! Every job carries a generation number; starting a new job bumps the shared counter, the worker
 //! abandons a job as soon as it sees a newer generation, and the receiver ignores stale bands.
 
-use super::stats::PixelStats;
+use crate::gui::model::stats::PixelStats;
 use crate::integrator::{RayCounts, SceneIntegrator};
 use crate::math::Rgb;
 use crate::scene::Scene;
@@ -73,12 +73,12 @@ pub enum Delivery {
         /// One line for the statistics.
         line: String,
     },
-    /// A progressive pass is complete ([`super::progressive`]).
+    /// A progressive pass is complete ([`crate::gui::jobs::progressive`]).
     Pass {
         /// The job this belongs to.
         generation: u64,
         /// The samples so far, the noise estimate and whether the run stopped.
-        report: super::progressive::Report,
+        report: crate::gui::jobs::progressive::Report,
     },
 }
 
@@ -101,7 +101,7 @@ struct Job {
     generation: u64,
     scene: Arc<Scene>,
     image_first: bool,
-    progressive: Option<super::progressive::Options>,
+    progressive: Option<crate::gui::jobs::progressive::Options>,
 }
 
 /// A handle on the render thread (native) or the job in slices (wasm32). Dropping it cancels
@@ -172,12 +172,12 @@ impl Worker {
         self.start_job(scene, image_first, None)
     }
 
-    /// Render `scene` progressively ([`super::progressive`]) as a new generation, then gather
+    /// Render `scene` progressively ([`crate::gui::jobs::progressive`]) as a new generation, then gather
     /// its statistics at the scene's settings; returns the generation.
     pub fn start_progressive(
         &self,
         scene: Arc<Scene>,
-        options: super::progressive::Options,
+        options: crate::gui::jobs::progressive::Options,
     ) -> u64 {
         self.start_job(scene, true, Some(options))
     }
@@ -186,7 +186,7 @@ impl Worker {
         &self,
         scene: Arc<Scene>,
         image_first: bool,
-        progressive: Option<super::progressive::Options>,
+        progressive: Option<crate::gui::jobs::progressive::Options>,
     ) -> u64 {
         let generation = self.generation.fetch_add(1, Ordering::SeqCst) + 1;
         let job = Job {

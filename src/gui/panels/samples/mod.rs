@@ -5,11 +5,11 @@
 
 mod histogram;
 
-use super::app::{ERROR, WARNING};
-use super::document::{Command, Document};
-use super::style::{SELECTED, rgb, square, swatch};
 use crate::analysis::firefly::{self, Firefly};
 use crate::analysis::samples::{Histogram, SampleRow, histogram, sample_rows};
+use crate::gui::app::{ERROR, WARNING};
+use crate::gui::model::document::{Command, Document};
+use crate::gui::style::{SELECTED, rgb, square, swatch};
 use egui::RichText;
 
 /// Height of one row of the sample list.
@@ -114,7 +114,7 @@ pub fn samples_ui(
     }
     let selected = doc
         .node
-        .and_then(|id| super::diagram_controls::sample_of(doc, id));
+        .and_then(|id| crate::gui::panels::diagram::controls::sample_of(doc, id));
     histogram::histogram_ui(ui, doc, view, selected, cmds);
     if let Some(s) = selected {
         if view.firefly.as_ref().is_none_or(|f| f.0 != s) {

@@ -1,10 +1,10 @@
 //! The image panel: zoom and pan, pixel grid, hover readout, selection, ray-path overlay and the
 //! debug-view legend (in a strip below the image, never over it).
 
-use super::document::{Command, Document};
-use super::project::{clip_to_film, sample_segments};
-use super::stats::{self, DebugView};
-use super::style::{SELECTED, kind_colour, rgb};
+use crate::gui::model::document::{Command, Document};
+use crate::gui::model::project::{clip_to_film, sample_segments};
+use crate::gui::model::stats::{self, DebugView};
+use crate::gui::style::{SELECTED, kind_colour, rgb};
 use crate::math::linear_to_srgb8;
 use egui::epaint::{Mesh, TessellationOptions, Tessellator};
 use egui::{
@@ -177,7 +177,7 @@ fn overlay(
     }
     let clipped = painter.with_clip_rect(place.rect.intersect(area));
     clipped.add(Shape::Mesh(Arc::clone(&cache.mesh)));
-    super::step_ui::paint_on_image(&clipped, doc, |p| {
+    crate::gui::panels::step::paint_on_image(&clipped, doc, |p| {
         place.rect.min + vec2(p[0] as f32, p[1] as f32) * place.zoom
     });
 }
@@ -193,7 +193,7 @@ fn overlay_shapes(
     let mut shapes = Vec::new();
     let mut top = Vec::new();
     let mut rays = 0;
-    let shown = |seg: &crate::gui::project::PathSegment| {
+    let shown = |seg: &crate::gui::model::project::PathSegment| {
         doc.step
             .depth
             .is_none_or(|d| tree.node(seg.node).depth <= d)

@@ -1,4 +1,4 @@
-//! Export formats, encoded in memory (the [`super::Files`] hook writes them).
+//! Export formats, encoded in memory (the [`crate::gui::Files`] hook writes them).
 
 use crate::render::Image;
 use crate::tree::RayTree;
