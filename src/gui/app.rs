@@ -9,12 +9,8 @@ use crate::gui::panels::image::{ImagePlacement, OverlayCache, image_ui};
 use crate::gui::panels::tree::TreeView;
 use crate::gui::panels::{details, settings, tree};
 use crate::gui::session::Session;
+use crate::gui::style::ERROR;
 use egui::{Color32, ColorImage, Key, RichText, TextureHandle, TextureOptions};
-
-/// The colour of error messages.
-pub(crate) const ERROR: Color32 = Color32::from_rgb(255, 110, 110);
-/// Colour of a warning (an export that clamped or left out non-finite values).
-pub(crate) const WARNING: Color32 = Color32::from_rgb(255, 200, 80);
 
 /// Seconds between checks of the scene file's modification time.
 const POLL_SECONDS: f64 = 1.0;

@@ -105,7 +105,7 @@ pub fn acne_ui(ui: &mut egui::Ui, doc: &Document, cmds: &mut Vec<Command>) {
             let colour = if c.clean() {
                 Color32::PLACEHOLDER
             } else {
-                crate::gui::app::WARNING
+                crate::gui::style::WARNING
             };
             let mut rt = egui::RichText::new(text).strong();
             if colour != Color32::PLACEHOLDER {

@@ -48,7 +48,7 @@ fn heading(kind: SentenceKind) -> &'static str {
 
 fn colour(kind: SentenceKind) -> Color32 {
     match kind {
-        SentenceKind::Suspicious => crate::gui::app::WARNING,
+        SentenceKind::Suspicious => crate::gui::style::WARNING,
         _ => Color32::PLACEHOLDER,
     }
 }

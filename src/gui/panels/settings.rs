@@ -1,10 +1,9 @@
 //! The left panel: scene file, tracer settings, view options and exports.
 
-use crate::gui::app::{ERROR, WARNING};
 use crate::gui::model::document::{Command, Document};
 use crate::gui::model::export::ExportKind;
 use crate::gui::model::stats::DebugView;
-use crate::gui::style::{SELECTED, dot, kind_colour};
+use crate::gui::style::{ERROR, SELECTED, WARNING, dot, kind_colour};
 use crate::math::FresnelModel;
 use crate::scene::{Antialiasing, IntegratorKind, OffsetStrategy, ShadowMode};
 use crate::tree::RayKind;

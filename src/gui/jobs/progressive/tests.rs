@@ -5,7 +5,8 @@ use crate::scene::{SamplerKind, Scene};
 use std::sync::Arc;
 
 fn cornell(size: u32) -> Scene {
-    let mut scene = Scene::from_json(include_str!("../../../../fixtures/cornell-box.json")).unwrap();
+    let mut scene =
+        Scene::from_json(include_str!("../../../../fixtures/cornell-box.json")).unwrap();
     scene.camera = scene.camera.with_size(size, size);
     scene.settings.adaptive = None;
     scene

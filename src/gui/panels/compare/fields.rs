@@ -2,7 +2,7 @@
 
 use super::{CompareView, pair_ids, side_text};
 use crate::analysis::diff::FieldChange;
-use crate::gui::app::WARNING;
+use crate::gui::style::WARNING;
 use crate::tree::RayTree;
 use egui::RichText;
 use serde_json::Value;

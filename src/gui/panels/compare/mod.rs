@@ -6,10 +6,9 @@
 
 use crate::analysis::diff::align::{AlignedRow, align};
 use crate::analysis::diff::{TreeDiff, diff};
-use crate::gui::app::WARNING;
 use crate::gui::model::document::{Command, Document};
 use crate::gui::panels::tree::{node_name, node_numbers};
-use crate::gui::style::{SELECTED, kind_colour};
+use crate::gui::style::{SELECTED, WARNING, kind_colour};
 use crate::tree::{NodeId, RayTree};
 use egui::text::{LayoutJob, TextWrapping};
 use egui::{Color32, FontId, RichText, Sense, pos2, vec2};

@@ -2,9 +2,8 @@
 //! non-finite samples in bars of their own; a click lists a bar's samples.
 
 use super::{Bar, SamplesView, select_sample};
-use crate::gui::app::ERROR;
 use crate::gui::model::document::{Command, Document};
-use crate::gui::style::SELECTED;
+use crate::gui::style::{ERROR, SELECTED};
 use egui::{Color32, Sense, pos2, vec2};
 
 /// Height of the histogram (points).

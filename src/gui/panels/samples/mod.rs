@@ -7,9 +7,8 @@ mod histogram;
 
 use crate::analysis::firefly::{self, Firefly};
 use crate::analysis::samples::{Histogram, SampleRow, histogram, sample_rows};
-use crate::gui::app::{ERROR, WARNING};
 use crate::gui::model::document::{Command, Document};
-use crate::gui::style::{SELECTED, rgb, square, swatch};
+use crate::gui::style::{ERROR, SELECTED, WARNING, rgb, square, swatch};
 use egui::RichText;
 
 /// Height of one row of the sample list.
