@@ -148,7 +148,7 @@ fn frames(c: &mut Criterion) {
         g.bench_function("nested_trace_pixel", |b| {
             b.iter(|| black_box(raytree::trace_pixel(&doc.scene, x, y)))
         });
-        let opts = raytree::gui::panels::diagram::diagram_options(doc, [1030, 300]);
+        let opts = raytree::gui::model::diagram::diagram_options(doc, [1030, 300]);
         g.bench_function("nested_diagram_build_display_list", |b| {
             b.iter(|| {
                 let d = Diagram::build(&doc.scene, tree, &opts).unwrap();

@@ -22,7 +22,7 @@ fn the_diagram_panel_shows_the_reloaded_scene() {
     click_pixel(&mut h, GLASS.0, GLASS.1);
     let same = |h: &Harness<'static, InspectorApp>| {
         let (size, prims) = h.state().diagram_display_list().expect("a diagram");
-        let fresh = raytree::gui::panels::diagram::build_display_list(&h.state().session.doc, size)
+        let fresh = raytree::gui::model::diagram::build_display_list(&h.state().session.doc, size)
             .expect("builds");
         prims == fresh.as_slice()
     };

@@ -269,8 +269,8 @@ fn step_along_a_ray_moves_a_point_and_reveals_one_depth_at_a_time() {
         assert!(drawn > last && drawn <= all, "{drawn} at depth {depth}");
         last = drawn;
         let (size, prims) = h.state().diagram_display_list().expect("a diagram");
-        let fresh = raytree::gui::panels::diagram::build_display_list(&h.state().session.doc, size)
-            .unwrap();
+        let fresh =
+            raytree::gui::model::diagram::build_display_list(&h.state().session.doc, size).unwrap();
         assert!(
             prims == fresh.as_slice(),
             "the diagram is cut at depth {depth}"

@@ -41,7 +41,7 @@ pub struct ViewOptions {
     /// Draw the selected pixel's ray path on the image.
     pub overlay: bool,
     /// The diagram panel's options (plane, filters, zoom and pan, export highlight).
-    pub diagram: crate::gui::panels::diagram::DiagramView,
+    pub diagram: crate::gui::model::diagram_view::DiagramView,
     /// Show the image denoised ([`crate::gui::jobs::denoise`]; trees, overlay, diagram and exports
     /// stay the raw samples).
     pub denoise: bool,
@@ -54,7 +54,7 @@ impl Default for ViewOptions {
             pan: [0.0, 0.0],
             debug: DebugView::Off,
             overlay: true,
-            diagram: crate::gui::panels::diagram::DiagramView::default(),
+            diagram: crate::gui::model::diagram_view::DiagramView::default(),
             denoise: false,
         }
     }

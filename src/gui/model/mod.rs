@@ -4,6 +4,8 @@
 //! no threads here: the jobs, the session and the panels build on this layer.
 
 pub mod breakdown;
+pub mod diagram;
+pub mod diagram_view;
 pub mod document;
 pub mod export;
 pub mod lpe_filter;

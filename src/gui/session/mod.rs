@@ -367,7 +367,7 @@ impl Session {
 fn diagram_bytes(doc: &Document, kind: ExportKind) -> Result<(Vec<u8>, Option<String>), String> {
     use crate::diagram::{Diagram, Style, Theme, to_png, to_svg_counting};
     let tree = doc.tree.as_ref().ok_or("select a pixel first")?;
-    let opts = crate::gui::panels::diagram::export_options(doc);
+    let opts = crate::gui::model::diagram::export_options(doc);
     let d = Diagram::build(&doc.scene, tree, &opts).map_err(|e| e.to_string())?;
     let style = Style::new(Theme::Light);
     Ok(match kind {

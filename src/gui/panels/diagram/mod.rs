@@ -9,10 +9,11 @@ pub(super) mod controls;
 
 use crate::diagram::model::Anchor;
 use crate::diagram::paint::{Prim, Rgba};
-use crate::diagram::{Diagram, DiagramOptions, Style, Theme, display_list, to_pixmap};
+use crate::diagram::{Diagram, Style, Theme, display_list, to_pixmap};
+use crate::gui::model::diagram::diagram_options;
+use crate::gui::model::diagram_view::DiagramView;
 use crate::gui::model::document::{Command, Document};
 use crate::tree::NodeId;
-pub use controls::DiagramView;
 use egui::{
     Align2, Color32, ColorImage, FontId, Pos2, Shape, Stroke, TextureHandle, TextureOptions, pos2,
 };
@@ -156,62 +157,6 @@ impl DiagramCache {
             }
         }
     }
-}
-
-/// Diagram options for the document's selection at `size` pixels, as the panel draws them
-/// (the selection highlighted).
-#[must_use]
-pub fn diagram_options(doc: &Document, size: [u32; 2]) -> DiagramOptions {
-    doc.view.diagram.options(doc, size, true)
-}
-
-/// Diagram options for the export (1280x720): the panel's, the selection highlighted only when
-/// "highlight the selection in exports" is on.
-#[must_use]
-pub fn export_options(doc: &Document) -> DiagramOptions {
-    let v = doc.view.diagram;
-    let mut opts = v.options(doc, [1280, 720], v.export_highlight);
-    opts.title = export_title(doc, &opts);
-    opts
-}
-
-/// The title line `raytree diagram` draws (`classic.json: pixel (400, 200), 17 rays`), so the
-/// exported figure is the command line's.
-fn export_title(doc: &Document, opts: &DiagramOptions) -> String {
-    let (Some(tree), Some([x, y])) = (doc.tree.as_ref(), doc.selection) else {
-        return String::new();
-    };
-    let name = doc
-        .source
-        .path
-        .as_ref()
-        .and_then(|p| p.file_name())
-        .map_or("built-in classic".to_string(), |n| {
-            n.to_string_lossy().into_owned()
-        });
-    let index = tree.samples.get(opts.sample).map_or(0, |s| s.index);
-    let sample = if tree.samples.len() > 1 && opts.all_samples {
-        format!(
-            ", all {} samples (sample {index} in full)",
-            tree.samples.len()
-        )
-    } else if tree.samples.len() > 1 || index > 0 {
-        format!(", sample {index}")
-    } else {
-        String::new()
-    };
-    format!(
-        "{name}: pixel ({x}, {y}){sample}, {} rays",
-        tree.nodes.len()
-    )
-}
-
-/// Build the display list of the selected pixel's diagram (what the panel paints).
-pub fn build_display_list(doc: &Document, size: [u32; 2]) -> Result<Vec<Prim>, String> {
-    let tree = doc.tree.as_ref().ok_or("select a pixel")?;
-    let d =
-        Diagram::build(&doc.scene, tree, &diagram_options(doc, size)).map_err(|e| e.to_string())?;
-    Ok(display_list(&d, &Style::new(Theme::Dark)))
 }
 
 /// The panel: controls, then the figure (scroll zooms about the cursor, drag pans,

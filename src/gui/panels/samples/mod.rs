@@ -113,7 +113,7 @@ pub fn samples_ui(
     }
     let selected = doc
         .node
-        .and_then(|id| crate::gui::panels::diagram::controls::sample_of(doc, id));
+        .and_then(|id| crate::gui::model::diagram::sample_of(doc, id));
     histogram::histogram_ui(ui, doc, view, selected, cmds);
     if let Some(s) = selected {
         if view.firefly.as_ref().is_none_or(|f| f.0 != s) {
