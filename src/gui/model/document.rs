@@ -118,6 +118,28 @@ pub struct Pin {
     pub version: u64,
 }
 
+/// What a tree was traced with, in words: pixel, scene and the settings a teacher changes.
+#[must_use]
+pub fn tree_label(scene_label: &str, tree: &RayTree) -> String {
+    let s = &tree.settings;
+    let name = |v: serde_json::Result<serde_json::Value>| {
+        v.ok()
+            .and_then(|v| v.as_str().map(str::to_string))
+            .unwrap_or_default()
+    };
+    format!(
+        "pixel {},{} of {scene_label}: depth {}, spp {}, offset {} {:e}, Fresnel {}, shadows {}",
+        tree.pixel[0],
+        tree.pixel[1],
+        s.max_depth,
+        s.spp,
+        name(serde_json::to_value(s.offset.strategy)),
+        s.offset.epsilon,
+        name(serde_json::to_value(s.fresnel)),
+        name(serde_json::to_value(s.shadows)),
+    )
+}
+
 /// Everything the panels show.
 pub struct Document {
     /// The scene being traced (with the panel's settings).

@@ -284,7 +284,7 @@ impl Session {
                 if let Some(tree) = self.doc.tree.clone() {
                     let version = self.doc.pin.as_ref().map_or(0, |p| p.version) + 1;
                     let label =
-                        crate::gui::panels::compare::tree_label(&self.doc.source.label(), &tree);
+                        crate::gui::model::document::tree_label(&self.doc.source.label(), &tree);
                     self.doc.pin = Some(crate::gui::model::document::Pin {
                         tree,
                         label,

@@ -6,13 +6,12 @@
 
 use crate::analysis::diff::align::{AlignedRow, align};
 use crate::analysis::diff::{TreeDiff, diff};
-use crate::gui::model::document::{Command, Document};
+use crate::gui::model::document::{Command, Document, tree_label};
 use crate::gui::panels::tree::{node_name, node_numbers};
 use crate::gui::style::{SELECTED, WARNING, kind_colour};
 use crate::tree::{NodeId, RayTree};
 use egui::text::{LayoutJob, TextWrapping};
 use egui::{Color32, FontId, RichText, Sense, pos2, vec2};
-use serde_json::Value;
 use std::collections::HashMap;
 
 const ROW_HEIGHT: f32 = 18.0;
@@ -23,28 +22,6 @@ const CHANGED_BG: Color32 = Color32::from_rgba_premultiplied(48, 36, 6, 48);
 const ONLY_BG: Color32 = Color32::from_rgba_premultiplied(20, 32, 64, 64);
 /// Background of the first divergent pair.
 const FIRST_BG: Color32 = Color32::from_rgba_premultiplied(96, 20, 72, 112);
-
-/// What a tree was traced with, in words: pixel, scene and the settings a teacher changes.
-#[must_use]
-pub fn tree_label(scene_label: &str, tree: &RayTree) -> String {
-    let s = &tree.settings;
-    let name = |v: serde_json::Result<Value>| {
-        v.ok()
-            .and_then(|v| v.as_str().map(str::to_string))
-            .unwrap_or_default()
-    };
-    format!(
-        "pixel {},{} of {scene_label}: depth {}, spp {}, offset {} {:e}, Fresnel {}, shadows {}",
-        tree.pixel[0],
-        tree.pixel[1],
-        s.max_depth,
-        s.spp,
-        name(serde_json::to_value(s.offset.strategy)),
-        s.offset.epsilon,
-        name(serde_json::to_value(s.fresnel)),
-        name(serde_json::to_value(s.shadows)),
-    )
-}
 
 /// The comparison of the pinned and the current tree, rebuilt when either changes.
 #[derive(Default)]
