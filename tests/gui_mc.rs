@@ -122,7 +122,7 @@ fn the_denoise_toggle_shows_the_denoised_image_and_keeps_the_raw_samples() {
     assert!(!h.state().shows_denoised());
     assert!(h.state().denoise_state().is_none());
     // Under progressive rendering the guide pass (the scene's spp) is not the image shown.
-    let options = raytree::gui::jobs::progressive::Options {
+    let options = raytree::gui::model::progressive::Options {
         on: true,
         target: 0.0,
         cap: 8,

@@ -5,6 +5,7 @@
 
 pub mod acne_lab;
 pub mod background;
+pub mod delivery;
 pub mod denoise;
 pub mod progressive;
 pub mod worker;

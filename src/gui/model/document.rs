@@ -153,7 +153,7 @@ pub struct Document {
     /// Render progress.
     pub progress: Progress,
     /// Progressive rendering: its options and the last pass's noise estimate.
-    pub progressive: crate::gui::jobs::progressive::State,
+    pub progressive: crate::gui::model::progressive::State,
     /// Selected pixel.
     pub selection: Option<[u32; 2]>,
     /// The selected pixel's tree (re-traced synchronously on every change).
@@ -286,5 +286,5 @@ pub enum Command {
     /// New text in the LPE filter field (applied when it parses; empty: no filter).
     SetLpe(String),
     /// Progressive rendering's options (re-renders).
-    SetProgressive(crate::gui::jobs::progressive::Options),
+    SetProgressive(crate::gui::model::progressive::Options),
 }

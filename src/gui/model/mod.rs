@@ -9,5 +9,6 @@ pub mod diagram_view;
 pub mod document;
 pub mod export;
 pub mod lpe_filter;
+pub mod progressive;
 pub mod project;
 pub mod stats;

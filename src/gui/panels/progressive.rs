@@ -1,7 +1,7 @@
 //! The progressive mode's controls and its live noise estimate (in the Settings section).
 
-use crate::gui::jobs::progressive::{Options, Report, Stop};
 use crate::gui::model::document::{Command, Document};
+use crate::gui::model::progressive::{Options, Report, Stop};
 use egui::{DragValue, Slider};
 
 /// One line for a report: the estimate, the samples so far, the time, and why it stopped.

@@ -4,7 +4,7 @@
 
 use super::Session;
 use crate::gui::jobs::acne_lab::LabWorker;
-use crate::gui::jobs::worker::Delivery;
+use crate::gui::jobs::delivery::Delivery;
 use crate::gui::model::document::Document;
 use crate::gui::model::stats::DebugView;
 

@@ -25,7 +25,8 @@
 mod tests;
 
 use crate::bsdf::luminance;
-use crate::gui::jobs::worker::Delivery;
+use crate::gui::jobs::delivery::Delivery;
+use crate::gui::model::progressive::{Options, Report, Stop};
 use crate::integrator::{Integrator, NoopRecorder, RayCounts};
 use crate::math::Rgb;
 use crate::render::pixel_loop::{self, Beauty};
@@ -37,60 +38,6 @@ use web_time::Instant;
 pub const FIRST_PASS: u32 = 4;
 /// Added to a pixel's mean luminance before dividing, so black pixels do not dominate.
 pub const OFFSET: f64 = 0.01;
-
-/// The mode as the user set it.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct Options {
-    /// Progressive rendering on (off: the one render at the scene's spp).
-    pub on: bool,
-    /// Stop when the estimate ([`Accumulator::error`]) is at or below this (0.01 = 1%).
-    pub target: f64,
-    /// Stop at this many samples per pixel at most.
-    pub cap: u32,
-}
-
-impl Default for Options {
-    fn default() -> Self {
-        Self {
-            on: false,
-            // A preview's stop: the Cornell box reaches it at 512 spp (1% would need about
-            // 6,600 there); type a smaller target for a final image.
-            target: 0.05,
-            cap: 1024,
-        }
-    }
-}
-
-/// Why a progressive run stopped.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum Stop {
-    /// The estimate fell to the target.
-    Target,
-    /// The samples reached the cap.
-    Cap,
-}
-
-/// Where a progressive run stands after a pass.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct Report {
-    /// Samples per pixel accumulated so far.
-    pub spp: u32,
-    /// The image's mean relative standard error (module documentation).
-    pub error: f64,
-    /// Wall-clock seconds since the run started.
-    pub seconds: f64,
-    /// Set on the last pass: why the run stopped.
-    pub stop: Option<Stop>,
-}
-
-/// The document's side: the options and the last report of the current render.
-#[derive(Clone, Debug, Default)]
-pub struct State {
-    /// The options.
-    pub options: Options,
-    /// The last pass of the current render (`None` before the first or when off).
-    pub report: Option<Report>,
-}
 
 /// One pixel's running sum (of radiance) and Welford state (of luminance).
 #[derive(Clone, Copy, Debug, Default)]

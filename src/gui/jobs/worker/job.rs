@@ -5,7 +5,8 @@
 //! Either way the deliveries are the same pixels, statistics and lines in the same order
 //! (bands may be cut at other rows: a row's pixels do not depend on its band).
 
-use super::{Delivery, Job};
+use super::Job;
+use crate::gui::jobs::delivery::Delivery;
 use crate::gui::jobs::progressive;
 use crate::gui::model::stats::{PixelStats, StatsRecorder};
 use crate::integrator::{NoopRecorder, RayCounts, SceneIntegrator};

@@ -9,9 +9,8 @@
 //! Every job carries a generation number; starting a new job bumps the shared counter, the worker
 //! abandons a job as soon as it sees a newer generation, and the receiver ignores stale bands.
 
-use crate::gui::model::stats::PixelStats;
-use crate::integrator::{RayCounts, SceneIntegrator};
-use crate::math::Rgb;
+use crate::gui::jobs::delivery::Delivery;
+use crate::integrator::SceneIntegrator;
 use crate::scene::Scene;
 use job::JobRun;
 use std::sync::Arc;
@@ -28,80 +27,11 @@ pub const SLICE_BUDGET_MS: f64 = 12.0;
 /// Called from the worker thread after each delivery (the app passes `ctx.request_repaint`).
 pub type Repaint = Arc<dyn Fn() + Send + Sync>;
 
-/// What the worker sends back.
-#[derive(Debug)]
-pub enum Delivery {
-    /// Image rows `y0 .. y0 + pixels.len() / width` of generation `generation`.
-    Band {
-        /// The job this band belongs to.
-        generation: u64,
-        /// First row.
-        y0: u32,
-        /// Linear radiance, row-major (non-finite values written black).
-        pixels: Vec<Rgb>,
-    },
-    /// The image of generation `generation` is complete.
-    Done {
-        /// The finished job.
-        generation: u64,
-        /// Wall-clock seconds of the image pass.
-        seconds: f64,
-        /// Rays traced.
-        rays: RayCounts,
-    },
-    /// Debug statistics of rows `y0 .. y0 + stats.len() / width`.
-    Stats {
-        /// The job these rows belong to.
-        generation: u64,
-        /// First row.
-        y0: u32,
-        /// One per pixel, row-major.
-        stats: Vec<PixelStats>,
-    },
-    /// The statistics of generation `generation` are complete.
-    StatsDone {
-        /// The finished job.
-        generation: u64,
-        /// Wall-clock seconds of the statistics pass.
-        seconds: f64,
-    },
-    /// How the scene's ray tree grows and what the automatic cut saves (issue 18), measured
-    /// after the statistics.
-    Growth {
-        /// The job this belongs to.
-        generation: u64,
-        /// One line for the statistics.
-        line: String,
-    },
-    /// A progressive pass is complete ([`crate::gui::jobs::progressive`]).
-    Pass {
-        /// The job this belongs to.
-        generation: u64,
-        /// The samples so far, the noise estimate and whether the run stopped.
-        report: crate::gui::jobs::progressive::Report,
-    },
-}
-
-impl Delivery {
-    /// The generation this delivery belongs to.
-    #[must_use]
-    pub fn generation(&self) -> u64 {
-        match self {
-            Delivery::Band { generation, .. }
-            | Delivery::Done { generation, .. }
-            | Delivery::Stats { generation, .. }
-            | Delivery::StatsDone { generation, .. }
-            | Delivery::Growth { generation, .. }
-            | Delivery::Pass { generation, .. } => *generation,
-        }
-    }
-}
-
 struct Job {
     generation: u64,
     scene: Arc<Scene>,
     image_first: bool,
-    progressive: Option<crate::gui::jobs::progressive::Options>,
+    progressive: Option<crate::gui::model::progressive::Options>,
 }
 
 /// A handle on the render thread (native) or the job in slices (wasm32). Dropping it cancels
@@ -177,7 +107,7 @@ impl Worker {
     pub fn start_progressive(
         &self,
         scene: Arc<Scene>,
-        options: crate::gui::jobs::progressive::Options,
+        options: crate::gui::model::progressive::Options,
     ) -> u64 {
         self.start_job(scene, true, Some(options))
     }
@@ -186,7 +116,7 @@ impl Worker {
         &self,
         scene: Arc<Scene>,
         image_first: bool,
-        progressive: Option<crate::gui::jobs::progressive::Options>,
+        progressive: Option<crate::gui::model::progressive::Options>,
     ) -> u64 {
         let generation = self.generation.fetch_add(1, Ordering::SeqCst) + 1;
         let job = Job {

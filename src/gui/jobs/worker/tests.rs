@@ -1,6 +1,9 @@
 //! The render worker: supersession, the debug-view pass, growth statistics.
 
 use super::*;
+use crate::gui::model::stats::PixelStats;
+use crate::integrator::RayCounts;
+use crate::math::Rgb;
 
 #[test]
 fn a_newer_job_supersedes_an_older_one_and_matches_render() {
@@ -137,7 +140,7 @@ struct Folded {
     stats: Vec<PixelStats>,
     rays: Option<RayCounts>,
     growth: Option<String>,
-    passes: Vec<(u32, u64, Option<crate::gui::jobs::progressive::Stop>)>,
+    passes: Vec<(u32, u64, Option<crate::gui::model::progressive::Stop>)>,
 }
 
 impl Folded {
@@ -181,7 +184,7 @@ impl Folded {
 #[test]
 fn slices_on_the_calling_thread_deliver_what_the_worker_thread_does() {
     // The wasm32 path: one row per slice, one slice per call, on this thread.
-    let progressive = crate::gui::jobs::progressive::Options {
+    let progressive = crate::gui::model::progressive::Options {
         on: true,
         target: 0.0,
         cap: 8,
