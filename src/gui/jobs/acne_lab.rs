@@ -6,6 +6,7 @@
 
 use crate::analysis::acne::{AcneCell, cell, scaled_scene};
 use crate::gui::jobs::worker::Repaint;
+use crate::gui::model::lab::LabParams;
 use crate::scene::{OffsetStrategy, Scene};
 use std::sync::Arc;
 use std::sync::atomic::{AtomicU64, Ordering};
@@ -15,49 +16,6 @@ use std::sync::mpsc::{Receiver, Sender, channel};
 pub const CURRENT_WIDTH: u32 = 160;
 /// Width of each render of the sweep.
 pub const SWEEP_WIDTH: u32 = 48;
-
-/// What the lab renders.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct LabParams {
-    /// Offset strategy of the count.
-    pub strategy: OffsetStrategy,
-    /// Epsilon of the count (0 allowed).
-    pub epsilon: f64,
-    /// Scene scale about the origin (positive).
-    pub scale: f64,
-    /// Distance moved from the origin per unit scale and axis (as `raytree acne --shift`).
-    pub shift: f64,
-}
-
-impl Default for LabParams {
-    fn default() -> Self {
-        Self {
-            strategy: OffsetStrategy::Normal,
-            epsilon: 1e-4,
-            scale: 1.0,
-            shift: 0.0,
-        }
-    }
-}
-
-impl LabParams {
-    /// Why these parameters cannot be rendered, if they cannot.
-    pub fn check(&self) -> Result<(), String> {
-        if !(self.epsilon.is_finite() && self.epsilon >= 0.0) {
-            return Err(format!("epsilon must be >= 0, got {}", self.epsilon));
-        }
-        if !(self.scale.is_finite() && self.scale > 0.0) {
-            return Err(format!("scale must be positive, got {}", self.scale));
-        }
-        if !(self.shift.is_finite() && self.shift >= 0.0) {
-            return Err(format!(
-                "distance from the origin must be >= 0, got {}",
-                self.shift
-            ));
-        }
-        Ok(())
-    }
-}
 
 /// The epsilons of the sweep plot: 0, then 1e-9 to 1e-1 by decades.
 #[must_use]
@@ -101,7 +59,7 @@ struct Job {
     params: LabParams,
 }
 
-/// The lab's worker ([`crate::gui::jobs::background::Lane`]: a thread natively). Dropping it cancels the
+/// The lab's worker ([`super::background::Lane`]: a thread natively). Dropping it cancels the
 /// job (and joins the thread).
 pub struct LabWorker {
     deliveries: Receiver<LabDelivery>,

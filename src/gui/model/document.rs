@@ -94,7 +94,7 @@ pub struct Step {
 #[derive(Clone, Debug, Default)]
 pub struct Lab {
     /// What is rendered.
-    pub params: crate::gui::jobs::acne_lab::LabParams,
+    pub params: crate::gui::model::lab::LabParams,
     /// Whether the lab has been started (it re-runs on every scene or settings change then).
     pub started: bool,
     /// The lab job the results belong to.
@@ -282,7 +282,7 @@ pub enum Command {
     /// Move the step point or change the depth shown.
     SetStep(Step),
     /// Run the acne lab with these parameters (cancelling its last job).
-    SetLab(crate::gui::jobs::acne_lab::LabParams),
+    SetLab(crate::gui::model::lab::LabParams),
     /// New text in the LPE filter field (applied when it parses; empty: no filter).
     SetLpe(String),
     /// Progressive rendering's options (re-renders).

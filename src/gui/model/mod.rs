@@ -8,6 +8,7 @@ pub mod diagram;
 pub mod diagram_view;
 pub mod document;
 pub mod export;
+pub mod lab;
 pub mod lpe_filter;
 pub mod progressive;
 pub mod project;

@@ -7,7 +7,9 @@
 pub struct Options {
     /// Progressive rendering on (off: the one render at the scene's spp).
     pub on: bool,
-    /// Stop when the estimate ([`Accumulator::error`](crate::gui::jobs::progressive::Accumulator::error)) is at or below this (0.01 = 1%).
+    /// Stop when the estimate
+    /// ([`Accumulator::error`](crate::gui::jobs::progressive::Accumulator::error)) is at or
+    /// below this (0.01 = 1%).
     pub target: f64,
     /// Stop at this many samples per pixel at most.
     pub cap: u32,
@@ -39,7 +41,8 @@ pub enum Stop {
 pub struct Report {
     /// Samples per pixel accumulated so far.
     pub spp: u32,
-    /// The image's mean relative standard error ([`crate::gui::jobs::progressive`]'s documentation).
+    /// The image's mean relative standard error (the documentation of
+    /// [`crate::gui::jobs::progressive`]).
     pub error: f64,
     /// Wall-clock seconds since the run started.
     pub seconds: f64,

@@ -1,12 +1,13 @@
 //! The acne lab panel (issue 17): offset strategy, epsilon from 0, and the scene's scale and
 //! distance from the origin (as `raytree acne` sweeps them); the count of pixels with acne
 //! (self-hits) and leaks for that choice, and the sweep plot (every strategy against epsilon at
-//! that scale and distance), both computed by the lab's worker ([`crate::gui::jobs::acne_lab`]), never on
-//! the UI thread.
+//! that scale and distance), both computed by the lab's worker
+//! ([`crate::gui::jobs::acne_lab`]), never on the UI thread.
 
 use crate::analysis::acne::AcneCell;
-use crate::gui::jobs::acne_lab::{CURRENT_WIDTH, LabParams, SWEEP_WIDTH, job_len, sweep_epsilons};
+use crate::gui::jobs::acne_lab::{CURRENT_WIDTH, SWEEP_WIDTH, job_len, sweep_epsilons};
 use crate::gui::model::document::{Command, Document};
+use crate::gui::model::lab::LabParams;
 use crate::scene::OffsetStrategy;
 use egui::{Color32, FontId, Pos2, Rect, Sense, Shape, Slider, Stroke, pos2, vec2};
 

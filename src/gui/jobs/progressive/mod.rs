@@ -222,7 +222,7 @@ pub struct Run {
     count: u32,
     /// Next row of that pass.
     y0: u32,
-    /// Rows of a band at the first pass ([`crate::gui::jobs::worker::IMAGE_ROWS`] on the worker thread).
+    /// Rows of a band at the first pass ([`super::worker::IMAGE_ROWS`] on the worker thread).
     max_rows: u32,
 }
 

@@ -102,7 +102,7 @@ impl Worker {
         self.start_job(scene, image_first, None)
     }
 
-    /// Render `scene` progressively ([`crate::gui::jobs::progressive`]) as a new generation, then gather
+    /// Render `scene` progressively ([`super::progressive`]) as a new generation, then gather
     /// its statistics at the scene's settings; returns the generation.
     pub fn start_progressive(
         &self,

@@ -33,8 +33,8 @@ struct Key {
 /// A figure to rasterise: the key it is for, the diagram, and whom to wake when it is done.
 type Job = (Key, Diagram, egui::Context);
 
-/// The rasteriser ([`crate::gui::jobs::background::Lane`]): always draws the newest job waiting, sends
-/// back its pixels.
+/// The rasteriser ([`crate::gui::jobs::background::Lane`]): always draws the newest job
+/// waiting, sends back its pixels.
 struct Rasteriser {
     jobs: crate::gui::jobs::background::Lane<Job>,
     done: Receiver<(Key, ColorImage)>,
