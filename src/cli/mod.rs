@@ -26,6 +26,7 @@ mod outliers_cmd;
 mod output;
 mod plot;
 mod render_cmd;
+mod render_warnings;
 mod say;
 mod spp_map;
 mod trace_cmd;
