@@ -218,7 +218,7 @@ type Cache = Option<(usize, usize, Vec<u8>)>;
 /// Whether `json` is a cache key this command wrote (so the `reference.exr` beside it is its
 /// cache too, and may be replaced).
 fn is_our_key(json: &Path) -> bool {
-    let text = super::load::read_text(json, 1 << 20).unwrap_or_default();
+    let text = super::read::read_text(json, 1 << 20).unwrap_or_default();
     serde_json::from_str::<serde_json::Value>(&text)
         .is_ok_and(|v| v.get("files_fnv1a").is_some() && v.get("ref_spp").is_some())
 }
@@ -235,7 +235,7 @@ fn cached_reference(
     set: &mut OutputSet,
 ) -> Result<(Image, Cache)> {
     let (exr, json) = (out.join("reference.exr"), out.join("reference.json"));
-    if super::load::read_text(&json, 1 << 20).is_ok_and(|k| k == key)
+    if super::read::read_text(&json, 1 << 20).is_ok_and(|k| k == key)
         && let Ok(r) = read_reference(&exr)
         && (r.width, r.height) == (scene.camera.width, scene.camera.height)
     {

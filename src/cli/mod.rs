@@ -25,6 +25,7 @@ mod load_formats;
 mod outliers_cmd;
 mod output;
 mod plot;
+mod read;
 mod render_cmd;
 mod render_warnings;
 mod say;
