@@ -1,27 +1,14 @@
 //! `raytree convert`: the raytree JSON of a pbrt-v4, Mitsuba 3 (or raytree) scene, so it can be
 //! edited, diffed and versioned. Approximations are printed on stderr as `note: file:line: ...`.
 
+use super::args::ConvertArgs;
 use super::load_formats as lf;
 use super::output::{Inputs, Pending};
 use super::read::read_limited;
 use super::say::warnln;
 use anyhow::{Result, anyhow};
-use clap::Args;
 use raytree::input::{MAX_SCENE_BYTES, escape_controls};
 use std::path::PathBuf;
-
-/// `raytree convert`.
-#[derive(Debug, Args)]
-pub struct ConvertArgs {
-    /// Scene: pbrt-v4 (.pbrt), Mitsuba 3 (.xml) or raytree JSON.
-    pub scene: PathBuf,
-    /// Output JSON (never one of the files the scene reads).
-    #[arg(short, long, default_value = "scene.json")]
-    pub output: PathBuf,
-    /// Mitsuba scenes: give `$NAME` the value VALUE; repeatable.
-    #[arg(short = 'D', value_name = "NAME=VALUE")]
-    pub define: Vec<String>,
-}
 
 /// Convert, validate, and write the JSON atomically.
 pub fn run(a: &ConvertArgs) -> Result<()> {
