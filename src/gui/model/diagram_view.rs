@@ -8,14 +8,14 @@ use crate::tree::RayKind;
 /// Which plane the panel slices with.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub enum PlaneChoice {
-    /// [`PlaneSpec::Auto`].
+    /// [`PlaneSpec::Auto`](crate::diagram::PlaneSpec::Auto).
     Auto,
-    /// [`PlaneSpec::Incidence`].
+    /// [`PlaneSpec::Incidence`](crate::diagram::PlaneSpec::Incidence).
     Incidence,
-    /// [`PlaneSpec::Camera`].
+    /// [`PlaneSpec::Camera`](crate::diagram::PlaneSpec::Camera).
     Camera,
-    /// The plane through the selected ray and its parent ([`PlaneSpec::Ray`]); follows the
-    /// selection.
+    /// The plane through the selected ray and its parent
+    /// ([`PlaneSpec::Ray`](crate::diagram::PlaneSpec::Ray)); follows the selection.
     SelectedRay,
     /// `x`, `y` or `z` = the selected ray's hit coordinate (fixed when chosen).
     Axis {

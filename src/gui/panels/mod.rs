@@ -1,7 +1,6 @@
 //! The inspector's panels, each `*_ui(ui, &Document, &mut Vec<Command>)` with its cache where
-//! drawing is costly. They read the model, draw with egui in the colours of
-//! [`style`](crate::gui::style) and push commands; only [`InspectorApp`](crate::gui::InspectorApp)
-//! lays them out.
+//! drawing is costly. They read the model, draw with egui in the colours of `gui/style.rs`
+//! and push commands; only [`InspectorApp`](crate::gui::InspectorApp) lays them out.
 
 pub(super) mod acne;
 pub mod compare;
