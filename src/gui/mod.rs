@@ -1,7 +1,12 @@
-//! The inspector (`raytree view`): an egui app over a [`Document`].
+//! The inspector (`raytree view`): an egui app over a [`Document`]. Each part below imports
+//! only those above it (docs/inspector.md):
 //!
-//! - [`Session`] is the controller (document + render worker + file hook); no egui.
-//! - Panels (`*_ui` functions) read the document and push [`Command`]s, applied after layout.
+//! - [`model`]: the [`Document`] and its plain data; no egui, no threads. `style.rs`: colours
+//!   and number formatting.
+//! - [`jobs`]: background work (the render worker, progressive passes, the acne lab, the
+//!   denoiser) that reads the model and sends deliveries; no egui.
+//! - [`Session`] is the controller (document + jobs + file hook); no egui.
+//! - [`panels`] (`*_ui` functions) read the document and push [`Command`]s, applied after layout.
 //! - [`InspectorApp`] is the thin `eframe::App`.
 //!
 //! The library does no I/O itself: reading and writing files goes through the [`Files`] hook
