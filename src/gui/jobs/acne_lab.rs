@@ -4,8 +4,8 @@
 //! then every strategy at every epsilon of [`sweep_epsilons`] (the sweep plot). Cell by cell,
 //! each sent as it is done; a newer job cancels an older one between cells. No egui here.
 
+use super::worker::Repaint;
 use crate::analysis::acne::{AcneCell, cell, scaled_scene};
-use crate::gui::jobs::worker::Repaint;
 use crate::gui::model::lab::LabParams;
 use crate::scene::{OffsetStrategy, Scene};
 use std::sync::Arc;
@@ -64,7 +64,7 @@ struct Job {
 pub struct LabWorker {
     deliveries: Receiver<LabDelivery>,
     generation: Arc<AtomicU64>,
-    jobs: Option<crate::gui::jobs::background::Lane<Job>>,
+    jobs: Option<super::background::Lane<Job>>,
 }
 
 impl LabWorker {
@@ -75,11 +75,10 @@ impl LabWorker {
         let (tx, deliveries) = channel();
         let generation = Arc::new(AtomicU64::new(0));
         let current = Arc::clone(&generation);
-        let jobs =
-            crate::gui::jobs::background::Lane::new("raytree-acne-lab", None, move |job: Job| {
-                run(&job, &current, &tx, &repaint);
-            })
-            .ok()?;
+        let jobs = super::background::Lane::new("raytree-acne-lab", None, move |job: Job| {
+            run(&job, &current, &tx, &repaint);
+        })
+        .ok()?;
         Some(Self {
             deliveries,
             generation,
@@ -115,7 +114,7 @@ impl LabWorker {
             if let Ok(d) = self.deliveries.try_recv() {
                 return Some(d);
             }
-            if !crate::gui::jobs::background::run_pending() {
+            if !super::background::run_pending() {
                 return self.deliveries.try_recv().ok();
             }
         }

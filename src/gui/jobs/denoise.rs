@@ -76,7 +76,7 @@ impl DenoiseView {
         if self.pending.as_ref().is_none_or(|(k, _)| *k != key) {
             let scene = Arc::clone(&doc.scene);
             let (tx, rx) = channel();
-            let spawned = crate::gui::jobs::background::spawn(
+            let spawned = super::background::spawn(
                 "raytree-denoise",
                 Some(crate::integrator::THREAD_STACK_BYTES),
                 move || {

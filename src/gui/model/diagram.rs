@@ -2,10 +2,10 @@
 //! [`DiagramOptions`] for the panel and for the export (with the command line's title), and the
 //! display list the panel paints. No egui: the session exports with these, the panel draws them.
 
+use super::diagram_view::{DiagramView, PlaneChoice};
+use super::document::Document;
 use crate::diagram::paint::Prim;
 use crate::diagram::{Diagram, DiagramOptions, PlaneSpec, Style, Theme, display_list};
-use crate::gui::model::diagram_view::{DiagramView, PlaneChoice};
-use crate::gui::model::document::Document;
 use crate::tree::{NodeId, RayKind};
 
 /// The sample holding node `id` (the overlay's rule).

@@ -1,8 +1,8 @@
 //! The inspector's state: the scene, the progressive image, the selection and its tree, and the
 //! view options. Plain data; panels read it and emit [`Command`]s.
 
-use crate::gui::model::export::ExportKind;
-use crate::gui::model::stats::{DebugView, PixelStats};
+use super::export::ExportKind;
+use super::stats::{DebugView, PixelStats};
 use crate::math::Rgb;
 use crate::render::Image;
 use crate::scene::{Scene, Settings};
@@ -41,7 +41,7 @@ pub struct ViewOptions {
     /// Draw the selected pixel's ray path on the image.
     pub overlay: bool,
     /// The diagram panel's options (plane, filters, zoom and pan, export highlight).
-    pub diagram: crate::gui::model::diagram_view::DiagramView,
+    pub diagram: super::diagram_view::DiagramView,
     /// Show the image denoised ([`crate::gui::jobs::denoise`]; trees, overlay, diagram and exports
     /// stay the raw samples).
     pub denoise: bool,
@@ -54,7 +54,7 @@ impl Default for ViewOptions {
             pan: [0.0, 0.0],
             debug: DebugView::Off,
             overlay: true,
-            diagram: crate::gui::model::diagram_view::DiagramView::default(),
+            diagram: super::diagram_view::DiagramView::default(),
             denoise: false,
         }
     }
@@ -94,7 +94,7 @@ pub struct Step {
 #[derive(Clone, Debug, Default)]
 pub struct Lab {
     /// What is rendered.
-    pub params: crate::gui::model::lab::LabParams,
+    pub params: super::lab::LabParams,
     /// Whether the lab has been started (it re-runs on every scene or settings change then).
     pub started: bool,
     /// The lab job the results belong to.
@@ -153,7 +153,7 @@ pub struct Document {
     /// Render progress.
     pub progress: Progress,
     /// Progressive rendering: its options and the last pass's noise estimate.
-    pub progressive: crate::gui::model::progressive::State,
+    pub progressive: super::progressive::State,
     /// Selected pixel.
     pub selection: Option<[u32; 2]>,
     /// The selected pixel's tree (re-traced synchronously on every change).
@@ -185,7 +185,7 @@ pub struct Document {
     /// The acne lab.
     pub lab: Lab,
     /// The light path expression filter (`tree` is the filtered tree while one applies).
-    pub lpe: crate::gui::model::lpe_filter::LpeState,
+    pub lpe: super::lpe_filter::LpeState,
 }
 
 impl Document {
@@ -282,9 +282,9 @@ pub enum Command {
     /// Move the step point or change the depth shown.
     SetStep(Step),
     /// Run the acne lab with these parameters (cancelling its last job).
-    SetLab(crate::gui::model::lab::LabParams),
+    SetLab(super::lab::LabParams),
     /// New text in the LPE filter field (applied when it parses; empty: no filter).
     SetLpe(String),
     /// Progressive rendering's options (re-renders).
-    SetProgressive(crate::gui::model::progressive::Options),
+    SetProgressive(super::progressive::Options),
 }

@@ -2,10 +2,10 @@
 //! numbers of [`crate::analysis::teach`]: angles in degrees, the critical angle, the weight's
 //! factors, medium names) and the contribution breakdown.
 
+use super::tree::TreeView;
 use crate::analysis::teach;
 use crate::gui::model::breakdown::{Term, pixel_contribution};
 use crate::gui::model::document::{Command, Document};
-use crate::gui::panels::tree::TreeView;
 use crate::gui::style::{SELECTED, amount, kind_colour, num, rgb, vec3};
 use crate::math::Rgb;
 use crate::tree::RayKind;

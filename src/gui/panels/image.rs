@@ -177,7 +177,7 @@ fn overlay(
     }
     let clipped = painter.with_clip_rect(place.rect.intersect(area));
     clipped.add(Shape::Mesh(Arc::clone(&cache.mesh)));
-    crate::gui::panels::step::paint_on_image(&clipped, doc, |p| {
+    super::step::paint_on_image(&clipped, doc, |p| {
         place.rect.min + vec2(p[0] as f32, p[1] as f32) * place.zoom
     });
 }

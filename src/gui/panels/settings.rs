@@ -142,7 +142,7 @@ pub fn settings_ui(ui: &mut egui::Ui, doc: &Document, cmds: &mut Vec<Command>) {
     if s != old {
         cmds.push(Command::SetSettings(s));
     }
-    crate::gui::panels::progressive::progressive_ui(ui, doc, cmds);
+    super::progressive::progressive_ui(ui, doc, cmds);
 }
 
 /// Area-light and glossy sampling of the Whitted integrator, shown only for scenes that have an

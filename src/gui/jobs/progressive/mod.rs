@@ -24,8 +24,8 @@
 #[cfg(test)]
 mod tests;
 
+use super::delivery::Delivery;
 use crate::bsdf::luminance;
-use crate::gui::jobs::delivery::Delivery;
 use crate::gui::model::progressive::{Options, Report, Stop};
 use crate::integrator::{Integrator, NoopRecorder, RayCounts};
 use crate::math::Rgb;

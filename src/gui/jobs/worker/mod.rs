@@ -9,7 +9,7 @@
 //! Every job carries a generation number; starting a new job bumps the shared counter, the worker
 //! abandons a job as soon as it sees a newer generation, and the receiver ignores stale bands.
 
-use crate::gui::jobs::delivery::Delivery;
+use super::delivery::Delivery;
 use crate::integrator::SceneIntegrator;
 use crate::scene::Scene;
 use job::JobRun;

@@ -4,10 +4,10 @@
 //! highlighted, every changed pair marked with its count of changed fields, and the changed
 //! numbers of the chosen pair listed `pinned -> current`.
 
+use super::tree::{node_name, node_numbers};
 use crate::analysis::diff::align::{AlignedRow, align};
 use crate::analysis::diff::{TreeDiff, diff};
 use crate::gui::model::document::{Command, Document, tree_label};
-use crate::gui::panels::tree::{node_name, node_numbers};
 use crate::gui::style::{SELECTED, WARNING, kind_colour};
 use crate::tree::{NodeId, RayTree};
 use egui::text::{LayoutJob, TextWrapping};

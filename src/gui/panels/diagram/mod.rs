@@ -220,7 +220,7 @@ pub fn diagram_ui(
         let uv = egui::Rect::from_min_max(pos2(0.0, 0.0), pos2(1.0, 1.0));
         painter.image(tex.id(), rect, uv, Color32::WHITE);
         if let Some(frame) = &cache.frame {
-            crate::gui::panels::step::paint_on_diagram(&painter, doc, frame, area.min);
+            super::step::paint_on_diagram(&painter, doc, frame, area.min);
         }
     }
     if cache.pending {
