@@ -5,7 +5,9 @@ Top level: an edge A -> B when a non-test file of top module A names `crate::B` 
 path). Files: an edge when a file names an item path that resolves to another file's module.
 Prints every strongly connected component with more than one member; exit 1 when the top-level
 graph has one (the file-level knots are listed for docs/architecture.md, not enforced).
-Usage: .ci/cycles.py [--files]
+`--cli` also checks the command line (`src/cli/`, in the binary, which the library's graph
+skips): the same file-level edges among its files; exit 1 when they have a cycle.
+Usage: .ci/cycles.py [--files] [--cli]
 """
 import os, re, sys
 
@@ -41,12 +43,14 @@ def is_test_file(rel):
             or base == "chi2.rs")
 
 
-def files():
+def files(cli=False):
+    """The library's non-test files, or with `cli` the command line's."""
     for d, _, fs in os.walk(ROOT):
         for f in fs:
             if f.endswith(".rs"):
                 rel = os.path.relpath(os.path.join(d, f), ROOT)
-                if rel.split(os.sep)[0] in SKIP_TOP or is_test_file(rel):
+                top = rel.split(os.sep)[0]
+                if is_test_file(rel) or (top != "cli" if cli else top in SKIP_TOP):
                     continue
                 yield rel
 
@@ -119,9 +123,10 @@ def sccs(graph):
     return res
 
 
-def main():
+def graphs(cli=False):
+    """(top-level graph, file graph) over `files(cli)`."""
     mods = {}
-    for rel in files():
+    for rel in files(cli):
         mods[tuple(module_of(rel))] = rel
     top, filegraph = {}, {}
     for mod, rel in mods.items():
@@ -136,6 +141,11 @@ def main():
                     if t != mod and not (len(t) < len(mod) and mod[:len(t)] == t and k == len(t)):
                         filegraph.setdefault(rel, set()).add(mods[t])
                     break
+    return top, filegraph
+
+
+def main():
+    top, filegraph = graphs()
     status = 0
     for comp in sccs({k: v for k, v in top.items()}):
         print("top-level cycle:", " <-> ".join(comp)); status = 1
@@ -144,6 +154,14 @@ def main():
             print("file cycle:", " <-> ".join(comp))
     if status == 0:
         print("no import cycle among src/'s top-level modules")
+    if "--cli" in sys.argv:
+        cli = sccs(graphs(cli=True)[1])
+        for comp in cli:
+            print("cli file cycle:", " <-> ".join(comp))
+        if cli:
+            status = 1
+        else:
+            print("no import cycle among src/cli/'s files")
     return status
 
 

@@ -90,7 +90,7 @@ fn benches(c: &mut Criterion) {
     s.wait_render();
     // With a debug view on screen: one recorded pass gives image and statistics.
     let mut view = s.doc.view;
-    view.debug = raytree::gui::stats::DebugView::Depth;
+    view.debug = raytree::gui::model::stats::DebugView::Depth;
     s.apply(Command::SetView(view));
     g.bench_function("rerender_640x360_depth16_worker_debug_view", |b| {
         b.iter(|| {
@@ -148,7 +148,7 @@ fn frames(c: &mut Criterion) {
         g.bench_function("nested_trace_pixel", |b| {
             b.iter(|| black_box(raytree::trace_pixel(&doc.scene, x, y)))
         });
-        let opts = raytree::gui::diagram_ui::diagram_options(doc, [1030, 300]);
+        let opts = raytree::gui::model::diagram::diagram_options(doc, [1030, 300]);
         g.bench_function("nested_diagram_build_display_list", |b| {
             b.iter(|| {
                 let d = Diagram::build(&doc.scene, tree, &opts).unwrap();

@@ -5,8 +5,8 @@
 use egui::accesskit::Role;
 use egui_kittest::Harness;
 use egui_kittest::kittest::Queryable;
-use raytree::gui::export::ExportKind;
-use raytree::gui::stats::DebugView;
+use raytree::gui::model::export::ExportKind;
+use raytree::gui::model::stats::DebugView;
 use raytree::gui::{InspectorApp, Session};
 use raytree::math::Rgb;
 use std::path::Path;

@@ -7,8 +7,8 @@ use egui_kittest::Harness;
 use egui_kittest::kittest::{NodeT, Queryable};
 use raytree::RayKind;
 use raytree::diagram::{Diagram, PlaneSpec};
-use raytree::gui::diagram_ui::{diagram_options, export_options};
-use raytree::gui::export::ExportKind;
+use raytree::gui::model::diagram::{diagram_options, export_options};
+use raytree::gui::model::export::ExportKind;
 use raytree::gui::{InspectorApp, Session};
 use std::sync::Arc;
 
@@ -41,7 +41,7 @@ fn harness(files: &MemFiles, spp: u32) -> Harness<'static, InspectorApp> {
 fn shown(h: &Harness<'static, InspectorApp>) -> Diagram {
     let (size, prims) = h.state().diagram_display_list().expect("a diagram");
     let doc = &h.state().session.doc;
-    let fresh = raytree::gui::diagram_ui::build_display_list(doc, size).unwrap();
+    let fresh = raytree::gui::model::diagram::build_display_list(doc, size).unwrap();
     assert!(prims == fresh.as_slice(), "the panel shows its options");
     Diagram::build(
         &doc.scene,
@@ -176,7 +176,7 @@ fn the_plane_follows_the_selected_ray() {
 
 #[test]
 fn sample_choice_and_export_without_the_highlight() {
-    use raytree::gui::document::Command;
+    use raytree::gui::model::document::Command;
     let files = MemFiles::default();
     let mut h = harness(&files, 4);
     let tree = h.state().session.doc.tree.clone().unwrap();

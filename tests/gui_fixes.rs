@@ -6,7 +6,7 @@
 use egui::accesskit::Role;
 use egui_kittest::Harness;
 use egui_kittest::kittest::{NodeT, Queryable};
-use raytree::gui::stats::DebugView;
+use raytree::gui::model::stats::DebugView;
 use raytree::gui::{InspectorApp, Session};
 use std::sync::Arc;
 
@@ -22,7 +22,7 @@ fn the_diagram_panel_shows_the_reloaded_scene() {
     click_pixel(&mut h, GLASS.0, GLASS.1);
     let same = |h: &Harness<'static, InspectorApp>| {
         let (size, prims) = h.state().diagram_display_list().expect("a diagram");
-        let fresh = raytree::gui::diagram_ui::build_display_list(&h.state().session.doc, size)
+        let fresh = raytree::gui::model::diagram::build_display_list(&h.state().session.doc, size)
             .expect("builds");
         prims == fresh.as_slice()
     };
@@ -91,7 +91,7 @@ fn tree_rows_give_each_rays_share_of_the_pixel() {
         let text = node.accesskit_node().label().unwrap_or_default();
         assert!(!text.contains("e-30"), "{text}");
         let c = field(&text, "c=");
-        let want = raytree::gui::breakdown::pixel_contribution(tree, n.id).max_element();
+        let want = raytree::gui::model::breakdown::pixel_contribution(tree, n.id).max_element();
         assert!((c - want).abs() <= 1e-4 * want.max(1.0), "{text}: {want}");
         assert!(
             c <= pixel + 1e-4,
@@ -163,7 +163,7 @@ fn expand_all_below_and_breakdown_terms_reveal_deep_rays() {
     h.get_by_label("collapse all").click();
     h.run();
     let tree = h.state().session.doc.tree.clone().unwrap();
-    let terms = raytree::gui::breakdown::breakdown(&tree);
+    let terms = raytree::gui::model::breakdown::breakdown(&tree);
     let deep = terms
         .iter()
         .take(20)

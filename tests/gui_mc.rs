@@ -5,8 +5,8 @@
 use egui_kittest::Harness;
 use egui_kittest::kittest::Queryable;
 use raytree::gui::InspectorApp;
-use raytree::gui::denoise_view::DenoiseState;
-use raytree::gui::stats::DebugView;
+use raytree::gui::jobs::denoise::DenoiseState;
+use raytree::gui::model::stats::DebugView;
 use raytree::scene::AdaptiveDesc;
 
 mod gui_support;
@@ -109,7 +109,7 @@ fn the_denoise_toggle_shows_the_denoised_image_and_keeps_the_raw_samples() {
     );
     assert!(matches!(
         h.state().denoise_state(),
-        Some(raytree::gui::denoise_view::DenoiseState::Ready(_))
+        Some(raytree::gui::jobs::denoise::DenoiseState::Ready(_))
     ));
     let _ = h.get_by_label_contains("denoised in");
     // The raw render is untouched: the document's image is `render`'s, bit for bit.
@@ -122,27 +122,29 @@ fn the_denoise_toggle_shows_the_denoised_image_and_keeps_the_raw_samples() {
     assert!(!h.state().shows_denoised());
     assert!(h.state().denoise_state().is_none());
     // Under progressive rendering the guide pass (the scene's spp) is not the image shown.
-    let options = raytree::gui::progressive::Options {
+    let options = raytree::gui::model::progressive::Options {
         on: true,
         target: 0.0,
         cap: 8,
     };
     h.state_mut()
         .session
-        .apply(raytree::gui::document::Command::SetProgressive(options));
+        .apply(raytree::gui::model::document::Command::SetProgressive(
+            options,
+        ));
     // The View section moves while the progressive status line changes: set the view directly.
-    let view = raytree::gui::document::ViewOptions {
+    let view = raytree::gui::model::document::ViewOptions {
         denoise: true,
         ..h.state().session.doc.view
     };
     h.state_mut()
         .session
-        .apply(raytree::gui::document::Command::SetView(view));
+        .apply(raytree::gui::model::document::Command::SetView(view));
     h.step();
     h.step();
     assert_eq!(
         h.state().denoise_state(),
-        Some(&raytree::gui::denoise_view::DenoiseState::Unavailable(
+        Some(&raytree::gui::jobs::denoise::DenoiseState::Unavailable(
             "not with progressive rendering"
         ))
     );

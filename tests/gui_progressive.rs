@@ -5,7 +5,7 @@
 
 use egui_kittest::Harness;
 use egui_kittest::kittest::Queryable;
-use raytree::gui::progressive::{Options, Stop};
+use raytree::gui::model::progressive::{Options, Stop};
 use raytree::gui::{Command, InspectorApp};
 
 mod gui_support;

@@ -5,8 +5,8 @@
 use egui_kittest::Harness;
 use egui_kittest::kittest::Queryable;
 use raytree::analysis::samples::{histogram, sample_rows};
-use raytree::gui::diagram_ui::{build_display_list, diagram_options};
-use raytree::gui::document::Command;
+use raytree::gui::model::diagram::{build_display_list, diagram_options};
+use raytree::gui::model::document::Command;
 use raytree::gui::{InspectorApp, Session};
 use raytree::lpe::{Lpe, filter_tree_all_samples};
 use std::sync::Arc;

@@ -236,7 +236,7 @@ fn step_along_a_ray_moves_a_point_and_reveals_one_depth_at_a_time() {
     assert_eq!(doc.step.at, Some(1.0), "starts at the hit");
     let tree = doc.tree.clone().unwrap();
     let hit = tree.nodes[0].hit.clone().unwrap();
-    let (p, t, end) = raytree::gui::step_ui::step_point(doc).unwrap();
+    let (p, t, end) = raytree::gui::panels::step::step_point(doc).unwrap();
     assert_eq!((t, end), (hit.t, hit.t));
     assert!((p - hit.point).length() < 1e-9);
     assert!(has(&h, "at t_hit"));
@@ -249,7 +249,7 @@ fn step_along_a_ray_moves_a_point_and_reveals_one_depth_at_a_time() {
     let doc = &h.state().session.doc;
     let at = doc.step.at.unwrap();
     assert!((at - 0.5).abs() < 1e-9, "{at}");
-    let (p, t, _) = raytree::gui::step_ui::step_point(doc).unwrap();
+    let (p, t, _) = raytree::gui::panels::step::step_point(doc).unwrap();
     let n = &tree.nodes[0];
     assert!((p - (n.origin + n.direction * t)).length() < 1e-12);
     assert!(!has(&h, "at t_hit"));
@@ -270,7 +270,7 @@ fn step_along_a_ray_moves_a_point_and_reveals_one_depth_at_a_time() {
         last = drawn;
         let (size, prims) = h.state().diagram_display_list().expect("a diagram");
         let fresh =
-            raytree::gui::diagram_ui::build_display_list(&h.state().session.doc, size).unwrap();
+            raytree::gui::model::diagram::build_display_list(&h.state().session.doc, size).unwrap();
         assert!(
             prims == fresh.as_slice(),
             "the diagram is cut at depth {depth}"
@@ -290,7 +290,7 @@ fn the_acne_lab_counts_affected_pixels_and_plots_the_sweep_off_the_ui_thread() {
     h.run();
     let lab = h.state().session.doc.lab.clone();
     assert!(lab.done && lab.started);
-    assert_eq!(lab.sweep.len() + 1, raytree::gui::acne_lab::job_len());
+    assert_eq!(lab.sweep.len() + 1, raytree::gui::jobs::acne_lab::job_len());
     let c = lab.current.clone().expect("the count");
     // The scene where it is, with its own epsilon (1e-4): no acne (one pixel leaks).
     assert_eq!(c.self_hit_pixels, 0, "{c:?}");

@@ -136,7 +136,7 @@ pub fn run(a: &RenderArgs) -> Result<()> {
     }
     set.commit()?;
     report(a, &r, &paths, secs, &names)?;
-    super::render_cmd::warn_image(a, scene, &r.stats, clamped, format);
+    super::render_warnings::warn_image(a, scene, &r.stats, clamped, format);
     if views.contains(&McView::Noise) {
         let single = r.mc.iter().filter(|p| p.samples < 2).count();
         if single > 0 {

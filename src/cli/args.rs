@@ -29,25 +29,25 @@ pub enum Command {
     Compare(CompareArgs),
     /// Convergence: rel-RMSE against a reference versus spp and seconds, per series (log-log
     /// plot, CSV, fitted slopes).
-    Converge(super::converge_cmd::ConvergeArgs),
+    Converge(ConvergeArgs),
 
     /// Open the inspector window: click a pixel, see its ray tree.
     View(ViewArgs),
     /// Draw a cross-section diagram of one pixel's ray tree (SVG or PNG).
     Diagram(DiagramArgs),
     /// Explain one pixel in a few sentences: what it sees, where energy went, what is suspicious.
-    Explain(super::explain_cmd::ExplainArgs),
+    Explain(ExplainArgs),
     /// Trace one pixel under two sets of overrides (or two scenes) and print where the trees differ.
-    Diff(super::diff_cmd::DiffArgs),
+    Diff(DiffArgs),
     /// Whitted vs path tracing side by side, the difference image, and what Whitted misses by
     /// light path class.
-    Versus(super::versus_cmd::VersusArgs),
+    Versus(VersusArgs),
     /// Convert a pbrt-v4 or Mitsuba 3 scene (or raytree JSON) to raytree JSON, listing what was
     /// approximated.
-    Convert(super::convert_cmd::ConvertArgs),
+    Convert(ConvertArgs),
     /// The worst pixels: ranked by their excess over a robust neighbourhood estimate (and, for
     /// a scene, by the standard error of their mean), with the trace/explain command for each.
-    Outliers(super::outliers_cmd::OutliersArgs),
+    Outliers(OutliersArgs),
 }
 
 /// Settings every tracing command can override (defaults come from the scene file).
@@ -387,6 +387,150 @@ pub struct DiagramArgs {
     #[arg(long, value_name = "N", default_value_t = 2)]
     pub label_depth: u32,
     /// Settings overrides.
+    #[command(flatten)]
+    pub overrides: Overrides,
+}
+
+/// `raytree converge`.
+#[derive(Debug, Args)]
+pub struct ConvergeArgs {
+    /// Scene JSON (default: the built-in classic scene).
+    pub scene: Option<PathBuf>,
+    /// Report directory (converge.md, converge.csv, converge.json, converge.png, and the
+    /// cached reference.exr and reference.json).
+    #[arg(short, long, default_value = "converge-report")]
+    pub output: PathBuf,
+    /// Reference image (.exr or .png) of the render's size (default: rendered by the scene's
+    /// integrator at --ref-spp, cached in the report directory).
+    #[arg(long, value_name = "FILE")]
+    pub reference: Option<PathBuf>,
+    /// Samples per pixel of the rendered reference [default: 1024; --quick 256].
+    #[arg(long, value_name = "N")]
+    pub ref_spp: Option<u32>,
+    /// The curves run over 1, 2, 4, ... up to this many samples per pixel [default: 64;
+    /// --quick 16].
+    #[arg(long, value_name = "N")]
+    pub max_spp: Option<u32>,
+    /// Comma-separated series: default, light-only, bsdf-only (path integrator), sobol,
+    /// stratified, rr:N (Russian roulette from bounce N), denoise [default: for the path
+    /// integrator default,light-only,bsdf-only,stratified,denoise; else default,sobol,denoise].
+    #[arg(long, value_name = "LIST")]
+    pub series: Option<String>,
+    /// A small run: 64 pixels wide, up to 16 spp against 256.
+    #[arg(long)]
+    pub quick: bool,
+    /// Let the rendered reference replace a `reference.exr` or `reference.json` in the report
+    /// directory that is not this command's cache (refused otherwise).
+    #[arg(long)]
+    pub force: bool,
+    /// Settings overrides (--size sets the render size; default 160 pixels wide, the scene's
+    /// aspect ratio).
+    #[command(flatten)]
+    pub overrides: Overrides,
+}
+
+/// `raytree explain`.
+#[derive(Debug, Args)]
+pub struct ExplainArgs {
+    /// Scene JSON (default: the built-in classic scene).
+    pub scene: Option<PathBuf>,
+    /// Pixel X,Y (0,0 is top-left).
+    #[arg(long, value_name = "X,Y")]
+    pub pixel: String,
+    /// Print JSON (pixel, radiance, shares, sentences) instead of text.
+    #[arg(long)]
+    pub json: bool,
+    /// Settings overrides.
+    #[command(flatten)]
+    pub overrides: Overrides,
+}
+
+/// `raytree diff`.
+#[derive(Debug, Args)]
+pub struct DiffArgs {
+    /// Scene JSON for both sides (default: the built-in classic scene).
+    pub scene: Option<PathBuf>,
+    /// A second scene JSON: then SCENE is side a and this is side b.
+    pub scene_b: Option<PathBuf>,
+    /// Pixel X,Y (0,0 is top-left).
+    #[arg(long, value_name = "X,Y")]
+    pub pixel: String,
+    /// Overrides of side a, as one string ("--offset normal --epsilon 0").
+    #[arg(
+        long = "a",
+        value_name = "ARGS",
+        default_value = "",
+        allow_hyphen_values = true
+    )]
+    pub a: String,
+    /// Overrides of side b, as one string ("--offset robust").
+    #[arg(
+        long = "b",
+        value_name = "ARGS",
+        default_value = "",
+        allow_hyphen_values = true
+    )]
+    pub b: String,
+    /// Print JSON (the TreeDiff) instead of text.
+    #[arg(long)]
+    pub json: bool,
+    /// After the summary, list every changed field of every ray and the unmatched subtrees.
+    #[arg(long)]
+    pub full: bool,
+    /// Overrides of both sides (applied before --a and --b).
+    #[command(flatten)]
+    pub overrides: Overrides,
+}
+
+/// `raytree versus`.
+#[derive(Debug, Args)]
+pub struct VersusArgs {
+    /// Scene JSON (default: the built-in classic scene).
+    pub scene: Option<PathBuf>,
+    /// Output directory (whitted.png, path.png, side-by-side.png, difference.png,
+    /// breakdown.json).
+    #[arg(short, long, default_value = "versus")]
+    pub output: PathBuf,
+    /// Break the difference down over this pixel rectangle only, X0,Y0,X1,Y1 (X1 and Y1
+    /// excluded); default the whole image.
+    #[arg(long, value_name = "X0,Y0,X1,Y1")]
+    pub region: Option<String>,
+    /// Print the breakdown as JSON instead of text.
+    #[arg(long)]
+    pub json: bool,
+    /// Settings overrides (the integrator is set by the command).
+    #[command(flatten)]
+    pub overrides: Overrides,
+}
+
+/// `raytree convert`.
+#[derive(Debug, Args)]
+pub struct ConvertArgs {
+    /// Scene: pbrt-v4 (.pbrt), Mitsuba 3 (.xml) or raytree JSON.
+    pub scene: PathBuf,
+    /// Output JSON (never one of the files the scene reads).
+    #[arg(short, long, default_value = "scene.json")]
+    pub output: PathBuf,
+    /// Mitsuba scenes: give `$NAME` the value VALUE; repeatable.
+    #[arg(short = 'D', value_name = "NAME=VALUE")]
+    pub define: Vec<String>,
+}
+
+/// `raytree outliers`.
+#[derive(Debug, Args)]
+pub struct OutliersArgs {
+    /// A scene (rendered first, with the overrides) or an image (.png or .exr).
+    pub input: PathBuf,
+    /// How many pixels to list (per ranking).
+    #[arg(long, value_name = "N", default_value_t = 10)]
+    pub top: usize,
+    /// The neighbourhood: 3 (3x3) or 5 (5x5).
+    #[arg(long, value_name = "3|5", default_value_t = 3)]
+    pub window: u32,
+    /// Print JSON instead of text.
+    #[arg(long)]
+    pub json: bool,
+    /// Settings overrides (for a scene).
     #[command(flatten)]
     pub overrides: Overrides,
 }

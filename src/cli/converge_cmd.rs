@@ -1,56 +1,17 @@
 //! `raytree converge`: relative RMSE against a reference versus samples and seconds per series,
 //! written as Markdown, CSV, JSON and a log-log plot (`raytree::analysis::converge`).
 
-use super::args::Overrides;
+use super::args::ConvergeArgs;
 use super::load::load;
 use super::output::{Inputs, Origin, OutDir, OutputSet, encode_rgb8_png, read_image};
 use super::say::{out, sayln};
 use anyhow::{Result, bail};
-use clap::Args;
 use indicatif::{ProgressBar, ProgressStyle};
 use raytree::Image;
 use raytree::analysis::converge::{Curve, Series, converge, reference};
 use raytree::scene::IntegratorKind;
 use std::fmt::Write;
 use std::path::{Path, PathBuf};
-
-/// `raytree converge`.
-#[derive(Debug, Args)]
-pub struct ConvergeArgs {
-    /// Scene JSON (default: the built-in classic scene).
-    pub scene: Option<PathBuf>,
-    /// Report directory (converge.md, converge.csv, converge.json, converge.png, and the
-    /// cached reference.exr and reference.json).
-    #[arg(short, long, default_value = "converge-report")]
-    pub output: PathBuf,
-    /// Reference image (.exr or .png) of the render's size (default: rendered by the scene's
-    /// integrator at --ref-spp, cached in the report directory).
-    #[arg(long, value_name = "FILE")]
-    pub reference: Option<PathBuf>,
-    /// Samples per pixel of the rendered reference [default: 1024; --quick 256].
-    #[arg(long, value_name = "N")]
-    pub ref_spp: Option<u32>,
-    /// The curves run over 1, 2, 4, ... up to this many samples per pixel [default: 64;
-    /// --quick 16].
-    #[arg(long, value_name = "N")]
-    pub max_spp: Option<u32>,
-    /// Comma-separated series: default, light-only, bsdf-only (path integrator), sobol,
-    /// stratified, rr:N (Russian roulette from bounce N), denoise [default: for the path
-    /// integrator default,light-only,bsdf-only,stratified,denoise; else default,sobol,denoise].
-    #[arg(long, value_name = "LIST")]
-    pub series: Option<String>,
-    /// A small run: 64 pixels wide, up to 16 spp against 256.
-    #[arg(long)]
-    pub quick: bool,
-    /// Let the rendered reference replace a `reference.exr` or `reference.json` in the report
-    /// directory that is not this command's cache (refused otherwise).
-    #[arg(long)]
-    pub force: bool,
-    /// Settings overrides (--size sets the render size; default 160 pixels wide, the scene's
-    /// aspect ratio).
-    #[command(flatten)]
-    pub overrides: Overrides,
-}
 
 const NAMES: [&str; 4] = [
     "converge.md",
@@ -218,7 +179,7 @@ type Cache = Option<(usize, usize, Vec<u8>)>;
 /// Whether `json` is a cache key this command wrote (so the `reference.exr` beside it is its
 /// cache too, and may be replaced).
 fn is_our_key(json: &Path) -> bool {
-    let text = super::load::read_text(json, 1 << 20).unwrap_or_default();
+    let text = super::read::read_text(json, 1 << 20).unwrap_or_default();
     serde_json::from_str::<serde_json::Value>(&text)
         .is_ok_and(|v| v.get("files_fnv1a").is_some() && v.get("ref_spp").is_some())
 }
@@ -235,7 +196,7 @@ fn cached_reference(
     set: &mut OutputSet,
 ) -> Result<(Image, Cache)> {
     let (exr, json) = (out.join("reference.exr"), out.join("reference.json"));
-    if super::load::read_text(&json, 1 << 20).is_ok_and(|k| k == key)
+    if super::read::read_text(&json, 1 << 20).is_ok_and(|k| k == key)
         && let Ok(r) = read_reference(&exr)
         && (r.width, r.height) == (scene.camera.width, scene.camera.height)
     {

@@ -1,27 +1,14 @@
 //! `raytree convert`: the raytree JSON of a pbrt-v4, Mitsuba 3 (or raytree) scene, so it can be
 //! edited, diffed and versioned. Approximations are printed on stderr as `note: file:line: ...`.
 
-use super::load::read_limited;
+use super::args::ConvertArgs;
 use super::load_formats as lf;
 use super::output::{Inputs, Pending};
+use super::read::read_limited;
 use super::say::warnln;
 use anyhow::{Result, anyhow};
-use clap::Args;
 use raytree::input::{MAX_SCENE_BYTES, escape_controls};
 use std::path::PathBuf;
-
-/// `raytree convert`.
-#[derive(Debug, Args)]
-pub struct ConvertArgs {
-    /// Scene: pbrt-v4 (.pbrt), Mitsuba 3 (.xml) or raytree JSON.
-    pub scene: PathBuf,
-    /// Output JSON (never one of the files the scene reads).
-    #[arg(short, long, default_value = "scene.json")]
-    pub output: PathBuf,
-    /// Mitsuba scenes: give `$NAME` the value VALUE; repeatable.
-    #[arg(short = 'D', value_name = "NAME=VALUE")]
-    pub define: Vec<String>,
-}
 
 /// Convert, validate, and write the JSON atomically.
 pub fn run(a: &ConvertArgs) -> Result<()> {
@@ -43,7 +30,7 @@ pub fn run(a: &ConvertArgs) -> Result<()> {
     } else {
         let src = raytree::input::decode(bytes).map_err(|e| anyhow!("{label}:{e}"))?;
         let dir = p.parent().unwrap_or(std::path::Path::new(""));
-        raytree::Scene::from_json_with(&src, &mut |file| super::load::read_obj(dir, file))
+        raytree::Scene::from_json_with(&src, &mut |file| super::read::read_obj(dir, file))
             .map_err(|e| anyhow!("{label}:{e}"))?;
         serde_json::from_str(raytree::input::strip_bom(&src))?
     };

@@ -1,51 +1,13 @@
 //! `raytree diff`: one pixel traced under two sets of overrides (or in two scenes), and where
 //! the two trees differ (`raytree::analysis::diff`).
 
-use super::args::Overrides;
+use super::args::{DiffArgs, Overrides};
 use super::load::{apply, load, pair};
 use super::say::{out, sayln};
 use anyhow::{Result, anyhow, bail};
-use clap::{Args, Parser};
+use clap::Parser;
 use raytree::analysis::diff::{diff, diff_full_text, diff_text};
 use raytree::{RayTree, Scene};
-use std::path::PathBuf;
-
-/// `raytree diff`.
-#[derive(Debug, Args)]
-pub struct DiffArgs {
-    /// Scene JSON for both sides (default: the built-in classic scene).
-    pub scene: Option<PathBuf>,
-    /// A second scene JSON: then SCENE is side a and this is side b.
-    pub scene_b: Option<PathBuf>,
-    /// Pixel X,Y (0,0 is top-left).
-    #[arg(long, value_name = "X,Y")]
-    pub pixel: String,
-    /// Overrides of side a, as one string ("--offset normal --epsilon 0").
-    #[arg(
-        long = "a",
-        value_name = "ARGS",
-        default_value = "",
-        allow_hyphen_values = true
-    )]
-    pub a: String,
-    /// Overrides of side b, as one string ("--offset robust").
-    #[arg(
-        long = "b",
-        value_name = "ARGS",
-        default_value = "",
-        allow_hyphen_values = true
-    )]
-    pub b: String,
-    /// Print JSON (the TreeDiff) instead of text.
-    #[arg(long)]
-    pub json: bool,
-    /// After the summary, list every changed field of every ray and the unmatched subtrees.
-    #[arg(long)]
-    pub full: bool,
-    /// Overrides of both sides (applied before --a and --b).
-    #[command(flatten)]
-    pub overrides: Overrides,
-}
 
 /// The override flags of a tracing command, parsed from one string.
 #[derive(Debug, Parser)]

@@ -1,28 +1,10 @@
 //! `raytree explain`: a pixel's tree in a few sentences (`raytree::analysis::explain`).
 
-use super::args::Overrides;
+use super::args::ExplainArgs;
 use super::load::{load, pair};
 use super::say::{out, sayln};
 use anyhow::{Result, bail};
-use clap::Args;
 use raytree::analysis::explain::{explain, explanation_text};
-use std::path::PathBuf;
-
-/// `raytree explain`.
-#[derive(Debug, Args)]
-pub struct ExplainArgs {
-    /// Scene JSON (default: the built-in classic scene).
-    pub scene: Option<PathBuf>,
-    /// Pixel X,Y (0,0 is top-left).
-    #[arg(long, value_name = "X,Y")]
-    pub pixel: String,
-    /// Print JSON (pixel, radiance, shares, sentences) instead of text.
-    #[arg(long)]
-    pub json: bool,
-    /// Settings overrides.
-    #[command(flatten)]
-    pub overrides: Overrides,
-}
 
 /// Trace the pixel and print its explanation.
 pub fn run(a: &ExplainArgs) -> Result<()> {

@@ -2,7 +2,7 @@
 //! front-ends ([`raytree::formats`]) with a resolver that reads the files they name relative to
 //! the scene, bounded like every other read.
 
-use super::load::read_limited;
+use super::read::read_limited;
 use anyhow::{Result, anyhow};
 use raytree::formats::{Format, Note};
 use raytree::input::{MAX_OBJ_BYTES, MAX_SCENE_BYTES, escape_controls};

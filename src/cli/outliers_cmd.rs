@@ -2,35 +2,15 @@
 //! neighbourhood estimate (`raytree::analysis::outliers`), and for a scene also by the standard
 //! error of their mean, each with the `trace` / `explain` command to run next.
 
-use super::args::Overrides;
+use super::args::{OutliersArgs, Overrides};
 use super::load::load;
 use super::output::read_image;
 use super::say::{out, sayln};
 use anyhow::{Result, bail};
-use clap::Args;
 use raytree::Image;
 use raytree::analysis::outliers::{Outlier, by_std_error, rank};
 use raytree::text::num;
-use std::path::{Path, PathBuf};
-
-/// `raytree outliers`.
-#[derive(Debug, Args)]
-pub struct OutliersArgs {
-    /// A scene (rendered first, with the overrides) or an image (.png or .exr).
-    pub input: PathBuf,
-    /// How many pixels to list (per ranking).
-    #[arg(long, value_name = "N", default_value_t = 10)]
-    pub top: usize,
-    /// The neighbourhood: 3 (3x3) or 5 (5x5).
-    #[arg(long, value_name = "3|5", default_value_t = 3)]
-    pub window: u32,
-    /// Print JSON instead of text.
-    #[arg(long)]
-    pub json: bool,
-    /// Settings overrides (for a scene).
-    #[command(flatten)]
-    pub overrides: Overrides,
-}
+use std::path::Path;
 
 /// The most pixels one listing holds.
 const MAX_TOP: usize = 10_000;

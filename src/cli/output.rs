@@ -409,7 +409,7 @@ pub fn read_image(path: &Path) -> Result<Image> {
     // Only a regular file, size-bounded (a FIFO would block, a device never end); the decoder's
     // error is its own message only (its source repeats it).
     let shown = escape(path);
-    let bytes = super::load::read_limited(path, MAX_IMAGE_BYTES)
+    let bytes = super::read::read_limited(path, MAX_IMAGE_BYTES)
         .map_err(|e| anyhow::anyhow!("cannot read image {shown}: {e}"))?;
     let kind = match format {
         ImageFormat::Png => image::ImageFormat::Png,

@@ -2,36 +2,14 @@
 //! difference image, and the difference broken down by light transport class
 //! ([`raytree::aov::versus`]).
 
+use super::args::VersusArgs;
 use super::canvas::Canvas;
 use super::load::load;
 use super::output::{Inputs, Origin, OutDir, OutputSet};
 use super::say::sayln;
 use anyhow::{Context, Result, bail};
-use clap::Args;
 use raytree::aov::{CLASSES, Versus, versus};
-use std::path::PathBuf;
 use std::time::Instant;
-
-/// `raytree versus`.
-#[derive(Debug, Args)]
-pub struct VersusArgs {
-    /// Scene JSON (default: the built-in classic scene).
-    pub scene: Option<PathBuf>,
-    /// Output directory (whitted.png, path.png, side-by-side.png, difference.png,
-    /// breakdown.json).
-    #[arg(short, long, default_value = "versus")]
-    pub output: PathBuf,
-    /// Break the difference down over this pixel rectangle only, X0,Y0,X1,Y1 (X1 and Y1
-    /// excluded); default the whole image.
-    #[arg(long, value_name = "X0,Y0,X1,Y1")]
-    pub region: Option<String>,
-    /// Print the breakdown as JSON instead of text.
-    #[arg(long)]
-    pub json: bool,
-    /// Settings overrides (the integrator is set by the command).
-    #[command(flatten)]
-    pub overrides: super::args::Overrides,
-}
 
 fn parse_region(s: &str) -> Result<[u32; 4]> {
     let v: Vec<u32> = s

@@ -17,11 +17,11 @@ impl Files for DiskFiles {
     /// Bounded like the command line's reads; the session refuses a scene over
     /// [`raytree::input::MAX_SCENE_BYTES`] itself (the hook reads meshes too).
     fn read(&self, path: &Path) -> std::io::Result<String> {
-        super::load::read_text(path, raytree::input::MAX_OBJ_BYTES)
+        super::read::read_text(path, raytree::input::MAX_OBJ_BYTES)
     }
 
     fn read_bytes(&self, path: &Path) -> std::io::Result<Vec<u8>> {
-        super::load::read_limited(path, raytree::input::MAX_OBJ_BYTES)
+        super::read::read_limited(path, raytree::input::MAX_OBJ_BYTES)
             .map_err(std::io::Error::other)
     }
 

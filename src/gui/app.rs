@@ -1,20 +1,16 @@
 //! The thin `eframe::App`: lays out the panels, owns the image texture, applies commands.
 
-use super::compare_ui::{CompareView, compare_window, pin_bar};
-use super::diagram_ui::{DiagramCache, diagram_ui};
-use super::document::{Command, Document};
-use super::explain_ui::{ExplainCache, explain_ui};
-use super::image_ui::{ImagePlacement, OverlayCache, image_ui};
-use super::session::Session;
-use super::stats::{self, DebugView};
-use super::tree_ui::TreeView;
-use super::{details_ui, settings_ui as settings, tree_ui};
+use crate::gui::model::document::{Command, Document};
+use crate::gui::model::stats::{self, DebugView};
+use crate::gui::panels::compare::{CompareView, compare_window, pin_bar};
+use crate::gui::panels::diagram::{DiagramCache, diagram_ui};
+use crate::gui::panels::explain::{ExplainCache, explain_ui};
+use crate::gui::panels::image::{ImagePlacement, OverlayCache, image_ui};
+use crate::gui::panels::tree::TreeView;
+use crate::gui::panels::{details, settings, tree};
+use crate::gui::session::Session;
+use crate::gui::style::ERROR;
 use egui::{Color32, ColorImage, Key, RichText, TextureHandle, TextureOptions};
-
-/// The colour of error messages.
-pub(crate) const ERROR: Color32 = Color32::from_rgb(255, 110, 110);
-/// Colour of a warning (an export that clamped or left out non-finite values).
-pub(crate) const WARNING: Color32 = Color32::from_rgb(255, 200, 80);
 
 /// Seconds between checks of the scene file's modification time.
 const POLL_SECONDS: f64 = 1.0;
@@ -25,8 +21,8 @@ pub struct InspectorApp {
     pub session: Session,
     texture: Option<TextureHandle>,
     texture_version: Option<(u64, bool)>,
-    denoise: super::denoise_view::DenoiseView,
-    denoise_state: Option<super::denoise_view::DenoiseState>,
+    denoise: crate::gui::jobs::denoise::DenoiseView,
+    denoise_state: Option<crate::gui::jobs::denoise::DenoiseState>,
     last_poll: f64,
     placement: Option<ImagePlacement>,
     diagram: DiagramCache,
@@ -34,8 +30,8 @@ pub struct InspectorApp {
     overlay: OverlayCache,
     explain: ExplainCache,
     compare: CompareView,
-    samples: super::samples_ui::SamplesView,
-    versus: super::versus_ui::VersusPanel,
+    samples: crate::gui::panels::samples::SamplesView,
+    versus: crate::gui::panels::versus::VersusPanel,
 }
 
 impl InspectorApp {
@@ -46,7 +42,7 @@ impl InspectorApp {
             session,
             texture: None,
             texture_version: None,
-            denoise: super::denoise_view::DenoiseView::default(),
+            denoise: crate::gui::jobs::denoise::DenoiseView::default(),
             denoise_state: None,
             last_poll: 0.0,
             placement: None,
@@ -62,7 +58,7 @@ impl InspectorApp {
 
     /// The denoised image toggle's state (`None` while it is off or a debug view is shown).
     #[must_use]
-    pub fn denoise_state(&self) -> Option<&super::denoise_view::DenoiseState> {
+    pub fn denoise_state(&self) -> Option<&crate::gui::jobs::denoise::DenoiseState> {
         self.denoise_state.as_ref()
     }
 
@@ -111,7 +107,7 @@ impl InspectorApp {
 
     /// The samples section's state: its rows, histogram, chosen bar, firefly (for tests).
     #[must_use]
-    pub fn samples_view(&self) -> &super::samples_ui::SamplesView {
+    pub fn samples_view(&self) -> &crate::gui::panels::samples::SamplesView {
         &self.samples
     }
 
@@ -174,7 +170,9 @@ impl InspectorApp {
                     section(ui, "Export", |ui| settings::export_ui(ui, doc, &mut cmds));
                     egui::CollapsingHeader::new(RichText::new("Acne lab").strong())
                         .default_open(false)
-                        .show(ui, |ui| super::acne_ui::acne_ui(ui, doc, &mut cmds));
+                        .show(ui, |ui| {
+                            crate::gui::panels::acne::acne_ui(ui, doc, &mut cmds)
+                        });
                 });
             });
         let tree_view = &mut self.tree_view;
@@ -189,7 +187,7 @@ impl InspectorApp {
                 ui.style_mut().wrap_mode = Some(egui::TextWrapMode::Wrap);
                 ui.heading("Ray tree");
                 pin_bar(ui, doc, &mut cmds);
-                tree_ui::tree_ui(ui, doc, tree_view, &mut cmds);
+                tree::tree_ui(ui, doc, tree_view, &mut cmds);
                 ui.separator();
                 egui::ScrollArea::vertical()
                     .id_salt("details-scroll")
@@ -197,7 +195,9 @@ impl InspectorApp {
                         egui::CollapsingHeader::new("Samples")
                             .default_open(true)
                             .show(ui, |ui| {
-                                super::samples_ui::samples_ui(ui, doc, samples, &mut cmds);
+                                crate::gui::panels::samples::samples_ui(
+                                    ui, doc, samples, &mut cmds,
+                                );
                             });
                         egui::CollapsingHeader::new("Explain")
                             .default_open(true)
@@ -205,15 +205,17 @@ impl InspectorApp {
                         egui::CollapsingHeader::new("Details")
                             .default_open(true)
                             .show(ui, |ui| {
-                                details_ui::details_ui(ui, doc);
+                                details::details_ui(ui, doc);
                             });
                         egui::CollapsingHeader::new("Step along a ray")
                             .default_open(false)
-                            .show(ui, |ui| super::step_ui::step_ui(ui, doc, &mut cmds));
+                            .show(ui, |ui| {
+                                crate::gui::panels::step::step_ui(ui, doc, &mut cmds)
+                            });
                         egui::CollapsingHeader::new("Contribution breakdown")
                             .default_open(true)
                             .show(ui, |ui| {
-                                details_ui::breakdown_ui(ui, doc, tree_view, &mut cmds);
+                                details::breakdown_ui(ui, doc, tree_view, &mut cmds);
                             });
                         egui::CollapsingHeader::new("Whitted vs path")
                             .default_open(false)
@@ -242,7 +244,7 @@ impl InspectorApp {
         }
         // On wasm32 the background tasks (diagram, comparison, denoiser, acne lab) run here,
         // one per frame; natively they have threads and this does nothing.
-        if super::background::run_pending() {
+        if crate::gui::jobs::background::run_pending() {
             ctx.request_repaint();
         }
     }
@@ -284,8 +286,8 @@ impl eframe::App for InspectorApp {
 }
 
 /// The denoised image's state in words, under the View section's toggle.
-fn denoise_words(state: &super::denoise_view::DenoiseState) -> String {
-    use super::denoise_view::DenoiseState;
+fn denoise_words(state: &crate::gui::jobs::denoise::DenoiseState) -> String {
+    use crate::gui::jobs::denoise::DenoiseState;
     match state {
         DenoiseState::Waiting => "denoise: after the render".into(),
         DenoiseState::Running => "denoising...".into(),
@@ -355,7 +357,7 @@ fn title_ui(ui: &mut egui::Ui, doc: &Document) {
                 );
             }
         }
-        super::progressive::title_ui(ui, doc);
+        crate::gui::panels::progressive::title_ui(ui, doc);
         if let Some(e) = doc.error.as_ref().or(doc.export_error.as_ref()) {
             // The whole message is in the left panel; here its first line, cut to fit.
             ui.separator();

@@ -1,41 +1,26 @@
-//! The inspector (`raytree view`): an egui app over a [`Document`].
+//! The inspector (`raytree view`): an egui app over a [`Document`]. Each part below imports
+//! only those above it (docs/inspector.md):
 //!
-//! - [`Session`] is the controller (document + render worker + file hook); no egui.
-//! - Panels (`*_ui` functions) read the document and push [`Command`]s, applied after layout.
+//! - [`model`]: the [`Document`] and its plain data; no egui, no threads. `style.rs`: colours
+//!   and number formatting.
+//! - [`jobs`]: background work (the render worker, progressive passes, the acne lab, the
+//!   denoiser) that reads the model and sends deliveries; no egui.
+//! - [`Session`] is the controller (document + jobs + file hook); no egui.
+//! - [`panels`] (`*_ui` functions) read the document and push [`Command`]s, applied after layout.
 //! - [`InspectorApp`] is the thin `eframe::App`.
 //!
 //! The library does no I/O itself: reading and writing files goes through the [`Files`] hook
 //! that the binary supplies.
 
-pub mod acne_lab;
-mod acne_ui;
 mod app;
-pub mod background;
-pub mod breakdown;
-pub mod compare_ui;
-pub mod denoise_view;
-mod details_ui;
-mod diagram_controls;
-pub mod diagram_ui;
-pub mod document;
-pub mod explain_ui;
-pub mod export;
-mod image_ui;
-pub mod lpe_filter;
-pub mod progressive;
-pub mod project;
-pub mod samples_ui;
+pub mod jobs;
+pub mod model;
+pub mod panels;
 mod session;
-mod settings_ui;
-pub mod stats;
-pub mod step_ui;
 mod style;
-mod tree_ui;
-pub mod versus_ui;
-pub mod worker;
 
 pub use app::InspectorApp;
-pub use document::{Command, Document, ViewOptions};
+pub use model::document::{Command, Document, ViewOptions};
 pub use session::Session;
 
 use std::path::Path;

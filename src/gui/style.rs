@@ -1,4 +1,5 @@
-//! Colours and number formatting shared by the panels.
+//! Colours (ray kinds, the selection, errors and warnings) and number formatting shared by the
+//! panels and the app.
 
 use crate::math::{Rgb, linear_to_srgb8};
 use crate::tree::RayKind;
@@ -18,6 +19,11 @@ pub fn kind_colour(kind: RayKind) -> Color32 {
 
 /// Highlight for the selected node and pixel.
 pub const SELECTED: Color32 = Color32::from_rgb(255, 70, 200);
+
+/// The colour of error messages.
+pub const ERROR: Color32 = Color32::from_rgb(255, 110, 110);
+/// Colour of a warning (an export that clamped or left out non-finite values).
+pub const WARNING: Color32 = Color32::from_rgb(255, 200, 80);
 
 /// `[r, g, b]` with 4 decimals.
 #[must_use]

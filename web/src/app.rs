@@ -4,7 +4,7 @@
 
 use crate::files::{self, MemFiles};
 use crate::fragment::Fragment;
-use raytree::gui::export::ExportKind;
+use raytree::gui::model::export::ExportKind;
 use raytree::gui::{Command, InspectorApp, Session};
 use std::path::PathBuf;
 
@@ -322,7 +322,7 @@ impl WebApp {
             self.published.tree_json = doc
                 .tree
                 .as_ref()
-                .and_then(|t| raytree::gui::export::tree_json(t).ok())
+                .and_then(|t| raytree::gui::model::export::tree_json(t).ok())
                 .and_then(|b| String::from_utf8(b).ok());
         }
         let p = &doc.progress;
@@ -362,7 +362,7 @@ impl WebApp {
 }
 
 /// Called after every delivery of the render (the page asks for a frame).
-pub type Repaint = raytree::gui::worker::Repaint;
+pub type Repaint = raytree::gui::jobs::worker::Repaint;
 
 impl eframe::App for WebApp {
     fn ui(&mut self, ui: &mut egui::Ui, _frame: &mut eframe::Frame) {

@@ -4,7 +4,7 @@
 //! picker's and `hashchange`'s way in).
 
 use crate::app::{Action, Host, Published, WebApp};
-use raytree::gui::export::ExportKind;
+use raytree::gui::model::export::ExportKind;
 use std::cell::RefCell;
 use wasm_bindgen::JsCast;
 use wasm_bindgen::prelude::*;

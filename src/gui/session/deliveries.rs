@@ -3,10 +3,10 @@
 //! benchmarks, exports).
 
 use super::Session;
-use crate::gui::acne_lab::LabWorker;
-use crate::gui::document::Document;
-use crate::gui::stats::DebugView;
-use crate::gui::worker::Delivery;
+use crate::gui::jobs::acne_lab::LabWorker;
+use crate::gui::jobs::delivery::Delivery;
+use crate::gui::model::document::Document;
+use crate::gui::model::stats::DebugView;
 
 impl Session {
     /// Fold every waiting delivery into the image. Returns whether anything changed.

@@ -2,7 +2,7 @@
 //! into the document, wait for it (tests).
 
 use super::Session;
-use crate::gui::acne_lab::{LabDelivery, LabWorker};
+use crate::gui::jobs::acne_lab::{LabDelivery, LabWorker};
 use std::sync::Arc;
 
 impl Session {

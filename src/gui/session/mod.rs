@@ -2,11 +2,11 @@
 //! commands, folds worker deliveries into the image, and reloads scenes. No egui here, so tests
 //! and benchmarks can drive it directly.
 
-use super::acne_lab::LabWorker;
-use super::document::{Command, Document, Source};
-use super::export::{self, ExportKind};
-use super::worker::{Repaint, Worker};
 use super::{Adjust, Files};
+use crate::gui::jobs::acne_lab::LabWorker;
+use crate::gui::jobs::worker::{Repaint, Worker};
+use crate::gui::model::document::{Command, Document, Source};
+use crate::gui::model::export::{self, ExportKind};
 use crate::render::Image;
 use crate::scene::Scene;
 use crate::trace_pixel;
@@ -186,7 +186,7 @@ impl Session {
         }
         // With a debug view on screen its statistics matter most: gather them in the one pass
         // that also gives the image; otherwise show the image first.
-        let image_first = self.doc.view.debug == super::stats::DebugView::Off;
+        let image_first = self.doc.view.debug == crate::gui::model::stats::DebugView::Off;
         let scene = Arc::clone(&self.doc.scene);
         let options = self.doc.progressive.options;
         self.doc.progress.generation = if options.on {
@@ -283,8 +283,9 @@ impl Session {
             Command::Pin => {
                 if let Some(tree) = self.doc.tree.clone() {
                     let version = self.doc.pin.as_ref().map_or(0, |p| p.version) + 1;
-                    let label = super::compare_ui::tree_label(&self.doc.source.label(), &tree);
-                    self.doc.pin = Some(super::document::Pin {
+                    let label =
+                        crate::gui::model::document::tree_label(&self.doc.source.label(), &tree);
+                    self.doc.pin = Some(crate::gui::model::document::Pin {
                         tree,
                         label,
                         version,
@@ -366,7 +367,7 @@ impl Session {
 fn diagram_bytes(doc: &Document, kind: ExportKind) -> Result<(Vec<u8>, Option<String>), String> {
     use crate::diagram::{Diagram, Style, Theme, to_png, to_svg_counting};
     let tree = doc.tree.as_ref().ok_or("select a pixel first")?;
-    let opts = super::diagram_ui::export_options(doc);
+    let opts = crate::gui::model::diagram::export_options(doc);
     let d = Diagram::build(&doc.scene, tree, &opts).map_err(|e| e.to_string())?;
     let style = Style::new(Theme::Light);
     Ok(match kind {

@@ -1,0 +1,231 @@
+//! The acne lab's worker (issue 17): on a thread of its own, the inspector's scene scaled and
+//! moved from the origin as `raytree acne` does ([`crate::analysis::acne`]), rendered with the
+//! diagnostics on: first the lab's chosen strategy and epsilon (the count of affected pixels),
+//! then every strategy at every epsilon of [`sweep_epsilons`] (the sweep plot). Cell by cell,
+//! each sent as it is done; a newer job cancels an older one between cells. No egui here.
+
+use super::worker::Repaint;
+use crate::analysis::acne::{AcneCell, cell, scaled_scene};
+use crate::gui::model::lab::LabParams;
+use crate::scene::{OffsetStrategy, Scene};
+use std::sync::Arc;
+use std::sync::atomic::{AtomicU64, Ordering};
+use std::sync::mpsc::{Receiver, Sender, channel};
+
+/// Width of the render that counts the chosen setting's affected pixels.
+pub const CURRENT_WIDTH: u32 = 160;
+/// Width of each render of the sweep.
+pub const SWEEP_WIDTH: u32 = 48;
+
+/// The epsilons of the sweep plot: 0, then 1e-9 to 1e-1 by decades.
+#[must_use]
+pub fn sweep_epsilons() -> Vec<f64> {
+    std::iter::once(0.0)
+        .chain((-9..=-1).map(|e| 10f64.powi(e)))
+        .collect()
+}
+
+/// Renders in a whole lab job: the count, then the sweep.
+#[must_use]
+pub fn job_len() -> usize {
+    1 + OffsetStrategy::ALL.len() * sweep_epsilons().len()
+}
+
+/// What the lab's thread sends back.
+#[derive(Debug)]
+pub enum LabDelivery {
+    /// The chosen strategy and epsilon at [`CURRENT_WIDTH`].
+    Current(u64, AcneCell),
+    /// One cell of the sweep at [`SWEEP_WIDTH`] (strategies in [`OffsetStrategy::ALL`] order,
+    /// then epsilons).
+    Sweep(u64, AcneCell),
+    /// The job is complete.
+    Done(u64),
+}
+
+impl LabDelivery {
+    /// The job this belongs to.
+    #[must_use]
+    pub fn generation(&self) -> u64 {
+        match self {
+            LabDelivery::Current(g, _) | LabDelivery::Sweep(g, _) | LabDelivery::Done(g) => *g,
+        }
+    }
+}
+
+struct Job {
+    generation: u64,
+    scene: Arc<Scene>,
+    params: LabParams,
+}
+
+/// The lab's worker ([`super::background::Lane`]: a thread natively). Dropping it cancels the
+/// job (and joins the thread).
+pub struct LabWorker {
+    deliveries: Receiver<LabDelivery>,
+    generation: Arc<AtomicU64>,
+    jobs: Option<super::background::Lane<Job>>,
+}
+
+impl LabWorker {
+    /// Start the worker (`None` if the system refuses a thread); `repaint` after each
+    /// delivery.
+    #[must_use]
+    pub fn new(repaint: Repaint) -> Option<Self> {
+        let (tx, deliveries) = channel();
+        let generation = Arc::new(AtomicU64::new(0));
+        let current = Arc::clone(&generation);
+        let jobs = super::background::Lane::new("raytree-acne-lab", None, move |job: Job| {
+            run(&job, &current, &tx, &repaint);
+        })
+        .ok()?;
+        Some(Self {
+            deliveries,
+            generation,
+            jobs: Some(jobs),
+        })
+    }
+
+    /// Start a job on `scene` (cancelling the last); returns its generation.
+    pub fn start(&self, scene: Arc<Scene>, params: LabParams) -> u64 {
+        let generation = self.generation.fetch_add(1, Ordering::SeqCst) + 1;
+        if let Some(jobs) = &self.jobs {
+            jobs.send(Job {
+                generation,
+                scene,
+                params,
+            });
+        }
+        generation
+    }
+
+    /// A delivery if one is waiting.
+    #[must_use]
+    pub fn try_recv(&self) -> Option<LabDelivery> {
+        self.deliveries.try_recv().ok()
+    }
+
+    /// Block until the next delivery (`None` if the thread is gone; on wasm32 the queued job
+    /// runs here first).
+    #[must_use]
+    pub fn recv(&self) -> Option<LabDelivery> {
+        #[cfg(target_arch = "wasm32")]
+        loop {
+            if let Ok(d) = self.deliveries.try_recv() {
+                return Some(d);
+            }
+            if !super::background::run_pending() {
+                return self.deliveries.try_recv().ok();
+            }
+        }
+        #[cfg(not(target_arch = "wasm32"))]
+        self.deliveries.recv().ok()
+    }
+}
+
+impl Drop for LabWorker {
+    fn drop(&mut self) {
+        self.generation.fetch_add(1, Ordering::SeqCst);
+        // Dropping the lane ends (and joins) its thread.
+        self.jobs = None;
+    }
+}
+
+/// `scene` at `width` (height by the camera's aspect), scaled and moved.
+fn lab_scene(scene: &Scene, width: u32, p: &LabParams) -> Scene {
+    let cam = &scene.camera;
+    let aspect = f64::from(cam.height.max(1)) / f64::from(cam.width.max(1));
+    let height = ((f64::from(width) * aspect).round() as u32).clamp(1, 4 * width);
+    let sized = Scene {
+        camera: cam.with_size(width, height),
+        ..scene.clone()
+    };
+    scaled_scene(&sized, p.scale, p.shift)
+}
+
+fn run(job: &Job, current: &AtomicU64, tx: &Sender<LabDelivery>, repaint: &Repaint) {
+    let g = job.generation;
+    let cancelled = || current.load(Ordering::SeqCst) != g;
+    let send = |d: LabDelivery| {
+        let ok = tx.send(d).is_ok();
+        repaint();
+        ok
+    };
+    let p = &job.params;
+    if cancelled() {
+        return;
+    }
+    let big = lab_scene(&job.scene, CURRENT_WIDTH, p);
+    if !send(LabDelivery::Current(
+        g,
+        cell(&big, p.strategy, p.epsilon, p.scale),
+    )) {
+        return;
+    }
+    let small = lab_scene(&job.scene, SWEEP_WIDTH, p);
+    for strategy in OffsetStrategy::ALL {
+        for epsilon in sweep_epsilons() {
+            if cancelled() {
+                return;
+            }
+            if !send(LabDelivery::Sweep(
+                g,
+                cell(&small, strategy, epsilon, p.scale),
+            )) {
+                return;
+            }
+        }
+    }
+    send(LabDelivery::Done(g));
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn the_lab_counts_what_the_sweep_counts_and_a_newer_job_wins() {
+        let w = LabWorker::new(Arc::new(|| {})).unwrap();
+        let scene = Arc::new(Scene::default_scene());
+        let far = LabParams {
+            epsilon: 1e-9,
+            scale: 1e6,
+            shift: 1e3,
+            ..LabParams::default()
+        };
+        let g1 = w.start(Arc::clone(&scene), LabParams::default());
+        let g2 = w.start(Arc::clone(&scene), far);
+        let (mut current, mut sweep) = (None, Vec::new());
+        loop {
+            match w.recv().unwrap() {
+                d if d.generation() != g2 => assert_eq!(d.generation(), g1),
+                LabDelivery::Current(_, c) => current = Some(c),
+                LabDelivery::Sweep(_, c) => sweep.push(c),
+                LabDelivery::Done(_) => break,
+            }
+        }
+        assert_eq!(sweep.len() + 1, job_len());
+        let c = current.unwrap();
+        assert_eq!((c.pixels, c.scale), (160 * 90, 1e6));
+        // A scene a billion units out with epsilon 1e-9: acne, as `raytree acne` finds.
+        assert!(c.self_hit_pixels > 0, "{c:?}");
+        let want = cell(&lab_scene(&scene, 160, &far), far.strategy, 1e-9, 1e6);
+        assert_eq!(c.self_hit_pixels, want.self_hit_pixels);
+        assert!(
+            sweep
+                .iter()
+                .filter(|c| c.strategy == OffsetStrategy::Robust)
+                .all(AcneCell::clean)
+        );
+        assert!(LabParams { scale: 0.0, ..far }.check().is_err());
+        assert!(
+            LabParams {
+                epsilon: f64::NAN,
+                ..far
+            }
+            .check()
+            .is_err()
+        );
+        assert!(far.check().is_ok());
+    }
+}

@@ -1,0 +1,140 @@
+//! Whitted vs path tracing in the inspector (issue 16): the scene rendered by both integrators
+//! on a thread of its own ([`crate::aov::versus`], as `raytree versus`), shown side by side
+//! with the signed difference, and the difference broken down by light transport class ("what
+//! Whitted misses here: 79% caustics, 21% indirect").
+
+use crate::aov::{Versus, versus};
+use crate::gui::model::document::Document;
+use egui::{ColorImage, TextureHandle, TextureOptions};
+use std::sync::Arc;
+use std::sync::mpsc::{Receiver, channel};
+
+/// The comparison the panel shows, for the render generation it was made from.
+struct Done {
+    generation: u64,
+    summary: String,
+    textures: [TextureHandle; 3],
+}
+
+/// The "Whitted vs path" section: its running job and its last result.
+#[derive(Default)]
+pub struct VersusPanel {
+    pending: Option<(u64, Receiver<Result<Versus, String>>)>,
+    done: Option<Done>,
+}
+
+fn texture(ctx: &egui::Context, name: &str, w: u32, rgb: &[u8]) -> TextureHandle {
+    let h = rgb.len() / 3 / (w as usize).max(1);
+    let image = ColorImage::from_rgb([w as usize, h], rgb);
+    ctx.load_texture(name, image, TextureOptions::NEAREST)
+}
+
+impl VersusPanel {
+    /// Whether a comparison is running.
+    #[must_use]
+    pub fn running(&self) -> bool {
+        self.pending.is_some()
+    }
+
+    /// The last comparison's summary, if any.
+    #[must_use]
+    pub fn summary(&self) -> Option<&str> {
+        self.done.as_ref().map(|d| d.summary.as_str())
+    }
+
+    fn poll(&mut self, ctx: &egui::Context) {
+        let Some((generation, rx)) = &self.pending else {
+            return;
+        };
+        let Ok(result) = rx.try_recv() else {
+            return;
+        };
+        let generation = *generation;
+        self.pending = None;
+        self.done = Some(match result {
+            Ok(v) => {
+                let w = v.whitted.width;
+                let diff: Vec<u8> = v.difference_rgb8().0.into_iter().flatten().collect();
+                Done {
+                    generation,
+                    summary: v.summary(),
+                    textures: [
+                        texture(ctx, "versus-whitted", w, &v.whitted.to_srgb8()),
+                        texture(ctx, "versus-path", w, &v.path.beauty.to_srgb8()),
+                        texture(ctx, "versus-difference", w, &diff),
+                    ],
+                }
+            }
+            Err(e) => Done {
+                generation,
+                summary: format!("the comparison failed: {e}"),
+                textures: std::array::from_fn(|_| texture(ctx, "versus-empty", 1, &[0, 0, 0])),
+            },
+        });
+    }
+
+    /// The section: a button that (re)starts the comparison for the scene as set, then the
+    /// three images (Whitted, path, path - Whitted) and the breakdown.
+    pub fn ui(&mut self, ui: &mut egui::Ui, doc: &Document) {
+        let ctx = ui.ctx().clone();
+        self.poll(&ctx);
+        let generation = doc.progress.generation;
+        ui.horizontal_wrapped(|ui| {
+            let label = match &self.done {
+                Some(d) if d.generation == generation => "compare again",
+                _ => "compare Whitted and path",
+            };
+            if ui
+                .add_enabled(!self.running(), egui::Button::new(label))
+                .on_hover_text(
+                    "render the scene with both integrators (the path tracer at the scene's spp)",
+                )
+                .clicked()
+            {
+                let scene = Arc::clone(&doc.scene);
+                let (tx, rx) = channel();
+                let repaint = ctx.clone();
+                let spawned = crate::gui::jobs::background::spawn(
+                    "raytree-versus",
+                    Some(crate::integrator::THREAD_STACK_BYTES),
+                    move || {
+                        let r = versus(&scene, None, &|_| {}).map_err(|e| e.to_string());
+                        if tx.send(r).is_ok() {
+                            repaint.request_repaint();
+                        }
+                    },
+                );
+                if spawned.is_ok() {
+                    self.pending = Some((generation, rx));
+                }
+            }
+            if self.running() {
+                ui.spinner();
+                ui.label("rendering both...");
+            }
+        });
+        let Some(done) = &self.done else {
+            return;
+        };
+        if done.generation != generation {
+            ui.small("(made before the last settings change)");
+        }
+        let width = (ui.available_width() / 3.0 - 6.0).max(40.0);
+        ui.horizontal(|ui| {
+            for (t, caption) in done
+                .textures
+                .iter()
+                .zip(["Whitted", "path", "path - Whitted"])
+            {
+                ui.vertical(|ui| {
+                    let size = t.size_vec2();
+                    let scale = width / size.x.max(1.0);
+                    ui.image((t.id(), size * scale));
+                    ui.small(caption);
+                });
+            }
+        });
+        ui.small("difference: red where the path tracer is brighter, blue where Whitted is");
+        ui.label(egui::RichText::new(&done.summary).monospace().small());
+    }
+}
