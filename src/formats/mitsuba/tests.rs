@@ -153,9 +153,15 @@ fn bsdfs_map_with_notes_and_one_sidedness() {
         m(0).diffuse,
         Some(TextureDesc::Solid([0.7, 0.7, 0.7]))
     ));
-    // Rough BSDFs default to Beckmann alpha 0.1: the same GGX alpha, noted.
+    // Rough BSDFs default to Beckmann alpha 0.1: raytree's Beckmann, exactly.
     assert_eq!(m(1).roughness, 0.1);
-    assert!(c.notes.iter().any(|n| n.message.contains("Beckmann")));
+    assert_eq!(m(1).distribution, crate::bsdf::Distribution::Beckmann);
+    assert_eq!(
+        m(1).conductor.as_ref().unwrap().metal.as_deref(),
+        Some("Au")
+    );
+    assert_eq!(m(2).distribution, crate::bsdf::Distribution::Ggx);
+    assert!(!c.notes.iter().any(|n| n.message.contains("Beckmann")));
     assert!((m(2).ior.unwrap() - 1.5046 / 1.000_277).abs() < 1e-12);
     assert_eq!(m(2).roughness, 0.2);
     assert!(m(3).reflectivity[0] > 0.03 && m(3).reflectivity[0] < 0.05);
