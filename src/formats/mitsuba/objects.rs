@@ -4,7 +4,7 @@ use super::props::Props;
 use super::tree::{El, Reader};
 use crate::formats::build::{Builder, CameraSpec, Surface, disk_triangles};
 use crate::formats::xform::Xf;
-use crate::formats::{Converted, FormatError, Limits, material_map as mm, ply, relative_to};
+use crate::formats::{Converted, FormatError, Limits, material_map as mm, ply};
 use crate::scene::desc::{FilterDesc, MaterialDesc};
 use glam::{DAffine3, DVec3};
 use std::collections::HashMap;
@@ -531,16 +531,7 @@ impl<'r> State<'r> {
         let f = p
             .string("filename")?
             .ok_or_else(|| el.err("needs a filename"))?;
-        let path = relative_to(&el.file, &f);
-        self.reader.files += 1;
-        if self.reader.files > self.limits.files {
-            return Err(el.err(format!("more than {} files read", self.limits.files)));
-        }
-        let bytes = self
-            .reader
-            .res
-            .read(&path)
-            .map_err(|e| el.err(format!("{path:?}: {e}")))?;
+        let (path, bytes) = self.reader.resource(el, &f)?;
         let (pos, tris, normals) = if ty == "ply" {
             let mesh = ply::parse(&bytes, self.limits.vertices)
                 .map_err(|e| el.err(format!("{f}: {e}")))?;

@@ -269,4 +269,43 @@ fn errors_have_positions_and_name_the_element() {
     assert!(e.message.contains("include cycle"), "{e}");
     assert!(fail(r#"<shape type="sphere"><transform name="to_world"><scale value="0"/></transform></shape>"#).message.contains("zero"));
     assert!(fail("<frobnicate/>").message.contains("unknown element"));
+    let e = fail(r#"<alias id="nope" as="x"/>"#);
+    assert!(e.message.contains("aliases undefined id \"nope\""), "{e}");
+}
+
+#[test]
+fn paths_extend_the_file_search_and_aliases_rename() {
+    let obj = b"v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nf 1 2 3\nf 1 3 4\n".to_vec();
+    let fs: HashMap<String, Vec<u8>> = [
+        ("meshes/m.obj".to_string(), obj.clone()),
+        (
+            "lib/inc.xml".to_string(),
+            br#"<scene version="3.0.0"><bsdf type="diffuse" id="grey"/></scene>"#.to_vec(),
+        ),
+    ]
+    .into();
+    let body = r#"<path value="meshes"/><path value="lib"/><include filename="inc.xml"/>
+      <alias id="grey" as="stone"/>
+      <shape type="obj"><string name="filename" value="m.obj"/><ref id="stone"/></shape>"#;
+    let c = run_with(&scene(body), &fs, &[]).unwrap();
+    assert_eq!(c.desc.objects.len(), 1);
+    assert!(
+        c.desc.materials.keys().any(|k| k == "grey"),
+        "{:?}",
+        c.desc.materials.keys()
+    );
+    // Without the <path>, the mesh is not found, and the message says where it looked.
+    let e = run_with(
+        &scene(r#"<path value="lib"/><shape type="obj"><string name="filename" value="m.obj"/></shape>"#),
+        &fs,
+        &[],
+    )
+    .unwrap_err();
+    assert!(
+        e.message.contains("\"m.obj\"") && e.message.contains("lib/m.obj"),
+        "{e}"
+    );
+    let e =
+        fail(r#"<bsdf type="diffuse" id="a"/><bsdf type="diffuse" id="b"/><alias id="a" as="b"/>"#);
+    assert!(e.message.contains("already an id"), "{e}");
 }
