@@ -101,7 +101,7 @@ fn approximations_are_printed_with_their_json_paths_and_listed_by_effects() {
     assert!(o.status.success(), "{}", stderr(&o));
     let err = stderr(&o);
     assert!(
-        err.contains("cornell-box.gltf: materials[4]: metallic 1: the Fresnel of glTF's F0"),
+        err.contains("cornell-box.gltf: materials[4]: metallic 1: glTF's Schlick Fresnel of F0"),
         "{err}"
     );
     assert!(err.contains("cornell-box.gltf: extensions.KHR_lights_punctual: photometric units"));
@@ -251,4 +251,45 @@ proptest! {
             let _ = raytree::scene::validate(&c.desc, "", &mut |_| Err(String::new()));
         }
     }
+}
+
+/// The inspector opens a glTF scene through its file hook, and its status line names the first
+/// approximation by its JSON path.
+#[cfg(feature = "gui")]
+#[test]
+fn the_inspector_opens_a_gltf_scene() {
+    use raytree::gui::{Files, Session};
+    use std::path::PathBuf;
+    struct Disk;
+    impl Files for Disk {
+        fn read(&self, path: &Path) -> std::io::Result<String> {
+            std::fs::read_to_string(path)
+        }
+        fn read_bytes(&self, path: &Path) -> std::io::Result<Vec<u8>> {
+            std::fs::read(path)
+        }
+        fn modified(&self, _: &Path) -> Option<std::time::SystemTime> {
+            Some(std::time::SystemTime::UNIX_EPOCH)
+        }
+        fn write(&self, _: &Path, _: &[u8]) -> std::io::Result<()> {
+            Err(std::io::Error::other("read-only"))
+        }
+    }
+    let path = PathBuf::from(fixture("formats/cornell-box.gltf"));
+    let s = Session::new(
+        Some(path),
+        Box::new(Disk),
+        Box::new(|_| Ok(())),
+        std::sync::Arc::new(|| {}),
+    );
+    assert!(s.doc.error.is_none(), "{:?}", s.doc.error);
+    assert_eq!(s.doc.scene.objects[0].name, "floor");
+    assert!(
+        s.doc.status.contains("approximation(s)")
+            && s.doc
+                .status
+                .contains("cornell-box.gltf: extensions.KHR_lights_punctual"),
+        "{}",
+        s.doc.status
+    );
 }

@@ -14,9 +14,9 @@
 //!   normal incidence;
 //! - without metal: the coat as a constant `reflectivity` of its `F0` (no rise towards
 //!   grazing; energy is conserved);
-//! - with metal: one Fresnel lobe of the blended `F0 = mix(F0_dielectric, baseColor,
-//!   metallic)`: the exact Fresnel of the real index `(1 + sqrt F0) / (1 - sqrt F0)` (k = 0)
-//!   that has that normal-incidence reflectance, rising to 1 at grazing as Schlick's does;
+//! - with metal: one conductor lobe of the blended `F0 = mix(F0_dielectric, baseColor,
+//!   metallic)`: per channel the complex index whose exact Fresnel has that normal-incidence
+//!   reflectance and is nearest Schlick's curve ([`index_for_f0`]);
 //! - transmission with `KHR_materials_volume` (thickness > 0): a refracting dielectric of the
 //!   ior tinted by baseColor, with Beer absorption `-ln(attenuationColor) /
 //!   attenuationDistance`; without it glTF's surface is thin-walled: light passes straight
@@ -67,6 +67,41 @@ impl Default for Pbr {
 pub fn eta_of_f0(f0: f64) -> f64 {
     let s = f0.clamp(0.0, 1.0).sqrt().min(1.0 - 1e-6);
     (1.0 + s) / (1.0 - s)
+}
+
+/// The largest difference between the exact Fresnel of `eta + i k` and Schlick's
+/// `f0 + (1 - f0)(1 - cos)^5` over 91 angles from 0 to 90 degrees.
+#[must_use]
+pub fn schlick_gap(eta: f64, k: f64, f0: f64) -> f64 {
+    (0..=90)
+        .map(|d| {
+            let c = f64::from(d).to_radians().cos();
+            let exact = crate::bsdf::fr_complex(c, eta, k);
+            (exact - (f0 + (1.0 - f0) * (1.0 - c).powi(5))).abs()
+        })
+        .fold(0.0, f64::max)
+}
+
+/// A complex index `(eta, k)` whose normal-incidence reflectance is `f0` and whose exact
+/// Fresnel follows Schlick's curve (glTF's) closely, with the largest difference: of the real
+/// index `(1 + sqrt f0) / (1 - sqrt f0)` (a dielectric's curve, within 0.04 for `f0 <= 0.1`
+/// but dipping before grazing for metals' `f0`, by up to 0.49) and pbrt-v4's
+/// `eta = 1, k = 2 sqrt(f0) / sqrt(1 - f0)` (its conductor from a reflectance; within 0.11 for
+/// `f0 >= 0.3`), the nearer.
+#[must_use]
+pub fn index_for_f0(f0: f64) -> (f64, f64, f64) {
+    let f = f0.clamp(0.0, 0.9999);
+    let real = (eta_of_f0(f), 0.0);
+    let pbrt = (1.0, 2.0 * f.sqrt() / (1.0 - f).sqrt());
+    let (a, b) = (
+        schlick_gap(real.0, real.1, f),
+        schlick_gap(pbrt.0, pbrt.1, f),
+    );
+    if a <= b {
+        (real.0, real.1, a)
+    } else {
+        (pbrt.0, pbrt.1, b)
+    }
 }
 
 fn fmt3(v: Triple) -> String {
@@ -154,19 +189,22 @@ pub fn map(p: &Pbr) -> (MaterialDesc, Vec<String>) {
     }
     if m > 0.0 {
         let f = spec.map(|c| c / cover);
-        let eta = f.map(eta_of_f0);
+        let idx = f.map(index_for_f0);
+        let (eta, k) = (idx.map(|i| i.0), idx.map(|i| i.1));
+        let gap = idx.iter().map(|i| i.2).fold(0.0, f64::max);
         out.conductor = Some(ConductorDesc {
             metal: None,
             eta: Some(eta),
-            k: Some([0.0; 3]),
+            k: Some(k),
             scale: (cover < 1.0).then_some([cover; 3]),
         });
         notes.push(format!(
-            "metallic {m}: the Fresnel of glTF's F0 = mix({f0d:.4}, baseColor, metallic) = {} is \
-             the exact Fresnel of the real index {} with that normal-incidence reflectance \
-             instead of Schlick's approximation{}",
+            "metallic {m}: glTF's Schlick Fresnel of F0 = mix({f0d:.4}, baseColor, metallic) = {} \
+             is the exact Fresnel of the complex index eta {} + i k {}, which has that F0 and \
+             differs from Schlick's curve by at most {gap:.3} (near grazing){}",
             fmt3(f),
             fmt3(eta),
+            fmt3(k),
             if wd > 0.0 {
                 format!(
                     "; the diffuse part is weighted by 1 - F0 = {:.4} at every angle (glTF: 1 - \
@@ -293,13 +331,15 @@ mod tests {
         });
         assert!(m.diffuse.is_none() && m.reflectivity == [0.0; 3]);
         let c = m.conductor.unwrap();
-        let eta = c.eta.unwrap();
-        // The exact Fresnel at normal incidence of the real index is the base colour.
-        for (k, want) in [0.9, 0.6, 0.3].into_iter().enumerate() {
-            let f0 = crate::formats::material_map::dielectric_f0(eta[k]);
+        let (eta, k) = (c.eta.unwrap(), c.k.unwrap());
+        // The exact Fresnel at normal incidence of the index is the base colour, and its curve
+        // is within 0.11 of Schlick's.
+        for (i, want) in [0.9, 0.6, 0.3].into_iter().enumerate() {
+            let f0 = crate::formats::material_map::conductor_f0(eta[i], k[i]);
             assert!((f0 - want).abs() < 1e-12, "{f0} {want}");
+            assert!(schlick_gap(eta[i], k[i], want) < 0.11);
         }
-        assert!(c.scale.is_none() && c.k == Some([0.0; 3]));
+        assert!(c.scale.is_none());
         assert!(notes[0].contains("Schlick"), "{notes:?}");
         // Half metal: F0 = mix(0.04, base, 0.5), diffuse (1 - 0.5) base (1 - 0.04).
         let (m, _) = map(&Pbr {
@@ -308,16 +348,22 @@ mod tests {
             roughness: 1.0,
             ..Pbr::default()
         });
-        let eta = m.conductor.unwrap().eta.unwrap();
-        let f0 = crate::formats::material_map::dielectric_f0(eta[0]);
+        let c = m.conductor.unwrap();
+        let f0 = crate::formats::material_map::conductor_f0(c.eta.unwrap()[0], c.k.unwrap()[0]);
         assert!((f0 - (0.5 * 0.5 + 0.5 * 0.04)).abs() < 1e-12);
         let Some(TextureDesc::Solid(d)) = m.diffuse else {
             panic!()
         };
         assert!((d[0] - 0.5 * 0.5 * 0.96).abs() < 1e-12);
         assert_eq!(m.roughness, 1.0);
-        // A base colour of 1 stays a finite index.
+        // A base colour of 1 stays a finite index; low F0 takes the real index, high pbrt's.
         assert!(eta_of_f0(1.0).is_finite() && eta_of_f0(0.0) == 1.0);
+        assert!(index_for_f0(1.0).2 < 0.01);
+        assert_eq!(index_for_f0(0.04).1, 0.0);
+        assert_eq!(index_for_f0(0.766).0, 1.0);
+        // The dielectric curve dips before grazing for a metal's F0; pbrt's stays close.
+        assert!(schlick_gap(eta_of_f0(0.766), 0.0, 0.766) > 0.4);
+        assert!(index_for_f0(0.766).2 < 0.09);
     }
 
     #[test]
