@@ -745,3 +745,66 @@ fn base64_and_uris_decode() {
     let s = b64(&[1, 2, 3, 4, 5]);
     assert_eq!(super::base64(&s).unwrap(), vec![1, 2, 3, 4, 5]);
 }
+
+proptest::proptest! {
+    #![proptest_config(proptest::prelude::ProptestConfig { cases: 512, failure_persistence: None, ..proptest::prelude::ProptestConfig::default() })]
+
+    /// Any byte of a small GLB (headers, JSON, binary) replaced: Ok or Err, never a panic
+    /// (run in a debug build too, where integer overflow would panic).
+    #[test]
+    fn mutated_glb_bytes_never_panic(
+        edits in proptest::collection::vec((proptest::prelude::any::<usize>(), proptest::prelude::any::<u8>()), 1..5),
+    ) {
+        let mut v = scene(json!({"byteLength": 80}));
+        v["meshes"][0]["primitives"][0]["attributes"]["NORMAL"] = json!(1);
+        let mut b = glb(&v, &tri_bytes());
+        for (at, byte) in edits {
+            let n = b.len();
+            // Half the edits in the headers and the binary chunk, where the sizes are.
+            let i = if at % 2 == 0 { at % 20 } else { n - 1 - at % 100 };
+            b[i] = byte;
+        }
+        let _ = run_files(&b, &HashMap::new());
+    }
+
+    /// Numbers of the JSON replaced by awkward values: Ok or Err, never a panic.
+    #[test]
+    fn mutated_numbers_never_panic(
+        edits in proptest::collection::vec((0usize..64, 0usize..9), 1..4),
+    ) {
+        const NASTY: [i64; 9] = [0, 1, 2, 3, 4, 255, 65535, 4_294_967_295, 9_007_199_254_740_991];
+        let v = tri_scene();
+        let mut text = v.to_string();
+        // The byte ranges of every integer in the JSON text, edited in place.
+        let spans: Vec<(usize, usize)> = {
+            let b = text.as_bytes();
+            let mut out = Vec::new();
+            let mut i = 0;
+            while i < b.len() {
+                if b[i].is_ascii_digit() && i > 0 && matches!(b[i - 1], b':' | b',' | b'[' | b' ') {
+                    let s = i;
+                    while i < b.len() && b[i].is_ascii_digit() {
+                        i += 1;
+                    }
+                    out.push((s, i));
+                } else {
+                    i += 1;
+                }
+            }
+            out
+        };
+        let mut chosen: Vec<(usize, usize, i64)> = edits
+            .iter()
+            .map(|&(k, n)| {
+                let (s, e) = spans[k % spans.len()];
+                (s, e, NASTY[n])
+            })
+            .collect();
+        chosen.sort_by_key(|c| std::cmp::Reverse(c.0));
+        chosen.dedup_by_key(|c| c.0);
+        for (s, e, n) in chosen {
+            text.replace_range(s..e, &n.to_string());
+        }
+        let _ = run_files(text.as_bytes(), &HashMap::new());
+    }
+}
