@@ -293,3 +293,50 @@ fn the_inspector_opens_a_gltf_scene() {
         s.doc.status
     );
 }
+
+/// External buffers and images are read relative to the scene, count as inputs (an output may
+/// not overwrite them), and a texture's mean is noted.
+#[test]
+fn external_buffers_and_images_are_inputs() {
+    let dir = tempfile::tempdir().unwrap();
+    let text = std::fs::read_to_string(fixture("formats/cornell-box.gltf")).unwrap();
+    let mut v: Value = serde_json::from_str(&text).unwrap();
+    let uri = v["buffers"][0]["uri"].as_str().unwrap().to_string();
+    std::fs::create_dir(dir.path().join("data")).unwrap();
+    std::fs::write(
+        dir.path().join("data/cb.bin"),
+        decode_base64(uri.split_once(',').unwrap().1),
+    )
+    .unwrap();
+    v["buffers"][0]["uri"] = "data/cb.bin".into();
+    let mut png = Vec::new();
+    image::ImageEncoder::write_image(
+        image::codecs::png::PngEncoder::new(&mut png),
+        &[255, 0, 0, 255, 0, 0, 255, 255],
+        2,
+        1,
+        image::ExtendedColorType::Rgba8,
+    )
+    .unwrap();
+    std::fs::write(dir.path().join("data/red blue.png"), png).unwrap();
+    v["images"] = serde_json::json!([{"uri": "data/red%20blue.png"}]);
+    v["textures"] = serde_json::json!([{"source": 0}]);
+    v["materials"][0]["pbrMetallicRoughness"]["baseColorTexture"] = serde_json::json!({"index": 0});
+    std::fs::write(dir.path().join("s.gltf"), v.to_string()).unwrap();
+    let o = raytree(&["convert", "s.gltf", "-o", "out.json"], dir.path());
+    assert!(o.status.success(), "{}", stderr(&o));
+    assert!(
+        stderr(&o).contains(
+            "s.gltf: materials[0].pbrMetallicRoughness.baseColorTexture: textures[0] (images[0], PNG 2x1) read as its mean colour [0.5000, 0.0000, 0.5000]"
+        ),
+        "{}",
+        stderr(&o)
+    );
+    let bin = std::fs::read(dir.path().join("data/cb.bin")).unwrap();
+    let err = fails(&raytree(
+        &["convert", "s.gltf", "-o", "data/cb.bin"],
+        dir.path(),
+    ));
+    assert!(err.contains("cb.bin"), "{err}");
+    assert_eq!(std::fs::read(dir.path().join("data/cb.bin")).unwrap(), bin);
+}
