@@ -9,6 +9,39 @@ use ::gltf::json::Root;
 use ::gltf::json::accessor::{ComponentType, Type};
 use ::gltf::json::validation::Checked;
 
+/// What an accessor element is read into: `DIMS` components, each set from its decoded value.
+pub trait Elem: Copy + Default {
+    /// Components per element.
+    const DIMS: usize;
+    /// Set component `c` to `v`.
+    fn set(&mut self, c: usize, v: f64);
+    /// Whether every component is finite.
+    fn finite(&self) -> bool;
+}
+
+impl Elem for glam::DVec3 {
+    const DIMS: usize = 3;
+    fn set(&mut self, c: usize, v: f64) {
+        self[c] = v;
+    }
+    fn finite(&self) -> bool {
+        self.is_finite()
+    }
+}
+
+/// An unsigned index (the accessor's type is checked to be an unsigned integer, so every
+/// value is a whole number below 2^32).
+impl Elem for u32 {
+    const DIMS: usize = 1;
+    #[allow(clippy::cast_possible_truncation, clippy::cast_sign_loss)]
+    fn set(&mut self, _: usize, v: f64) {
+        *self = v as u32;
+    }
+    fn finite(&self) -> bool {
+        true
+    }
+}
+
 /// A loaded buffer: the GLB `BIN` chunk in place, or bytes read or decoded.
 enum Buf<'a> {
     Bin(&'a [u8]),
@@ -233,21 +266,22 @@ impl<'a, 'r> Data<'a, 'r> {
         Ok((&data[off..end], stride))
     }
 
-    /// Accessor `index` as `dims` numbers per element (`what` names its use in messages):
-    /// floats as they are (every value must be finite), integers converted (normalised when
-    /// the accessor says so), zeros where there is no buffer view, sparse substitutions
-    /// applied. `unsigned_ints` requires an unsigned integer type (indices).
+    /// Accessor `index` as elements of `T::DIMS` numbers (`what` names its use in messages),
+    /// decoded straight into `T` (no intermediate copy): floats as they are (every value must
+    /// be finite), integers converted (normalised when the accessor says so), zeros where there
+    /// is no buffer view, sparse substitutions applied. `unsigned_ints` requires an unsigned
+    /// integer type (indices).
     ///
     /// # Errors
     /// A wrong type, a count above the vertex limit, offsets or strides outside the data,
     /// bad sparse indices, non-finite values.
-    pub fn accessor(
+    pub fn accessor<T: Elem>(
         &mut self,
         index: usize,
-        dims: usize,
         what: &str,
         unsigned_ints: bool,
-    ) -> Result<Vec<f64>, FormatError> {
+    ) -> Result<Vec<T>, FormatError> {
+        let dims = T::DIMS;
         let path = format!("accessors[{index}]");
         let root = self.root;
         let Some(a) = root.accessors.get(index) else {
@@ -297,7 +331,7 @@ impl<'a, 'r> Data<'a, 'r> {
         let csize = ct.size();
         let elem = csize * dims;
         let normalized = a.normalized && ct != ComponentType::F32;
-        let mut out = vec![0.0f64; count * dims];
+        let mut out = vec![T::default(); count];
         if let Some(v) = a.buffer_view {
             let off = a.byte_offset.map_or(0, |o| o.0);
             let file = self.file.clone();
@@ -326,29 +360,26 @@ impl<'a, 'r> Data<'a, 'r> {
                 }
             }
             let off = off as usize;
-            for k in 0..count {
+            for (k, e) in out.iter_mut().enumerate() {
                 let base = off + k * stride;
                 for c in 0..dims {
                     let at = base + c * csize;
-                    out[k * dims + c] = component(ct, &bytes[at..at + csize], normalized);
+                    e.set(c, component(ct, &bytes[at..at + csize], normalized));
                 }
             }
         }
         if let Some(s) = &a.sparse {
             self.sparse(s, &path, ct, dims, normalized, count, &mut out)?;
         }
-        if let Some(i) = out.iter().position(|x| !x.is_finite()) {
-            return Err(self.err(
-                &path,
-                format!("{what}: element {} is not a finite number", i / dims.max(1)),
-            ));
+        if let Some(i) = out.iter().position(|x| !x.finite()) {
+            return Err(self.err(&path, format!("{what}: element {i} is not a finite number")));
         }
         Ok(out)
     }
 
     /// Apply the sparse substitutions `s` of accessor `path` to `out`.
     #[allow(clippy::too_many_arguments)]
-    fn sparse(
+    fn sparse<T: Elem>(
         &mut self,
         s: &::gltf::json::accessor::sparse::Sparse,
         path: &str,
@@ -356,7 +387,7 @@ impl<'a, 'r> Data<'a, 'r> {
         dims: usize,
         normalized: bool,
         count: usize,
-        out: &mut [f64],
+        out: &mut [T],
     ) -> Result<(), FormatError> {
         let n = s.count.0;
         if n > count as u64 {
@@ -402,7 +433,7 @@ impl<'a, 'r> Data<'a, 'r> {
             previous = Some(i);
             for c in 0..dims {
                 let at = k * elem + c * ct.size();
-                out[i as usize * dims + c] = component(ct, &values[at..], normalized);
+                out[i as usize].set(c, component(ct, &values[at..], normalized));
             }
         }
         Ok(())

@@ -538,30 +538,22 @@ impl<'a, 'r> State<'a, 'r> {
             self.note(&path, "no POSITION attribute: left out (as glTF says)");
             return Ok(None);
         };
-        let flat = self.d.accessor(pos.value(), 3, "POSITION", false)?;
-        let positions: Vec<DVec3> = flat
-            .chunks_exact(3)
-            .map(|c| DVec3::new(c[0], c[1], c[2]))
-            .collect();
+        let positions: Vec<DVec3> = self.d.accessor(pos.value(), "POSITION", false)?;
         let n = positions.len();
         let mut normals = match p.attributes.get(&Checked::Valid(Semantic::Normals)) {
             None => None,
             Some(a) => {
-                let flat = self.d.accessor(a.value(), 3, "NORMAL", false)?;
-                if flat.len() / 3 != n {
+                let ns: Vec<DVec3> = self.d.accessor(a.value(), "NORMAL", false)?;
+                if ns.len() != n {
                     return Err(self.err(
                         &format!("{path}.attributes.NORMAL"),
                         format!(
                             "{} normals for {n} positions (attributes must have one count)",
-                            flat.len() / 3
+                            ns.len()
                         ),
                     ));
                 }
-                Some(
-                    flat.chunks_exact(3)
-                        .map(|c| DVec3::new(c[0], c[1], c[2]))
-                        .collect::<Vec<_>>(),
-                )
+                Some(ns)
             }
         };
         if let Some(ns) = &normals
@@ -584,20 +576,14 @@ impl<'a, 'r> State<'a, 'r> {
         }
         let index_list: Vec<u32> = match p.indices {
             Some(a) => {
-                let v = self.d.accessor(a.value(), 1, "indices", true)?;
-                let mut out = Vec::with_capacity(v.len());
-                for (k, x) in v.into_iter().enumerate() {
-                    if x >= n as f64 {
-                        return Err(self.err(
-                            &format!("accessors[{}]", a.value()),
-                            format!(
-                                "index {k} is {x}, out of range for the {n} vertices of {path}"
-                            ),
-                        ));
-                    }
-                    out.push(x as u32);
+                let v: Vec<u32> = self.d.accessor(a.value(), "indices", true)?;
+                if let Some((k, x)) = v.iter().enumerate().find(|&(_, &x)| x as usize >= n) {
+                    return Err(self.err(
+                        &format!("accessors[{}]", a.value()),
+                        format!("index {k} is {x}, out of range for the {n} vertices of {path}"),
+                    ));
                 }
-                out
+                v
             }
             None => (0..n as u32).collect(),
         };
