@@ -52,14 +52,14 @@ fn approximations_are_printed_and_listed_by_effects() {
     std::fs::write(
         dir.path().join("s.pbrt"),
         "LookAt 0 0 5 0 0 0 0 1 0\nCamera \"perspective\"\nFilm \"rgb\" \"integer xresolution\" 16 \"integer yresolution\" 8\n\
-         WorldBegin\nMaterial \"conductor\"\nShape \"sphere\"\n",
+         WorldBegin\nMaterial \"coateddiffuse\"\nShape \"sphere\"\n",
     )
     .unwrap();
     let o = raytree(&["effects", "s.pbrt"], dir.path());
     assert!(o.status.success(), "{}", stderr(&o));
     let err = stderr(&o);
     assert!(
-        err.contains("note: s.pbrt:5: Material \"conductor\""),
+        err.contains("note: s.pbrt:5: Material \"coateddiffuse\""),
         "{err}"
     );
     assert!(

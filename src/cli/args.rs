@@ -506,7 +506,7 @@ pub struct VersusArgs {
 /// `raytree convert`.
 #[derive(Debug, Args)]
 pub struct ConvertArgs {
-    /// Scene: pbrt-v4 (.pbrt), Mitsuba 3 (.xml) or raytree JSON.
+    /// Scene: pbrt-v4 (.pbrt), Mitsuba 3 (.xml), glTF 2.0 (.gltf, .glb) or raytree JSON.
     pub scene: PathBuf,
     /// Output JSON (never one of the files the scene reads).
     #[arg(short, long, default_value = "scene.json")]

@@ -1,4 +1,4 @@
-//! Scenes in other renderers' formats (pbrt-v4, Mitsuba 3): read through the library's
+//! Scenes in other renderers' formats (pbrt-v4, Mitsuba 3, glTF 2.0): read through the library's
 //! front-ends ([`raytree::formats`]) with a resolver that reads the files they name relative to
 //! the scene, bounded like every other read.
 
@@ -44,7 +44,10 @@ pub fn convert(
     let mut resolver = |file: &str| -> Result<Vec<u8>, String> {
         let p = PathBuf::from(file);
         let lower = file.to_ascii_lowercase();
-        let limit = if lower.ends_with(".ply") || lower.ends_with(".obj") {
+        let limit = if [".ply", ".obj", ".bin", ".glb"]
+            .iter()
+            .any(|e| lower.ends_with(e))
+        {
             MAX_OBJ_BYTES
         } else {
             MAX_SCENE_BYTES

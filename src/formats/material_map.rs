@@ -1,9 +1,10 @@
 //! pbrt-v4 and Mitsuba 3 materials mapped onto raytree's material (`diffuse`, `reflectivity`,
-//! `transmissivity`, `ior`, `roughness` as GGX alpha, `emission`). One function per material,
-//! each returning the description and, where the mapping is approximate, the sentence a
-//! [`super::Note`] carries; replace a function when the material model learns the real thing.
+//! `transmissivity`, `ior`, `roughness` as microfacet alpha, `roughness_v`, `distribution`,
+//! `conductor`, `emission`; `docs/materials.md`). One function per material, each returning the
+//! description and, where the mapping is approximate, the sentence a [`super::Note`] carries;
+//! replace a function when the material model learns the real thing.
 
-use crate::scene::desc::{MaterialDesc, TextureDesc, Triple};
+use crate::scene::desc::{ConductorDesc, MaterialDesc, TextureDesc, Triple};
 
 /// A mapped material and what its mapping approximated.
 pub type Mapped = (MaterialDesc, Option<String>);
@@ -57,30 +58,44 @@ pub fn conductor_f0(n: f64, k: f64) -> f64 {
     ((n - 1.0).powi(2) + k * k) / ((n + 1.0).powi(2) + k * k)
 }
 
-/// A conductor with complex index `eta + i k` per channel (pbrt `conductor`, Mitsuba
-/// `conductor` / `roughconductor`): raytree's mirror with its normal-incidence reflectance,
-/// constant over angle (the exact Fresnel rises towards 1 at grazing angles).
+/// A conductor with complex index `eta + i k` per channel, its Fresnel tinted by `scale`
+/// (pbrt `conductor`, Mitsuba `conductor` / `roughconductor`): raytree's conductor, the exact
+/// Fresnel of the complex index (`bsdf::fr_complex`). An `eta`, `k` pair that is one of
+/// raytree's named metals ([`crate::bsdf::METALS`]) is written by its name.
 #[must_use]
-pub fn conductor(eta: Triple, k: Triple, a: f64) -> Mapped {
-    let r = [0, 1, 2].map(|c| conductor_f0(eta[c], k[c]));
-    let (roughness, clamp) = alpha(a);
-    let note = format!(
-        "conductor (eta {eta:?}, k {k:?}) approximated by a mirror of constant reflectivity \
-         [{:.4}, {:.4}, {:.4}], its normal-incidence Fresnel ((n-1)^2+k^2)/((n+1)^2+k^2); \
-         grazing angles reflect less than they should{}",
-        r[0],
-        r[1],
-        r[2],
-        clamp.map_or(String::new(), |c| format!("; {c}"))
-    );
+pub fn conductor(eta: Triple, k: Triple, a: f64, scale: Triple) -> Mapped {
+    let (roughness, note) = alpha(a);
+    let named = crate::bsdf::METALS
+        .iter()
+        .find(|m| m.1 == eta && m.2 == k)
+        .map(|m| m.0.to_string());
+    let conductor = ConductorDesc {
+        eta: named.is_none().then_some(eta),
+        k: named.is_none().then_some(k),
+        metal: named,
+        scale: (scale != [1.0; 3]).then_some(scale),
+    };
     (
         MaterialDesc {
-            reflectivity: r,
+            conductor: Some(conductor),
             roughness,
             ..MaterialDesc::default()
         },
-        Some(note),
+        note,
     )
+}
+
+/// pbrt-v4's conductor given by its normal-incidence `reflectance` instead of `eta` and `k`:
+/// pbrt-v4 (`ConductorMaterial`) makes it the complex index `eta = 1`, `k = 2 sqrt(r) /
+/// sqrt(1 - r)` (`r` clamped to 0.9999), whose normal-incidence reflectance is `r`; the same
+/// index here, so the Fresnel is pbrt's.
+#[must_use]
+pub fn conductor_reflectance(r: Triple, a: f64) -> Mapped {
+    let k = r.map(|c| {
+        let c = c.clamp(0.0, 0.9999);
+        2.0 * c.sqrt() / (1.0 - c).sqrt()
+    });
+    conductor([1.0; 3], k, a, [1.0; 3])
 }
 
 /// A perfect mirror scaled by `r` (Mitsuba `conductor` with `material="none"`): exact.
@@ -146,19 +161,6 @@ pub fn coated_diffuse(base: Triple, eta: f64, a: f64, specular: f64) -> Mapped {
     )
 }
 
-/// A Beckmann alpha used as raytree's GGX alpha (Mitsuba's rough BSDFs default to Beckmann):
-/// the same alpha, so the lobes have the same width near their peak, GGX's tails are longer.
-#[must_use]
-pub fn beckmann_as_ggx(a: f64) -> (f64, String) {
-    (
-        a,
-        format!(
-            "Beckmann microfacets (alpha {a}) approximated by GGX with the same alpha (GGX has \
-             longer tails)"
-        ),
-    )
-}
-
 /// pbrt-v4's roughness to alpha: `sqrt(roughness)` when `remaproughness` is true (its
 /// default; `TrowbridgeReitzDistribution::RoughnessToAlpha`), else the value itself.
 #[must_use]
@@ -170,49 +172,40 @@ pub fn pbrt_alpha(roughness: f64, remap: bool) -> f64 {
     }
 }
 
-/// Anisotropic roughness `(u, v)` on raytree's isotropic GGX: the geometric mean, with a note
-/// when they differ.
+/// Roughness `(u, v)` along the two tangents: raytree's `roughness` and, when they differ,
+/// `roughness_v` (both clamped to `[0, 1]`), with a note when they differ: raytree's first
+/// tangent is the world x axis projected onto the surface, not the file's `dpdu`.
 #[must_use]
-pub fn isotropic(u: f64, v: f64) -> (f64, Option<String>) {
+pub fn anisotropic(u: f64, v: f64) -> (f64, Option<f64>, Option<String>) {
     if u == v {
-        (u, None)
+        (u, None, None)
     } else {
-        let a = (u * v).max(0.0).sqrt();
         (
-            a,
+            u,
+            Some(v.clamp(0.0, 1.0)),
             Some(format!(
-                "anisotropic roughness ({u}, {v}) approximated by isotropic alpha {a:.4} (their \
-                 geometric mean)"
+                "anisotropic roughness ({u}, {v}): alpha_u follows raytree's tangent, the world x \
+                 axis projected onto the surface (the file's surface parametrisation, dpdu, is \
+                 not available)"
             )),
         )
     }
 }
 
 /// RGB complex index `(eta, k)` of a named metal: pbrt-v4's `metal-<X>-eta` / `-k` and
-/// Mitsuba's `material` names. Values: Tungsten renderer, `ComplexIorData.hpp` (measured
-/// spectra integrated to linear sRGB), the table Mitsuba's and pbrt's spectra also come from.
+/// Mitsuba's `material` names. Ag, Al, Au and Cu are raytree's named metals
+/// ([`crate::bsdf::METALS`]: pbrt-v4's tabulated spectra projected to linear sRGB under D65);
+/// Cr, which raytree does not name, is the Tungsten renderer's `ComplexIorData.hpp` value (the
+/// same measured data sampled to RGB).
 #[must_use]
 pub fn metal(name: &str) -> Option<(Triple, Triple)> {
+    if let Some(m) = crate::bsdf::METALS.iter().find(|m| m.0 == name) {
+        return Some((m.1, m.2));
+    }
     Some(match name {
-        "Ag" => (
-            [0.155_264_648_9, 0.116_723_296_5, 0.138_380_695_9],
-            [4.828_343_322_4, 3.122_245_927_8, 2.146_950_445_5],
-        ),
-        "Al" => (
-            [1.657_459_959_5, 0.880_368_957_9, 0.521_228_734_6],
-            [9.223_869_199_6, 6.269_523_247_7, 4.837_001_228_1],
-        ),
-        "Au" => (
-            [0.143_118_955_7, 0.374_957_043_2, 1.442_478_557_1],
-            [3.983_160_424_7, 2.385_720_747_8, 1.603_215_289_9],
-        ),
         "Cr" => (
             [4.369_682_866_3, 2.916_702_489_2, 1.654_700_541_3],
             [5.206_433_795_6, 4.231_364_527_7, 3.754_946_793_3],
-        ),
-        "Cu" => (
-            [0.200_437_697_0, 0.924_033_430_4, 1.102_211_952_7],
-            [3.912_948_503_3, 2.452_847_701_5, 2.142_187_955_2],
         ),
         _ => return None,
     })
@@ -262,16 +255,38 @@ mod tests {
         assert!(conductor_f0(0.2, 1e8) > 1.0 - 1e-12);
         // Silver reflects > 90 % in every channel, copper far less in blue than red.
         let (eta, k) = metal("Ag").unwrap();
-        let (m, note) = conductor(eta, k, 0.0);
-        assert!(
-            m.reflectivity.iter().all(|&r| r > 0.9),
-            "{:?}",
-            m.reflectivity
-        );
-        assert!(note.unwrap().contains("normal-incidence"));
+        assert!((0..3).all(|c| conductor_f0(eta[c], k[c]) > 0.9));
         let (eta, k) = metal("Cu").unwrap();
         let r = [0, 1, 2].map(|c| conductor_f0(eta[c], k[c]));
         assert!(r[0] > 0.9 && r[2] < 0.65, "{r:?}");
+    }
+
+    #[test]
+    fn conductors_are_raytree_conductors_named_when_they_can_be() {
+        // A named metal's index is written by its name, exactly, without a note.
+        let (eta, k) = metal("Au").unwrap();
+        let (m, note) = conductor(eta, k, 0.2, [1.0; 3]);
+        let c = m.conductor.unwrap();
+        assert_eq!(c.metal.as_deref(), Some("Au"));
+        assert!(c.eta.is_none() && c.k.is_none() && c.scale.is_none());
+        assert!(note.is_none() && m.reflectivity == [0.0; 3] && m.roughness == 0.2);
+        // Chromium is not named in raytree: its index, tinted.
+        let (eta, k) = metal("Cr").unwrap();
+        let c = conductor(eta, k, 0.0, [0.5; 3]).0.conductor.unwrap();
+        assert_eq!((c.eta, c.k, c.scale), (Some(eta), Some(k), Some([0.5; 3])));
+        // pbrt's reflectance form: eta 1, k = 2 sqrt(r) / sqrt(1 - r) has F(0) = r.
+        let c = conductor_reflectance([0.25, 0.5, 1.0], 0.0)
+            .0
+            .conductor
+            .unwrap();
+        let (eta, k) = (c.eta.unwrap(), c.k.unwrap());
+        for (i, r) in [0.25, 0.5, 0.9999].into_iter().enumerate() {
+            assert!((conductor_f0(eta[i], k[i]) - r).abs() < 1e-12);
+        }
+        assert_eq!(anisotropic(0.1, 0.1), (0.1, None, None));
+        let (u, v, n) = anisotropic(0.1, 0.3);
+        assert_eq!((u, v), (0.1, Some(0.3)));
+        assert!(n.unwrap().contains("dpdu"));
     }
 
     #[test]
@@ -289,7 +304,6 @@ mod tests {
         assert_eq!(pbrt_alpha(0.25, true), 0.5);
         assert_eq!(pbrt_alpha(0.25, false), 0.25);
         assert_eq!(dielectric(1.5, 3.0).0.roughness, 1.0);
-        assert_eq!(isotropic(0.04, 0.01).0, 0.02);
         assert_eq!(named_ior("bk7"), Some(1.5046));
     }
 }

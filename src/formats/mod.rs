@@ -1,14 +1,16 @@
-//! Scene front-ends for other renderers' formats: pbrt-v4 (`.pbrt`) and Mitsuba 3 (`.xml`).
+//! Scene front-ends for other renderers' formats: pbrt-v4 (`.pbrt`), Mitsuba 3 (`.xml`) and
+//! glTF 2.0 (`.gltf`, `.glb`).
 //!
 //! Each front-end is a pure parser: it takes the scene's text and a caller-supplied
 //! [`Resolver`] for the files the scene names (`Include`, `Import`, PLY and OBJ meshes), and
 //! returns raytree's own [`SceneDesc`] (what `raytree convert` writes) plus a [`Note`] for every
 //! construct it approximated, so nothing is dropped silently. Errors name the file, the line and
-//! column, and the directive or XML element. The mapping of each material onto raytree's model is
+//! column, and the directive or XML element (glTF: the JSON path, with line 0). The mapping of each material onto raytree's model is
 //! one small function in [`material_map`], so a richer material model can replace it piece by
 //! piece. Supported subsets: `docs/scenes.md`.
 
 pub mod build;
+pub mod gltf;
 pub mod material_map;
 pub mod mitsuba;
 pub mod pbrt;
@@ -39,7 +41,8 @@ impl<F: FnMut(&str) -> Result<Vec<u8>, String>> Resolver for F {
 pub struct Note {
     /// The file as named in the scene (the top file by its caller-given name).
     pub file: String,
-    /// 1-based line of the directive or element.
+    /// 1-based line of the directive or element; 0 when the message starts with the location
+    /// (glTF's JSON path).
     pub line: usize,
     /// What was approximated and how.
     pub message: String,
@@ -47,13 +50,18 @@ pub struct Note {
 
 impl std::fmt::Display for Note {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        write!(f, "{}:{}: {}", self.file, self.line, self.message)
+        if self.line == 0 {
+            write!(f, "{}: {}", self.file, self.message)
+        } else {
+            write!(f, "{}:{}: {}", self.file, self.line, self.message)
+        }
     }
 }
 
-/// A construct that cannot be converted, or malformed input.
+/// A construct that cannot be converted, or malformed input. Shown as
+/// `file:line:column: message`, or `file: message` when the line is 0 (the whole file, or a
+/// glTF JSON path at the start of the message).
 #[derive(Clone, Debug, PartialEq, Eq, thiserror::Error)]
-#[error("{file}:{line}:{column}: {message}")]
 pub struct FormatError {
     /// The file as named in the scene.
     pub file: String,
@@ -63,6 +71,20 @@ pub struct FormatError {
     pub column: usize,
     /// What is wrong, naming the directive or XML path.
     pub message: String,
+}
+
+impl std::fmt::Display for FormatError {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        if self.line == 0 {
+            write!(f, "{}: {}", self.file, self.message)
+        } else {
+            write!(
+                f,
+                "{}:{}:{}: {}",
+                self.file, self.line, self.column, self.message
+            )
+        }
+    }
 }
 
 /// A converted scene: raytree's description and the approximations made.
@@ -83,6 +105,8 @@ pub struct Limits {
     pub vertices: usize,
     /// Files read in all (includes and meshes).
     pub files: usize,
+    /// Bytes of binary data (glTF buffers and images) read in all.
+    pub bytes: u64,
 }
 
 impl Default for Limits {
@@ -91,6 +115,7 @@ impl Default for Limits {
             include_depth: 32,
             vertices: 50_000_000,
             files: 4096,
+            bytes: 1 << 30,
         }
     }
 }
@@ -104,23 +129,33 @@ pub enum Format {
     Pbrt,
     /// Mitsuba 3 XML (and the 0.x/2.x spellings Mitsuba upgrades).
     Mitsuba,
+    /// glTF 2.0: JSON (`.gltf`) or the binary container (`.glb`).
+    Gltf,
 }
 
 impl Format {
     /// Which front-end reads the file named `name` with contents `bytes`: by content where it
-    /// is unambiguous (`{` opens JSON, `<` XML), otherwise by extension (`.pbrt`, `.xml`),
-    /// otherwise pbrt when the first word is a pbrt directive, otherwise JSON (whose parser
-    /// then says what is wrong).
+    /// is unambiguous (the GLB magic `glTF`; `{` opens JSON, which is glTF when the name ends
+    /// in `.gltf` or its top-level object has an `"asset"` member, raytree's otherwise; `<`
+    /// XML), otherwise by extension (`.pbrt`, `.xml`, `.gltf`, `.glb`), otherwise pbrt when the
+    /// first word is a pbrt directive, otherwise JSON (whose parser then says what is wrong).
     #[must_use]
     pub fn detect(name: &str, bytes: &[u8]) -> Format {
         let text = bytes.strip_prefix(b"\xEF\xBB\xBF").unwrap_or(bytes);
+        let lower = name.to_ascii_lowercase();
+        if self::gltf::is_glb(bytes) {
+            return Format::Gltf;
+        }
         let first = text.iter().find(|b| !b.is_ascii_whitespace());
         match first {
+            Some(b'{') if lower.ends_with(".gltf") || has_asset(text) => return Format::Gltf,
             Some(b'{') => return Format::Json,
             Some(b'<') => return Format::Mitsuba,
             _ => {}
         }
-        let lower = name.to_ascii_lowercase();
+        if lower.ends_with(".gltf") || lower.ends_with(".glb") {
+            return Format::Gltf;
+        }
         if lower.ends_with(".pbrt") {
             return Format::Pbrt;
         }
@@ -145,7 +180,17 @@ impl Format {
     }
 }
 
-/// Convert `bytes` of `file` (pbrt or Mitsuba, per [`Format::detect`]) with `defines`
+/// Whether the JSON `text` is an object with a top-level `"asset"` member (every glTF file has
+/// one; raytree's scene JSON refuses unknown members, so never has). Invalid JSON is not.
+fn has_asset(text: &[u8]) -> bool {
+    #[derive(serde::Deserialize)]
+    struct Probe {
+        asset: Option<serde::de::IgnoredAny>,
+    }
+    serde_json::from_slice::<Probe>(text).is_ok_and(|p| p.asset.is_some())
+}
+
+/// Convert `bytes` of `file` (pbrt, Mitsuba or glTF, per [`Format::detect`]) with `defines`
 /// (Mitsuba `-D name=value`; ignored by pbrt). JSON is not converted here: it is already
 /// raytree's.
 ///
@@ -161,6 +206,7 @@ pub fn convert(
     match format {
         Format::Pbrt => pbrt::convert(file, bytes, resolver, Limits::default()),
         Format::Mitsuba => mitsuba::convert(file, bytes, defines, resolver, Limits::default()),
+        Format::Gltf => self::gltf::convert(file, bytes, resolver, Limits::default()),
         Format::Json => Err(FormatError {
             file: file.to_string(),
             line: 0,
@@ -224,6 +270,14 @@ mod tests {
         );
         assert_eq!(Format::detect("scene.txt", b"hello"), Format::Json);
         assert_eq!(Format::detect("a.xml", b""), Format::Mitsuba);
+        assert_eq!(Format::detect("a.gltf", b"{}"), Format::Gltf);
+        assert_eq!(
+            Format::detect("scene.json", b" {\"asset\": {\"version\": \"2.0\"}}"),
+            Format::Gltf
+        );
+        assert_eq!(Format::detect("x.bin", b"glTF\x02\0\0\0"), Format::Gltf);
+        assert_eq!(Format::detect("a.glb", b""), Format::Gltf);
+        assert_eq!(Format::detect("a.json", b"{\"camera\": {}}"), Format::Json);
     }
 
     #[test]

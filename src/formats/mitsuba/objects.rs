@@ -4,7 +4,7 @@ use super::props::Props;
 use super::tree::{El, Reader};
 use crate::formats::build::{Builder, CameraSpec, Surface, disk_triangles};
 use crate::formats::xform::Xf;
-use crate::formats::{Converted, FormatError, Limits, material_map as mm, ply, relative_to};
+use crate::formats::{Converted, FormatError, Limits, material_map as mm, ply};
 use crate::scene::desc::{FilterDesc, MaterialDesc};
 use glam::{DAffine3, DVec3};
 use std::collections::HashMap;
@@ -390,28 +390,31 @@ impl<'r> State<'r> {
         };
         let eta = ior("int_ior", 1.5046)? / ior("ext_ior", 1.000_277)?;
         let rough = ty.starts_with("rough");
+        // alpha_v and the distribution of a rough BSDF, set by `alpha`.
+        let alpha_v = std::cell::Cell::new(None);
+        let beckmann = std::cell::Cell::new(false);
         let alpha = |notes: &mut Vec<String>| -> Result<f64, FormatError> {
             if !rough {
                 return Ok(0.0);
             }
             let a = p.float("alpha", 0.1)?;
-            let (a, n) = mm::isotropic(p.float("alpha_u", a)?, p.float("alpha_v", a)?);
+            let (a, v, n) = mm::anisotropic(p.float("alpha_u", a)?, p.float("alpha_v", a)?);
             notes.extend(n);
+            alpha_v.set(v);
             let dist = p
                 .string("distribution")?
                 .unwrap_or_else(|| "beckmann".into());
             match dist.as_str() {
                 "ggx" => Ok(a),
                 "beckmann" => {
-                    let (a, n) = mm::beckmann_as_ggx(a);
-                    notes.push(n);
+                    beckmann.set(true);
                     Ok(a)
                 }
                 d => Err(el.err(format!("unknown distribution {d:?}"))),
             }
         };
         let mut a_notes = Vec::new();
-        let (desc, note) = match ty {
+        let (mut desc, note) = match ty {
             "diffuse" => (mm::diffuse(color("reflectance", [0.5; 3])?), None),
             "dielectric" | "roughdielectric" => mm::dielectric(eta, alpha(&mut a_notes)?),
             "thindielectric" => mm::thin_dielectric(eta),
@@ -419,16 +422,14 @@ impl<'r> State<'r> {
                 let a = alpha(&mut a_notes)?;
                 let scale = color("specular_reflectance", [1.0; 3])?;
                 let material = p.string("material")?.unwrap_or_else(|| "none".into());
-                let (mut d, n) = if p.color("eta")?.is_some() || p.color("k")?.is_some() {
-                    mm::conductor(color("eta", [0.0; 3])?, color("k", [1.0; 3])?, a)
+                if p.color("eta")?.is_some() || p.color("k")?.is_some() {
+                    mm::conductor(color("eta", [0.0; 3])?, color("k", [1.0; 3])?, a, scale)
                 } else if material == "none" {
-                    mm::mirror([1.0; 3], a)
+                    mm::mirror(scale, a)
                 } else {
                     let (e, k) = mm::metal(&material).ok_or_else(|| el.err(format!("unknown conductor material {material:?} (raytree knows Ag, Al, Au, Cr, Cu, none)")))?;
-                    mm::conductor(e, k, a)
-                };
-                d.reflectivity = [0, 1, 2].map(|c| d.reflectivity[c] * scale[c]);
-                (d, n)
+                    mm::conductor(e, k, a, scale)
+                }
             }
             "plastic" | "roughplastic" => {
                 let a = alpha(&mut a_notes)?;
@@ -446,6 +447,12 @@ impl<'r> State<'r> {
         };
         notes.extend(a_notes);
         notes.extend(note);
+        if rough {
+            desc.roughness_v = alpha_v.get();
+            if beckmann.get() {
+                desc.distribution = crate::bsdf::Distribution::Beckmann;
+            }
+        }
         Ok((desc, (!notes.is_empty()).then(|| notes.join("; "))))
     }
 
@@ -524,16 +531,7 @@ impl<'r> State<'r> {
         let f = p
             .string("filename")?
             .ok_or_else(|| el.err("needs a filename"))?;
-        let path = relative_to(&el.file, &f);
-        self.reader.files += 1;
-        if self.reader.files > self.limits.files {
-            return Err(el.err(format!("more than {} files read", self.limits.files)));
-        }
-        let bytes = self
-            .reader
-            .res
-            .read(&path)
-            .map_err(|e| el.err(format!("{path:?}: {e}")))?;
+        let (path, bytes) = self.reader.resource(el, &f)?;
         let (pos, tris, normals) = if ty == "ply" {
             let mesh = ply::parse(&bytes, self.limits.vertices)
                 .map_err(|e| el.err(format!("{f}: {e}")))?;

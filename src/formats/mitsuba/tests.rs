@@ -153,9 +153,15 @@ fn bsdfs_map_with_notes_and_one_sidedness() {
         m(0).diffuse,
         Some(TextureDesc::Solid([0.7, 0.7, 0.7]))
     ));
-    // Rough BSDFs default to Beckmann alpha 0.1: the same GGX alpha, noted.
+    // Rough BSDFs default to Beckmann alpha 0.1: raytree's Beckmann, exactly.
     assert_eq!(m(1).roughness, 0.1);
-    assert!(c.notes.iter().any(|n| n.message.contains("Beckmann")));
+    assert_eq!(m(1).distribution, crate::bsdf::Distribution::Beckmann);
+    assert_eq!(
+        m(1).conductor.as_ref().unwrap().metal.as_deref(),
+        Some("Au")
+    );
+    assert_eq!(m(2).distribution, crate::bsdf::Distribution::Ggx);
+    assert!(!c.notes.iter().any(|n| n.message.contains("Beckmann")));
     assert!((m(2).ior.unwrap() - 1.5046 / 1.000_277).abs() < 1e-12);
     assert_eq!(m(2).roughness, 0.2);
     assert!(m(3).reflectivity[0] > 0.03 && m(3).reflectivity[0] < 0.05);
@@ -263,4 +269,43 @@ fn errors_have_positions_and_name_the_element() {
     assert!(e.message.contains("include cycle"), "{e}");
     assert!(fail(r#"<shape type="sphere"><transform name="to_world"><scale value="0"/></transform></shape>"#).message.contains("zero"));
     assert!(fail("<frobnicate/>").message.contains("unknown element"));
+    let e = fail(r#"<alias id="nope" as="x"/>"#);
+    assert!(e.message.contains("aliases undefined id \"nope\""), "{e}");
+}
+
+#[test]
+fn paths_extend_the_file_search_and_aliases_rename() {
+    let obj = b"v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nf 1 2 3\nf 1 3 4\n".to_vec();
+    let fs: HashMap<String, Vec<u8>> = [
+        ("meshes/m.obj".to_string(), obj.clone()),
+        (
+            "lib/inc.xml".to_string(),
+            br#"<scene version="3.0.0"><bsdf type="diffuse" id="grey"/></scene>"#.to_vec(),
+        ),
+    ]
+    .into();
+    let body = r#"<path value="meshes"/><path value="lib"/><include filename="inc.xml"/>
+      <alias id="grey" as="stone"/>
+      <shape type="obj"><string name="filename" value="m.obj"/><ref id="stone"/></shape>"#;
+    let c = run_with(&scene(body), &fs, &[]).unwrap();
+    assert_eq!(c.desc.objects.len(), 1);
+    assert!(
+        c.desc.materials.keys().any(|k| k == "grey"),
+        "{:?}",
+        c.desc.materials.keys()
+    );
+    // Without the <path>, the mesh is not found, and the message says where it looked.
+    let e = run_with(
+        &scene(r#"<path value="lib"/><shape type="obj"><string name="filename" value="m.obj"/></shape>"#),
+        &fs,
+        &[],
+    )
+    .unwrap_err();
+    assert!(
+        e.message.contains("\"m.obj\"") && e.message.contains("lib/m.obj"),
+        "{e}"
+    );
+    let e =
+        fail(r#"<bsdf type="diffuse" id="a"/><bsdf type="diffuse" id="b"/><alias id="a" as="b"/>"#);
+    assert!(e.message.contains("already an id"), "{e}");
 }

@@ -69,6 +69,11 @@ pub struct Reader<'r> {
     pub ids: Rc<HashMap<String, El>>,
     /// Version of the top file (major, minor).
     pub version: (u32, u32),
+    /// Directories `<path value>` added to the search for files, the latest first (each as
+    /// named relative to the scene: joined to the directory of the file it is in).
+    pub search: Vec<String>,
+    /// `<alias id as>` pairs in file order, with the element for messages.
+    aliases: Vec<El>,
 }
 
 impl<'r> Reader<'r> {
@@ -82,6 +87,44 @@ impl<'r> Reader<'r> {
             files: 0,
             ids: Rc::new(HashMap::new()),
             version: (3, 0),
+            search: Vec::new(),
+            aliases: Vec::new(),
+        }
+    }
+
+    /// The file `name` that `el` (in `el.file`) refers to, and its bytes: looked up as Mitsuba's
+    /// file resolver does, in the `<path>` directories (the latest first), then beside the
+    /// file; an absolute name as it is. Counts against the file limit.
+    ///
+    /// # Errors
+    /// Too many files, or none of the candidates can be read (the message names them).
+    pub fn resource(&mut self, el: &El, name: &str) -> Result<(String, Vec<u8>), FormatError> {
+        self.files += 1;
+        if self.files > self.limits.files {
+            return Err(el.err(format!("more than {} files read", self.limits.files)));
+        }
+        let default = relative_to(&el.file, name);
+        let mut candidates: Vec<String> = if name.starts_with('/') {
+            Vec::new()
+        } else {
+            self.search
+                .iter()
+                .map(|dir| format!("{}/{name}", dir.trim_end_matches('/')))
+                .collect()
+        };
+        candidates.push(default.clone());
+        for c in &candidates[..candidates.len() - 1] {
+            if let Ok(b) = self.res.read(c) {
+                return Ok((c.clone(), b));
+            }
+        }
+        match self.res.read(&default) {
+            Ok(b) => Ok((default, b)),
+            Err(e) if candidates.len() > 1 => Err(el.err(format!(
+                "{default:?}: {e} (also looked in the <path> directories: {})",
+                candidates[..candidates.len() - 1].join(", ")
+            ))),
+            Err(e) => Err(el.err(format!("{default:?}: {e}"))),
         }
     }
 
@@ -90,6 +133,21 @@ impl<'r> Reader<'r> {
         let root = self.read_file(file, bytes, 0, true)?;
         let mut ids = HashMap::new();
         index(&root, &mut ids, true)?;
+        // `<alias id="a" as="b"/>`: the object `a` is also `b` (Mitsuba 3), in file order, so an
+        // alias may name an earlier alias.
+        for al in std::mem::take(&mut self.aliases) {
+            let (Some(id), Some(to)) = (al.attr("id"), al.attr("as")) else {
+                return Err(al.err("needs id and as"));
+            };
+            let target = ids
+                .get(id)
+                .cloned()
+                .ok_or_else(|| al.err(format!("aliases undefined id {id:?}")))?;
+            if ids.contains_key(to) {
+                return Err(al.err(format!("alias {to:?} is already an id")));
+            }
+            ids.insert(to.to_string(), target);
+        }
         self.ids = Rc::new(ids);
         Ok(root)
     }
@@ -185,32 +243,37 @@ impl<'r> Reader<'r> {
                     let name = child
                         .attr("filename")
                         .ok_or_else(|| child.err("needs a filename"))?;
-                    let path = relative_to(file, name);
                     if depth + 1 > self.limits.include_depth {
                         return Err(child.err(format!(
                             "nested deeper than {} files",
                             self.limits.include_depth
                         )));
                     }
-                    if self.open.contains(&path) {
-                        return Err(child.err(format!(
-                            "include cycle ({} -> {path})",
-                            self.open.join(" -> ")
-                        )));
+                    let cycle = |open: &[String], path: &str| {
+                        open.iter().any(|o| o == path).then(|| {
+                            child.err(format!("include cycle ({} -> {path})", open.join(" -> ")))
+                        })
+                    };
+                    // Without <path> directories the file is known before it is read.
+                    if self.search.is_empty()
+                        && let Some(e) = cycle(&self.open, &relative_to(file, name))
+                    {
+                        return Err(e);
                     }
-                    self.files += 1;
-                    if self.files > self.limits.files {
-                        return Err(
-                            child.err(format!("more than {} files read", self.limits.files))
-                        );
+                    let (path, bytes) = self.resource(&child, name)?;
+                    if let Some(e) = cycle(&self.open, &path) {
+                        return Err(e);
                     }
-                    let bytes = self
-                        .res
-                        .read(&path)
-                        .map_err(|e| child.err(format!("{path:?}: {e}")))?;
                     let inc = self.read_file(&path, &bytes, depth + 1, false)?;
                     el.children.extend(inc.children);
                 }
+                "path" => {
+                    let dir = child
+                        .attr("value")
+                        .ok_or_else(|| child.err("needs a value"))?;
+                    self.search.insert(0, relative_to(file, dir));
+                }
+                "alias" => self.aliases.push(child),
                 _ => el.children.push(child),
             }
         }

@@ -244,9 +244,15 @@ impl Ctx<'_> {
                     .strip_prefix("metal-")
                     .and_then(|r| r.rsplit_once('-'))
                     .and_then(|(m, part)| Some((material_map::metal(m)?, part)));
+                let rgb = || {
+                    Some(format!(
+                        "spectrum {n:?} taken as raytree's RGB projection of the tabulated \
+                         spectrum (docs/materials.md)"
+                    ))
+                };
                 match (kind, metal) {
-                    (Kind::Index, Some(((eta, _), "eta"))) => Ok((eta, None)),
-                    (Kind::Index, Some(((_, k), "k"))) => Ok((k, None)),
+                    (Kind::Index, Some(((eta, _), "eta"))) => Ok((eta, rgb())),
+                    (Kind::Index, Some(((_, k), "k"))) => Ok((k, rgb())),
                     _ => match glass(n) {
                         Some(v) => Ok(([v; 3], Some(format!("spectrum {n:?} taken as {v}")))),
                         None => Err(self.err(p, format!("names an unknown spectrum {n:?}"))),

@@ -38,12 +38,15 @@ impl State<'_> {
             })
         };
         let remap = c.bool("remaproughness", true)?;
+        // alpha_v of an anisotropic material, set by `rough`.
+        let alpha_v = std::cell::Cell::new(None);
         let rough = |notes: &mut Vec<String>| -> Result<f64, FormatError> {
             let r = c.float("roughness", 0.0)?;
             let u = c.float("uroughness", r)?;
             let v = c.float("vroughness", r)?;
-            let (a, n) = mm::isotropic(mm::pbrt_alpha(u, remap), mm::pbrt_alpha(v, remap));
+            let (a, v, n) = mm::anisotropic(mm::pbrt_alpha(u, remap), mm::pbrt_alpha(v, remap));
             notes.extend(n);
+            alpha_v.set(v);
             Ok(a)
         };
         let eta = |notes: &mut Vec<String>| -> Result<f64, FormatError> {
@@ -55,7 +58,7 @@ impl State<'_> {
                 None => 1.5,
             })
         };
-        let (desc, note) = match kind {
+        let (mut desc, note) = match kind {
             "diffuse" => (mm::diffuse(color(&mut notes, "reflectance", Kind::Albedo, [0.5; 3])?), None),
             "dielectric" => {
                 let e = eta(&mut notes)?;
@@ -71,13 +74,12 @@ impl State<'_> {
                 let (ename, kname) = if kind == "conductor" { ("eta", "k") } else { ("conductor.eta", "conductor.k") };
                 if let Some((r, n)) = c.color("reflectance", Kind::Albedo)? {
                     notes.extend(n);
-                    notes.push("conductor given by \"reflectance\": a mirror of that reflectance".into());
-                    mm::mirror(r, a)
+                    mm::conductor_reflectance(r, a)
                 } else {
                     let (cu_eta, cu_k) = mm::metal("Cu").expect("copper is tabulated");
                     let e = color(&mut notes, ename, Kind::Index, cu_eta)?;
                     let k = color(&mut notes, kname, Kind::Index, cu_k)?;
-                    mm::conductor(e, k, a)
+                    mm::conductor(e, k, a, [1.0; 3])
                 }
             }
             "coateddiffuse" => {
@@ -97,6 +99,7 @@ impl State<'_> {
             _ => (mm::diffuse([0.5; 3]), Some(format!("{what} is not supported: grey diffuse 0.5 used"))),
         };
         notes.extend(note);
+        desc.roughness_v = alpha_v.get();
         for n in notes {
             self.b.note(file, t.line, format!("{what}: {n}"));
         }

@@ -122,12 +122,10 @@ fn materials_map_with_notes() {
         Material \"coateddiffuse\" \"rgb reflectance\" [0.5 0.5 0.5]\nShape \"sphere\"\n",
     );
     let gold = &c.desc.materials["gold"];
-    // Normal-incidence Fresnel of gold: red far above blue; alpha = sqrt(0.04).
-    assert!(
-        gold.reflectivity[0] > 0.9 && gold.reflectivity[2] < 0.5,
-        "{:?}",
-        gold.reflectivity
-    );
+    // raytree's own gold (the exact conductor Fresnel); alpha = sqrt(0.04).
+    let cond = gold.conductor.as_ref().unwrap();
+    assert_eq!(cond.metal.as_deref(), Some("Au"));
+    assert_eq!(gold.reflectivity, [0.0; 3]);
     assert!((gold.roughness - 0.2).abs() < 1e-15);
     let glass = c
         .desc
@@ -137,12 +135,32 @@ fn materials_map_with_notes() {
         .unwrap();
     // remaproughness false: alpha is the roughness.
     assert_eq!(glass.roughness, 0.09);
-    assert!(
-        c.notes
-            .iter()
-            .any(|n| n.message.contains("conductor") && n.line == 6)
-    );
+    assert!(c.notes.iter().any(|n| {
+        n.line == 6
+            && n.message
+                .contains("spectrum \"metal-Au-eta\" taken as raytree's RGB projection")
+    }));
     assert!(c.notes.iter().any(|n| n.message.contains("coated diffuse")));
+    assert!(!c.notes.iter().any(|n| n.message.contains("mirror")));
+}
+
+#[test]
+fn conductors_by_reflectance_and_anisotropic_roughness() {
+    let c = run(
+        "Material \"conductor\" \"rgb reflectance\" [0.5 0.5 0.5] \"float uroughness\" 0.04 \"float vroughness\" 0.16\n\
+         Shape \"sphere\"\nMaterial \"conductor\"\nShape \"sphere\"\n",
+    );
+    let m = &c.desc.materials[c.desc.objects[0].material()];
+    let k = m.conductor.as_ref().unwrap().k.unwrap();
+    // pbrt-v4: eta 1, k = 2 sqrt(r) / sqrt(1 - r).
+    assert!((k[0] - 2.0).abs() < 1e-12, "{k:?}");
+    assert_eq!((m.roughness, m.roughness_v), (0.2, Some(0.4)));
+    assert!(c.notes.iter().any(|n| n.message.contains("dpdu")));
+    // The default conductor is raytree's copper, exactly.
+    let cu = &c.desc.materials[c.desc.objects[1].material()];
+    assert_eq!(cu.conductor.as_ref().unwrap().metal.as_deref(), Some("Cu"));
+    let s = validate(&c.desc, "", &mut |_| Err(String::new())).unwrap();
+    assert!(s.materials.iter().all(|m| m.conductor.is_some()));
 }
 
 #[test]
