@@ -5,7 +5,7 @@
 //! Err, never a panic.
 
 mod common;
-use common::{fails, fixture, raytree, stderr};
+use common::{decode_base64, fails, fixture, fixture_glb, raytree, stderr};
 use proptest::prelude::*;
 use serde_json::Value;
 use std::path::Path;
@@ -17,59 +17,6 @@ fn render_exr(scene: &str, dir: &Path, out: &str) -> Vec<u8> {
     );
     assert!(o.status.success(), "{scene}: {}", stderr(&o));
     std::fs::read(dir.join(out)).unwrap()
-}
-
-/// The fixture as a GLB: its data-URI buffer moved into the BIN chunk.
-fn fixture_glb() -> Vec<u8> {
-    let text = std::fs::read_to_string(fixture("formats/cornell-box.gltf")).unwrap();
-    let mut v: Value = serde_json::from_str(&text).unwrap();
-    let uri = v["buffers"][0]["uri"].as_str().unwrap().to_string();
-    let bin = decode_base64(uri.split_once(',').unwrap().1);
-    v["buffers"][0].as_object_mut().unwrap().remove("uri");
-    glb(&v, &bin)
-}
-
-fn decode_base64(s: &str) -> Vec<u8> {
-    let val = |c: u8| match c {
-        b'A'..=b'Z' => c - b'A',
-        b'a'..=b'z' => c - b'a' + 26,
-        b'0'..=b'9' => c - b'0' + 52,
-        b'+' => 62,
-        _ => 63,
-    };
-    let s: Vec<u8> = s.bytes().filter(|&c| c != b'=').collect();
-    let mut out = Vec::new();
-    for c in s.chunks(4) {
-        let n = c
-            .iter()
-            .enumerate()
-            .fold(0u32, |a, (k, &x)| a | u32::from(val(x)) << (18 - 6 * k));
-        for k in 0..c.len() - 1 {
-            out.push((n >> (16 - 8 * k)) as u8);
-        }
-    }
-    out
-}
-
-fn glb(json: &Value, bin: &[u8]) -> Vec<u8> {
-    let mut j = json.to_string().into_bytes();
-    while !j.len().is_multiple_of(4) {
-        j.push(b' ');
-    }
-    let mut b = bin.to_vec();
-    while !b.len().is_multiple_of(4) {
-        b.push(0);
-    }
-    let mut out = b"glTF".to_vec();
-    out.extend(2u32.to_le_bytes());
-    out.extend(((28 + j.len() + b.len()) as u32).to_le_bytes());
-    out.extend((j.len() as u32).to_le_bytes());
-    out.extend(b"JSON");
-    out.extend(j);
-    out.extend((b.len() as u32).to_le_bytes());
-    out.extend(b"BIN\0");
-    out.extend(b);
-    out
 }
 
 #[test]

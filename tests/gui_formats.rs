@@ -1,6 +1,8 @@
-//! The inspector opens pbrt-v4 and Mitsuba 3 scenes through its file hook (binary meshes by
-//! `Files::read_bytes`), and its status line says what the conversion approximated.
+//! The inspector opens pbrt-v4, Mitsuba 3 and glTF scenes through its file hook (binary meshes
+//! and `.glb` scenes by `Files::read_bytes`), and its status line says what the conversion
+//! approximated.
 
+mod common;
 use raytree::gui::{Files, Session};
 use std::path::{Path, PathBuf};
 use std::sync::Arc;
@@ -69,4 +71,22 @@ fn a_bad_pbrt_scene_shows_its_position() {
         e.contains("bad.pbrt:2:1: Shape \"torus\": unknown shape"),
         "{e}"
     );
+}
+
+/// A binary glTF opens too: it is read as bytes (every other scene as text).
+#[test]
+fn the_inspector_opens_a_glb() {
+    let dir = tempfile::tempdir().unwrap();
+    let p = dir.path().join("cb.glb");
+    std::fs::write(&p, common::fixture_glb()).unwrap();
+    let s = Session::new(
+        Some(p),
+        Box::new(Disk),
+        Box::new(|_| Ok(())),
+        Arc::new(|| {}),
+    );
+    assert!(s.doc.error.is_none(), "{:?}", s.doc.error);
+    assert!(s.doc.status.starts_with("loaded"), "{}", s.doc.status);
+    let gltf = open("cornell-box.gltf");
+    assert_eq!(s.doc.scene.objects.len(), gltf.doc.scene.objects.len());
 }

@@ -63,18 +63,25 @@ impl Session {
     /// Read, validate and adjust the scene at `path`.
     fn read(&self, path: &Path) -> Result<(Scene, Source, Vec<crate::formats::Note>), String> {
         let label = path.display();
-        let src = self
-            .files
-            .read(path)
-            .map_err(|e| format!("cannot read scene {label}: {e}"))?;
+        // A binary glTF (`.glb`) is read as bytes; every other scene is text.
+        let binary = path
+            .extension()
+            .is_some_and(|e| e.eq_ignore_ascii_case("glb"));
+        let src = if binary {
+            self.files.read_bytes(path)
+        } else {
+            self.files.read(path).map(String::into_bytes)
+        }
+        .map_err(|e| format!("cannot read scene {label}: {e}"))?;
         if src.len() as u64 > crate::input::MAX_SCENE_BYTES {
             return Err(format!(
                 "cannot read scene {label}: larger than the limit of {} MiB",
                 crate::input::MAX_SCENE_BYTES >> 20
             ));
         }
-        let format = crate::formats::Format::detect(&path.to_string_lossy(), src.as_bytes());
+        let format = crate::formats::Format::detect(&path.to_string_lossy(), &src);
         let (mut scene, notes) = if format == crate::formats::Format::Json {
+            let src = String::from_utf8_lossy(&src);
             // Mesh files are read through the same hook, relative to the scene's directory.
             let dir = path.parent().unwrap_or(Path::new(""));
             let mut load_mesh = |file: &str| {
@@ -95,13 +102,13 @@ impl Session {
         Ok((scene, source, notes))
     }
 
-    /// A pbrt or Mitsuba scene: converted (its includes and meshes read through the hook,
+    /// A pbrt, Mitsuba or glTF scene: converted (its includes and meshes read through the hook,
     /// relative to the scene) and validated; the notes say what was approximated.
     fn read_foreign(
         &self,
         path: &Path,
         format: crate::formats::Format,
-        src: &str,
+        src: &[u8],
     ) -> Result<(Scene, Vec<crate::formats::Note>), String> {
         let name = path.to_string_lossy().into_owned();
         let mut res = |f: &str| {
@@ -109,7 +116,7 @@ impl Session {
                 .read_bytes(Path::new(f))
                 .map_err(|e| format!("cannot read {f}: {e}"))
         };
-        let c = crate::formats::convert(format, &name, src.as_bytes(), &[], &mut res)
+        let c = crate::formats::convert(format, &name, src, &[], &mut res)
             .map_err(|e| crate::input::escape_controls(&e.to_string()).into_owned())?;
         let scene = crate::scene::validate(&c.desc, "", &mut |_| Err(String::new()))
             .map_err(|e| format!("{name}: the converted scene is invalid: {e}"))?;
