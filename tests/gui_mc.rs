@@ -183,6 +183,38 @@ fn whitted_vs_path_in_the_inspector_names_what_whitted_misses() {
     assert_eq!(top.0, "caustics", "{summary}");
     let _ = h.get_by_label_contains("what Whitted misses here");
     let _ = h.get_by_label("path - Whitted");
+    // Issue 32: switching the integrator leaves the comparison current (it renders both)...
+    let mut settings = h.state().session.doc.scene.settings;
+    settings.integrator = match settings.integrator {
+        raytree::scene::IntegratorKind::Path => raytree::scene::IntegratorKind::Whitted,
+        _ => raytree::scene::IntegratorKind::Path,
+    };
+    h.state_mut()
+        .session
+        .apply(raytree::gui::model::document::Command::SetSettings(
+            settings,
+        ));
+    settle(&mut h);
+    assert!(!has(&h, "made before the last settings change"));
+    let _ = h.get_by_label("compare again");
+    // ...a change of anything else marks it as made before...
+    settings.max_depth += 1;
+    h.state_mut()
+        .session
+        .apply(raytree::gui::model::document::Command::SetSettings(
+            settings,
+        ));
+    settle(&mut h);
+    assert!(has(&h, "made before the last settings change"));
+    // ...and opening another scene clears it, images and numbers.
+    h.state_mut()
+        .session
+        .apply(raytree::gui::model::document::Command::Open(
+            "other.json".into(),
+        ));
+    settle(&mut h);
+    assert_eq!(h.state().versus(), (None, false));
+    assert!(!has(&h, "path - Whitted"));
 }
 
 /// The "denoised image" toggle on an adaptive scene (`settings.adaptive`): the guide pass goes

@@ -3,24 +3,53 @@
 //! with the signed difference, and the difference broken down by light transport class ("what
 //! Whitted misses here: 79% caustics, 21% indirect").
 
+use crate::Scene;
 use crate::aov::{Versus, versus};
 use crate::gui::model::document::Document;
 use egui::{ColorImage, TextureHandle, TextureOptions};
+use std::path::PathBuf;
 use std::sync::Arc;
 use std::sync::mpsc::{Receiver, channel};
 
-/// The comparison the panel shows, for the render generation it was made from.
+/// What a comparison was made from: the scene file and the scene as set.
+#[derive(Clone)]
+struct Made {
+    path: Option<PathBuf>,
+    scene: Arc<Scene>,
+}
+
+/// The comparison the panel shows.
 struct Done {
-    generation: u64,
+    made: Made,
     summary: String,
     textures: [TextureHandle; 3],
+    /// The render generation its staleness was last checked at, and whether it was stale then.
+    checked: Option<(u64, bool)>,
 }
 
 /// The "Whitted vs path" section: its running job and its last result.
 #[derive(Default)]
 pub struct VersusPanel {
-    pending: Option<(u64, Receiver<Result<Versus, String>>)>,
+    pending: Option<(Made, Receiver<Result<Versus, String>>)>,
     done: Option<Done>,
+}
+
+/// Whether a comparison made from `a` still shows `b`: the same scene in every respect but the
+/// integrator (the comparison renders both, so switching the integrator leaves it current; a
+/// sampler left to the integrator's default is the same too).
+fn same_comparison(a: &Scene, b: &Scene) -> bool {
+    if std::ptr::eq(a, b) {
+        return true;
+    }
+    let mut settings = a.settings;
+    settings.integrator = b.settings.integrator;
+    settings == b.settings
+        && a.camera == b.camera
+        && a.background == b.background
+        && a.ambient == b.ambient
+        && a.materials == b.materials
+        && a.objects == b.objects
+        && a.lights == b.lights
 }
 
 fn texture(ctx: &egui::Context, name: &str, w: u32, rgb: &[u8]) -> TextureHandle {
@@ -42,21 +71,52 @@ impl VersusPanel {
         self.done.as_ref().map(|d| d.summary.as_str())
     }
 
+    /// Forget a comparison (finished or running) made from another scene file than the one
+    /// open now (issue 32: after opening another scene the panel kept the previous scene's
+    /// images and numbers).
+    fn forget_other_files(&mut self, doc: &Document) {
+        let path = &doc.source.path;
+        if self.done.as_ref().is_some_and(|d| &d.made.path != path) {
+            self.done = None;
+        }
+        if self.pending.as_ref().is_some_and(|p| &p.0.path != path) {
+            self.pending = None;
+        }
+    }
+
+    /// Whether the comparison shown was made from another scene than the one set now (checked
+    /// once per render generation).
+    fn stale(&mut self, doc: &Document) -> bool {
+        let generation = doc.progress.generation;
+        let Some(done) = &mut self.done else {
+            return false;
+        };
+        match done.checked {
+            Some((g, stale)) if g == generation => stale,
+            _ => {
+                let stale = !same_comparison(&done.made.scene, &doc.scene);
+                done.checked = Some((generation, stale));
+                stale
+            }
+        }
+    }
+
     fn poll(&mut self, ctx: &egui::Context) {
-        let Some((generation, rx)) = &self.pending else {
+        let Some((made, rx)) = &self.pending else {
             return;
         };
         let Ok(result) = rx.try_recv() else {
             return;
         };
-        let generation = *generation;
+        let made = made.clone();
         self.pending = None;
         self.done = Some(match result {
             Ok(v) => {
                 let w = v.whitted.width;
                 let diff: Vec<u8> = v.difference_rgb8().0.into_iter().flatten().collect();
                 Done {
-                    generation,
+                    made,
+                    checked: None,
                     summary: v.summary(),
                     textures: [
                         texture(ctx, "versus-whitted", w, &v.whitted.to_srgb8()),
@@ -66,7 +126,8 @@ impl VersusPanel {
                 }
             }
             Err(e) => Done {
-                generation,
+                made,
+                checked: None,
                 summary: format!("the comparison failed: {e}"),
                 textures: std::array::from_fn(|_| texture(ctx, "versus-empty", 1, &[0, 0, 0])),
             },
@@ -77,11 +138,12 @@ impl VersusPanel {
     /// three images (Whitted, path, path - Whitted) and the breakdown.
     pub fn ui(&mut self, ui: &mut egui::Ui, doc: &Document) {
         let ctx = ui.ctx().clone();
+        self.forget_other_files(doc);
         self.poll(&ctx);
-        let generation = doc.progress.generation;
+        let stale = self.stale(doc);
         ui.horizontal_wrapped(|ui| {
             let label = match &self.done {
-                Some(d) if d.generation == generation => "compare again",
+                Some(_) if !stale => "compare again",
                 _ => "compare Whitted and path",
             };
             if ui
@@ -105,7 +167,11 @@ impl VersusPanel {
                     },
                 );
                 if spawned.is_ok() {
-                    self.pending = Some((generation, rx));
+                    let made = Made {
+                        path: doc.source.path.clone(),
+                        scene: Arc::clone(&doc.scene),
+                    };
+                    self.pending = Some((made, rx));
                 }
             }
             if self.running() {
@@ -116,7 +182,7 @@ impl VersusPanel {
         let Some(done) = &self.done else {
             return;
         };
-        if done.generation != generation {
+        if stale {
             ui.small("(made before the last settings change)");
         }
         let width = (ui.available_width() / 3.0 - 6.0).max(40.0);
