@@ -162,6 +162,13 @@ fn the_lpe_filter_keeps_the_matching_paths_and_shows_a_bad_expression_in_red() {
     field.focus();
     field.type_text("C<RD><TS><TS>L");
     h.run();
+    // Issue 32: typed, not applied (a half-typed expression must not filter the tree), and the
+    // panel says what is in force.
+    assert_eq!(h.state().session.doc.tree.as_ref(), Some(&full));
+    assert!(h.state().session.doc.lpe.active.is_none());
+    let _ = h.get_by_label_contains("in force: none");
+    h.key_press(egui::Key::Enter);
+    h.run();
     h.run();
     let expected =
         filter_tree_all_samples(&full, &[Lpe::parse("C<RD><TS><TS>L").unwrap()]).unwrap();
@@ -177,8 +184,13 @@ fn the_lpe_filter_keeps_the_matching_paths_and_shows_a_bad_expression_in_red() {
         expected.tree.samples.len()
     );
     diagram_is_current(&h);
-    // A bad expression: the error with its column, in red; the last good filter stays.
-    h.get_by_label("LPE filter").type_text("<");
+    // A bad expression: the error with its column, in red, while it is typed and after Enter;
+    // the last good filter stays.
+    let field = h.get_by_label("LPE filter");
+    field.focus();
+    field.type_text("<");
+    h.run();
+    h.key_press(egui::Key::Enter);
     h.run();
     let doc = &h.state().session.doc;
     let err = doc
@@ -188,6 +200,7 @@ fn the_lpe_filter_keeps_the_matching_paths_and_shows_a_bad_expression_in_red() {
         .expect("C<RD><TS><TS>L< does not parse");
     let _ = h.get_by_label_contains(&format!("column {}", err.column));
     assert_eq!(doc.tree.as_ref(), Some(&expected.tree));
+    let _ = h.get_by_label_contains("in force: C<RD><TS><TS>L");
     // Cleared: the whole tree again.
     h.state_mut().session.apply(Command::SetLpe(String::new()));
     h.run();
@@ -280,4 +293,23 @@ fn all_samples_in_the_diagram() {
     )
     .unwrap();
     assert!(d.rays.len() > one.rays.len());
+}
+
+/// Issue 32: typing `C<RD>S+K` never applies its valid prefix `C<RD>S+` (which matched 0 of
+/// 116 paths and hid the firefly sentence): after Enter the error shows and no filter is in
+/// force.
+#[test]
+fn a_typo_never_applies_its_half_typed_prefix() {
+    let mut h = caustic();
+    let full = h.state().session.doc.tree.clone().unwrap();
+    let field = h.get_by_label("LPE filter");
+    field.focus();
+    field.type_text("C<RD>S+K");
+    h.run();
+    h.key_press(egui::Key::Enter);
+    h.run();
+    let doc = &h.state().session.doc;
+    assert!(doc.lpe.active.is_none(), "{:?}", doc.lpe.active);
+    assert!(doc.lpe.error.is_some());
+    assert_eq!(doc.tree.as_ref(), Some(&full));
 }

@@ -283,8 +283,10 @@ pub enum Command {
     SetStep(Step),
     /// Run the acne lab with these parameters (cancelling its last job).
     SetLab(super::lab::LabParams),
-    /// New text in the LPE filter field (applied when it parses; empty: no filter).
+    /// Apply this text as the LPE filter (when it parses; empty: no filter).
     SetLpe(String),
+    /// The LPE filter field's text while it is typed (its error shown, nothing applied).
+    EditLpe(String),
     /// Progressive rendering's options (re-renders).
     SetProgressive(super::progressive::Options),
 }

@@ -28,6 +28,26 @@ pub struct LpeState {
 }
 
 impl LpeState {
+    /// The field's text as it is being typed: parsed to show its error, not applied (issue 32:
+    /// applying every keystroke applied the half-typed `C<RD>S+` of `C<RD>S+K`). The filter in
+    /// force changes only through [`LpeState::set_text`] (Enter, or leaving the field).
+    pub fn edit(&mut self, text: String) {
+        self.field = text;
+        let t = self.field.trim();
+        self.error = if t.is_empty() {
+            None
+        } else {
+            Lpe::parse(t).err()
+        };
+    }
+
+    /// Whether the field shows something other than the filter in force (typed, not applied).
+    #[must_use]
+    pub fn pending(&self) -> bool {
+        let active = self.active.as_ref().map_or("", |l| l.as_str());
+        self.field.trim() != active
+    }
+
     /// Take new text: parse it (an empty field removes the filter). Returns whether the filter
     /// applied changed.
     pub fn set_text(&mut self, text: String) -> bool {

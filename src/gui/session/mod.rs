@@ -301,6 +301,7 @@ impl Session {
             }
             Command::Unpin => self.doc.pin = None,
             Command::SetStep(step) => self.doc.step = step,
+            Command::EditLpe(text) => self.doc.lpe.edit(text),
             Command::SetLpe(text) => {
                 if self.doc.lpe.set_text(text) {
                     // The filter renumbers nodes: keep the same ray selected (or its nearest

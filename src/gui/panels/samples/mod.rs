@@ -140,12 +140,22 @@ fn lpe_ui(ui: &mut egui::Ui, doc: &Document, cmds: &mut Vec<Command>) {
             )
             .labelled_by(label.id)
             .on_hover_text(
-                "keep only the paths matching this light path expression (OSL grammar, as raytree trace --lpe); empty: all",
+                "keep only the paths matching this light path expression (OSL grammar, as raytree trace --lpe); empty: all. Applied on Enter, or on leaving the field",
             );
         if r.changed() {
+            cmds.push(Command::EditLpe(text.clone()));
+        }
+        // Applied once typed (Enter or leaving the field), never a half-typed prefix.
+        if r.lost_focus() {
             cmds.push(Command::SetLpe(text));
         }
     });
+    if st.pending() {
+        let in_force = st.active.as_ref().map_or("none", |l| l.as_str());
+        ui.small(format!(
+            "in force: {in_force} (press Enter to apply the field)"
+        ));
+    }
     if let Some(e) = &st.error {
         let caret = format!("{}^", " ".repeat(e.column.saturating_sub(1)));
         ui.label(RichText::new(e.to_string()).color(ERROR));
