@@ -313,3 +313,33 @@ fn a_typo_never_applies_its_half_typed_prefix() {
     assert!(doc.lpe.error.is_some());
     assert_eq!(doc.tree.as_ref(), Some(&full));
 }
+
+/// Issue 32: the selection follows its sample, not its node number, when the tree is rebuilt
+/// under another integrator: sample 4's camera ray under path is sample 4's camera ray under
+/// Whitted (by number it was a depth-16 refracted ray there).
+#[test]
+fn the_selection_keeps_its_sample_across_integrators() {
+    let mut h = caustic();
+    let tree = h.state().session.doc.tree.clone().unwrap();
+    let s4 = tree
+        .samples
+        .iter()
+        .find(|s| s.index == 4)
+        .expect("sample 4")
+        .root;
+    h.state_mut().session.apply(Command::SelectNode(Some(s4)));
+    let mut settings = h.state().session.doc.scene.settings;
+    settings.integrator = raytree::scene::IntegratorKind::Whitted;
+    h.state_mut().session.apply(Command::SetSettings(settings));
+    h.run();
+    let doc = &h.state().session.doc;
+    let t = doc.tree.as_ref().unwrap();
+    let id = doc.node.expect("a selection");
+    assert_eq!(t.node(id).kind, raytree::RayKind::Camera);
+    let s = t
+        .samples
+        .iter()
+        .find(|s| s.root == id)
+        .expect("a sample's camera ray");
+    assert_eq!(s.index, 4);
+}

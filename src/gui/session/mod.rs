@@ -213,15 +213,20 @@ impl Session {
     }
 
     fn select(&mut self, [x, y]: [u32; 2]) {
-        let keep = self.doc.node;
+        // Where the selected ray sits (its sample and its path from the sample's camera ray),
+        // not its number: another integrator or setting numbers the rays differently (issue
+        // 32: #19 was sample 4's camera ray under path, a depth-16 refracted ray under Whitted).
+        let place = self
+            .doc
+            .node
+            .and_then(|id| place_of(self.doc.tree.as_ref()?, id));
         self.doc.selection = Some([x, y]);
         self.doc.lpe.full = None;
         self.doc.tree = trace_pixel(&self.doc.scene, x, y);
         self.refilter();
         let n = self.doc.tree.as_ref().map_or(0, |t| t.nodes.len());
-        self.doc.node = keep
-            .filter(|id| id.index() < n)
-            .or(Some(crate::NodeId(0)).filter(|_| n > 0));
+        let kept = place.and_then(|p| find_place(self.doc.tree.as_ref()?, &p));
+        self.doc.node = kept.or(Some(crate::NodeId(0)).filter(|_| n > 0));
     }
 
     /// Apply the LPE filter to the selected pixel's unfiltered tree (a new tree version).
@@ -389,3 +394,37 @@ fn diagram_bytes(doc: &Document, kind: ExportKind) -> Result<(Vec<u8>, Option<St
 
 mod deliveries;
 mod lab;
+
+/// Where a ray sits in a pixel's tree: its sample's index and, from that sample's camera ray
+/// down, the child index and kind of each ray on the way.
+struct Place {
+    sample: u32,
+    steps: Vec<(usize, crate::RayKind)>,
+}
+
+/// The place of node `id` in `tree`.
+fn place_of(tree: &crate::RayTree, id: crate::NodeId) -> Option<Place> {
+    let mut steps = Vec::new();
+    let mut at = id;
+    while let Some(parent) = tree.nodes.get(at.index())?.parent {
+        let k = tree.node(parent).children.iter().position(|&c| c == at)?;
+        steps.push((k, tree.node(at).kind));
+        at = parent;
+    }
+    steps.reverse();
+    let sample = tree.samples.iter().find(|s| s.root == at)?.index;
+    Some(Place { sample, steps })
+}
+
+/// The ray at `place` in `tree`, or the deepest ray on its way that `tree` has (the same child
+/// of the same kind at each step): at least the sample's camera ray, if the sample exists.
+fn find_place(tree: &crate::RayTree, place: &Place) -> Option<crate::NodeId> {
+    let mut at = tree.samples.iter().find(|s| s.index == place.sample)?.root;
+    for &(k, kind) in &place.steps {
+        match tree.node(at).children.get(k) {
+            Some(&c) if tree.node(c).kind == kind => at = c,
+            _ => break,
+        }
+    }
+    Some(at)
+}
