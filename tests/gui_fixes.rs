@@ -295,3 +295,34 @@ fn a_scene_that_fails_on_start_keeps_its_name_and_error() {
     assert!(has(&h, "scenes/bad.json:1:"), "the error names the file");
     assert!(has(&h, "scenes/bad.json did not load"));
 }
+
+/// Issue 32 item 5: the Scene section's tree-growth line stays (greyed) while the next render
+/// runs, so the controls below it do not move up and back (a click meant for one control hit
+/// another).
+#[test]
+fn the_layout_does_not_jump_while_rendering() {
+    let files = MemFiles::default();
+    let mut h = classic_harness(&files);
+    assert!(
+        h.state().session.doc.progress.growth.is_some(),
+        "a growth line"
+    );
+    let top = |h: &Harness<'static, InspectorApp>| h.get_by_label("integrator").rect().top();
+    let before = top(&h);
+    let mut settings = h.state().session.doc.scene.settings;
+    settings.max_depth -= 1;
+    h.state_mut()
+        .session
+        .apply(raytree::gui::model::document::Command::SetSettings(
+            settings,
+        ));
+    h.step();
+    let doc = &h.state().session.doc;
+    assert!(
+        doc.progress.growth.is_some(),
+        "the line is kept while rendering"
+    );
+    assert!((top(&h) - before).abs() < 0.5, "{} -> {}", before, top(&h));
+    settle(&mut h);
+    assert!(h.state().session.doc.progress.growth_current);
+}

@@ -338,7 +338,7 @@ impl WebApp {
             "rendered": doc.rendered() && p.seconds.is_some(),
             "image_ms": p.seconds.map(|s| s * 1e3),
             "stats_ms": p.stats_seconds.map(|s| s * 1e3),
-            "growth": p.growth,
+            "growth": p.growth.as_ref().filter(|_| p.growth_current),
             "selection": doc.selection,
             "tree_nodes": doc.tree.as_ref().map(|t| t.nodes.len()),
             "error": doc.error,

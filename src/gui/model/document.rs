@@ -75,8 +75,12 @@ pub struct Progress {
     pub stats_rows: u32,
     /// Seconds of the last finished statistics pass.
     pub stats_seconds: Option<f64>,
-    /// How the ray tree grows and what the automatic cut saves (after the statistics).
+    /// How the ray tree grows and what the automatic cut saves (after the statistics). Kept
+    /// while the next render runs (marked by `growth_current`), so the Scene section does not
+    /// shrink and move every control below it (issue 32).
     pub growth: Option<String>,
+    /// Whether `growth` is of the current render.
+    pub growth_current: bool,
 }
 
 /// Step along a ray: where the point stands on the selected ray and how deep the recursion is
@@ -213,6 +217,7 @@ impl Document {
                 stats_rows: 0,
                 stats_seconds: None,
                 growth: None,
+                growth_current: false,
             },
             progressive: Default::default(),
             path_field: source

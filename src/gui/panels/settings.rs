@@ -30,8 +30,16 @@ pub fn scene_ui(ui: &mut egui::Ui, doc: &Document, cmds: &mut Vec<Command>) {
     if let Some(e) = &doc.error {
         ui.add(egui::Label::new(RichText::new(e).color(ERROR)).wrap());
     }
+    // Kept, greyed, while the next render runs: the space stays reserved (issue 32: the line
+    // vanished while rendering and every control below moved up by about 40 px).
     if let Some(g) = &doc.progress.growth {
-        ui.add(egui::Label::new(RichText::new(g).small()).wrap());
+        let text = RichText::new(g).small();
+        let text = if doc.progress.growth_current {
+            text
+        } else {
+            text.weak()
+        };
+        ui.add(egui::Label::new(text).wrap());
     }
 }
 

@@ -37,7 +37,7 @@ impl Session {
             d.rendered()
                 && d.progress.seconds.is_some()
                 && d.progress.stats_seconds.is_some()
-                && d.progress.growth.is_some()
+                && d.progress.growth_current
         });
     }
 
@@ -84,7 +84,10 @@ impl Session {
                 self.doc.progress.stats_rows = self.doc.image.height;
                 self.doc.progress.stats_seconds = Some(seconds);
             }
-            Delivery::Growth { line, .. } => self.doc.progress.growth = Some(line),
+            Delivery::Growth { line, .. } => {
+                self.doc.progress.growth = Some(line);
+                self.doc.progress.growth_current = true;
+            }
             Delivery::Pass { report, .. } => self.doc.progressive.report = Some(report),
         }
         true

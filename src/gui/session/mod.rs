@@ -206,7 +206,7 @@ impl Session {
         self.doc.progress.seconds = None;
         self.doc.progress.stats_rows = 0;
         self.doc.progress.stats_seconds = None;
-        self.doc.progress.growth = None;
+        self.doc.progress.growth_current = false;
         if self.doc.lab.started {
             self.start_lab();
         }
