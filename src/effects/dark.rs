@@ -33,7 +33,7 @@ pub fn dark_emitters(scene: &Scene) -> Vec<String> {
                 })
             })
         })
-        .map(|e| scene.light_name(0, &e).to_string())
+        .filter_map(|e| Some(scene.objects[e.object()?].name.clone()))
         .collect()
 }
 

@@ -293,20 +293,27 @@ fn roulette_gain(tree: &RayTree, chain: &[NodeId]) -> f64 {
         .product()
 }
 
-/// Whether `id` ends a caustic found by BSDF sampling (`C.*[DG]S+L`, a ray that found the
-/// emitter, not a shadow ray) with a positive contribution.
+/// A caustic: a diffuse or glossy bounce, then a specular chain, then the light.
+const CAUSTIC_LPE: &str = "C.*[DG]S+L";
+
+/// Whether node `n` (its path record `p`) is a ray that found an emitter by BSDF sampling: not
+/// a shadow ray, not the camera ray, its LPE ending at the light.
+fn found_emission(n: &crate::tree::RayNode, p: &crate::tree::PathInfo) -> bool {
+    n.kind != RayKind::Shadow && n.depth > 0 && p.lpe.ends_with('L')
+}
+
+/// Whether `id` ends a caustic found by BSDF sampling ([`CAUSTIC_LPE`], [`found_emission`])
+/// with a positive contribution.
 fn is_caustic_end(tree: &RayTree, id: NodeId, caustic: &Lpe) -> bool {
     let n = tree.node(id);
-    n.kind != RayKind::Shadow
-        && n.depth > 0
-        && n.path.as_ref().is_some_and(|p| {
-            p.lpe.ends_with('L') && luminance(p.contribution) > 0.0 && caustic.matches(&p.lpe)
-        })
+    n.path.as_ref().is_some_and(|p| {
+        found_emission(n, p) && luminance(p.contribution) > 0.0 && caustic.matches(&p.lpe)
+    })
 }
 
 /// How many of the tree's samples have a caustic path found by BSDF sampling.
 fn caustic_samples(tree: &RayTree) -> usize {
-    let Ok(caustic) = Lpe::parse("C.*[DG]S+L") else {
+    let Ok(caustic) = Lpe::parse(CAUSTIC_LPE) else {
         return 0;
     };
     tree.samples
@@ -337,9 +344,8 @@ fn density(p: Option<Pdf>) -> Option<f64> {
 fn blame(tree: &RayTree, chain: &[NodeId], end: NodeId) -> Option<(NodeId, Cause)> {
     let e = tree.node(end);
     let info = e.path.as_ref()?;
-    let found_emission = e.kind != RayKind::Shadow && e.depth > 0 && info.lpe.ends_with('L');
-    if found_emission {
-        let caustic = Lpe::parse("C.*[DG]S+L").ok()?;
+    if found_emission(e, info) {
+        let caustic = Lpe::parse(CAUSTIC_LPE).ok()?;
         if caustic.matches(&info.lpe) {
             let bounce = chain.iter().rev().copied().find(|id| {
                 tree.node(*id).path.as_ref().is_some_and(|p| {

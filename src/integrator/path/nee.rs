@@ -91,7 +91,7 @@ impl DirectKernel for PathKernel<'_> {
         si: &SurfaceInteraction,
         (ls, eval): (&LightSample, &LightEval),
     ) {
-        let reflect = (eval.side == si.n) == (si.wo.dot(si.n) > 0.0);
+        let reflect = reflects(si, eval.side);
         let light_pdf = self.select * ls.pdf;
         node.path = Some(PathInfo {
             lobe: None,
@@ -183,7 +183,7 @@ impl PathTracer<'_> {
         }
         let c = beta * d.local;
         if R::PATHS {
-            let reflect = (d.side == si.n) == (si.wo.dot(si.n) > 0.0);
+            let reflect = reflects(si, d.side);
             rec.contribution(lpe, lobe_event(bsdf, reflect), 'L', c);
         }
         rec.update(d.id, |node| {
@@ -193,6 +193,12 @@ impl PathTracer<'_> {
         });
         (c, d.local)
     }
+}
+
+/// Whether a light sample whose shadow ray leaves from the side of normal `side` is on the
+/// viewer's side of `si` (a reflection, not a transmission).
+fn reflects(si: &SurfaceInteraction, side: glam::DVec3) -> bool {
+    (side == si.n) == (si.wo.dot(si.n) > 0.0)
 }
 
 /// The event of a light sample's scattering: `<RD>` when the BSDF has a Lambert lobe and the
