@@ -261,6 +261,14 @@ fn node_summary(n: &RayNode) -> String {
         return s;
     }
     match &n.hit {
+        None if n.kind == RayKind::Connection => {
+            let seen = if n.end == EndReason::Blocked {
+                "blocked"
+            } else {
+                "unblocked"
+            };
+            let _ = write!(s, " -> the camera: {seen}");
+        }
         None => s.push_str(" -> miss (background)"),
         Some(h) => {
             let _ = write!(
@@ -319,7 +327,12 @@ fn node_summary(n: &RayNode) -> String {
             w(a.factor)
         );
     }
-    let _ = write!(s, "  local {}  L {}", rgb(n.local), rgb(n.radiance));
+    // A light subpath carries flux from the light, not radiance back to the camera.
+    if matches!(n.kind, RayKind::Light | RayKind::Connection) {
+        let _ = write!(s, "  flux {}", rgb(n.throughput));
+    } else {
+        let _ = write!(s, "  local {}  L {}", rgb(n.local), rgb(n.radiance));
+    }
     if n.truncated != Rgb::ZERO {
         let _ = write!(s, "  cut weight {}", w(n.truncated));
     }
@@ -330,6 +343,45 @@ fn node_summary(n: &RayNode) -> String {
         let _ = write!(s, "  ({})", end_text(n.end));
     }
     s
+}
+
+/// Light tracing's splats of the pixel, each with the light path that made it.
+fn splats_text(tree: &RayTree, out: &mut String) {
+    if tree.splats.is_empty() {
+        return;
+    }
+    let sum = crate::render::splat::splat_sum(&tree.splats);
+    let _ = writeln!(
+        out,
+        "{} light-path splats landed here (sum {}, divided by {}: {})",
+        tree.splats.len(),
+        rgb(sum),
+        tree.splat_divisor,
+        rgb(sum / f64::from(tree.splat_divisor.max(1)))
+    );
+    let mut shown = None;
+    for s in &tree.splats {
+        let _ = writeln!(
+            out,
+            "splat of light path {} (seeded by pixel {},{} sample {}) at ({}, {})  strategy s={} t={}  {}  contribution {}  MIS weight {}",
+            s.path,
+            s.seed[0],
+            s.seed[1],
+            s.seed[2],
+            num(s.film[0], 3),
+            num(s.film[1], 3),
+            s.strategy[0],
+            s.strategy[1],
+            s.lpe,
+            rgb(s.contribution),
+            num(s.mis_weight, 3)
+        );
+        // A light path that lands here twice is printed once.
+        if shown != Some(s.root) {
+            node_text(tree, s.root, "", true, out);
+            shown = Some(s.root);
+        }
+    }
 }
 
 /// The whole tree as indented text.
@@ -376,6 +428,7 @@ pub fn tree_text(tree: &RayTree) -> String {
         );
         node_text(tree, s.root, "", true, &mut out);
     }
+    splats_text(tree, &mut out);
     let bad = out.matches(NOT_FINITE).count();
     if bad > 0 {
         let _ = writeln!(

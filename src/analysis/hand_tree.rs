@@ -24,6 +24,8 @@ impl HandTree {
                 samples: Vec::new(),
                 nodes: Vec::new(),
                 edge: None,
+                splats: Vec::new(),
+                splat_divisor: 0,
             },
         }
     }

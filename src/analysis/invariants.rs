@@ -21,7 +21,9 @@ fn close(a: Rgb, b: Rgb) -> bool {
 /// - `R + T = 1` and `0 <= R <= 1` at every dielectric hit; TIR has no transmitted ray;
 /// - path integrator: a sample's radiance is the sum of its nodes' recorded contributions (in
 ///   depth-first order, the order the integrator adds them), each node's light path expression
-///   extends its parent's, and a Russian-roulette kill has no continuation.
+///   extends its parent's, and a Russian-roulette kill has no continuation;
+/// - light tracing: the pixel is the sample mean plus the splats' sum over `spp`, each splat
+///   recorded on its connection node (`splat_violations`).
 #[must_use]
 pub fn tree_violations(tree: &RayTree, background: Rgb) -> Vec<String> {
     let mut v = Vec::new();
@@ -35,11 +37,14 @@ pub fn tree_violations(tree: &RayTree, background: Rgb) -> Vec<String> {
             s + x.radiance
         }
     }) / spp;
-    if mean != tree.radiance {
+    if tree.splats.is_empty() && mean != tree.radiance {
         v.push(format!(
             "pixel radiance {} != sample mean {}",
             tree.radiance, mean
         ));
+    }
+    if !tree.splats.is_empty() {
+        splat_violations(tree, mean, &mut v);
     }
     if path {
         path_violations(tree, &mut v);
@@ -57,7 +62,11 @@ pub fn tree_violations(tree: &RayTree, background: Rgb) -> Vec<String> {
             }
         }
         let atten = n.attenuation.as_ref().map_or(Rgb::ONE, |a| a.factor);
-        if n.kind == RayKind::Shadow {
+        // A light subpath carries flux forwards: its nodes answer to the splat checks.
+        if matches!(
+            n.kind,
+            RayKind::Shadow | RayKind::Light | RayKind::Connection
+        ) {
             continue;
         }
         let mut local = n.emitted + n.ambient;
@@ -106,6 +115,54 @@ pub fn tree_violations(tree: &RayTree, background: Rgb) -> Vec<String> {
         }
     }
     v
+}
+
+/// Light tracing's invariants ([`tree_violations`]): the pixel is the sample mean plus the
+/// splats' sum (in their order) over `splat_divisor`, bit for bit; each splat's connection is
+/// a `connection` node whose recorded contribution is the splat's, below a `light` ray of its
+/// own light path; its light path expression runs from the camera to the light.
+fn splat_violations(tree: &RayTree, mean: Rgb, v: &mut Vec<String>) {
+    let sum = crate::render::splat::splat_sum(&tree.splats);
+    let expect = crate::render::splat::with_splats(mean, sum, tree.splat_divisor);
+    if expect != tree.radiance {
+        v.push(format!(
+            "pixel radiance {} != sample mean + splats / {} = {}",
+            tree.radiance, tree.splat_divisor, expect
+        ));
+    }
+    for (i, s) in tree.splats.iter().enumerate() {
+        let (Some(c), Some(root)) = (
+            tree.nodes.get(s.connection.index()),
+            tree.nodes.get(s.root.index()),
+        ) else {
+            v.push(format!("splat {i}: its nodes are not in the tree"));
+            continue;
+        };
+        let recorded = c.path.as_ref().map(|p| p.contribution);
+        if c.kind != RayKind::Connection || recorded != Some(s.contribution) {
+            v.push(format!(
+                "splat {i}: connection node {} ({}) does not record its contribution {}",
+                c.id.0,
+                c.kind.name(),
+                s.contribution
+            ));
+        }
+        if root.kind != RayKind::Light || root.parent.is_some() {
+            v.push(format!(
+                "splat {i}: root {} is not a light path's first ray",
+                root.id.0
+            ));
+        }
+        if !(s.lpe.starts_with('C') && s.lpe.ends_with('L')) {
+            v.push(format!("splat {i}: light path expression {:?}", s.lpe));
+        }
+        if !s.contribution.is_finite() {
+            v.push(format!(
+                "splat {i}: contribution {} is not finite",
+                s.contribution
+            ));
+        }
+    }
 }
 
 /// The path integrator's per-sample invariants ([`tree_violations`]).

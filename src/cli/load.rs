@@ -61,7 +61,7 @@ pub fn load(path: Option<&Path>, o: &Overrides) -> Result<Loaded> {
     if let Some(note) = ignored_flags(&scene, o) {
         warnln!("{note}");
     }
-    if scene.settings.integrator == IntegratorKind::Path {
+    if scene.settings.integrator != IntegratorKind::Whitted {
         let over = scene.overflowing_lights();
         if !over.is_empty() {
             warnln!(
@@ -82,7 +82,7 @@ pub fn load(path: Option<&Path>, o: &Overrides) -> Result<Loaded> {
 /// path integrator the Whitted integrator's own flags, under Whitted `--rr-depth`; `None`
 /// otherwise.
 pub fn ignored_flags(scene: &Scene, o: &Overrides) -> Option<String> {
-    if scene.settings.integrator != IntegratorKind::Path {
+    if scene.settings.integrator == IntegratorKind::Whitted {
         return o.rr_depth.is_some().then(|| {
             "note: the Whitted integrator ignores --rr-depth: it is the path integrator's \
              (add --integrator path)"
@@ -111,8 +111,12 @@ pub fn ignored_flags(scene: &Scene, o: &Overrides) -> Option<String> {
             flags.join(", "),
             if flags.len() > 1 { "they are" } else { "it is" },
         );
+        let who = match scene.settings.integrator {
+            IntegratorKind::Light => "light tracing",
+            _ => "the path integrator",
+        };
         format!(
-            "note: the path integrator ignores {list}: {are} the Whitted integrator's ({})",
+            "note: {who} ignores {list}: {are} the Whitted integrator's ({})",
             IntegratorKind::WHITTED_ONLY_WHY
         )
     })

@@ -148,6 +148,19 @@ pub fn run(a: &RenderArgs) -> Result<()> {
             scene.settings.sampler_kind().name()
         )?;
     }
+    if scene.settings.integrator == raytree::scene::IntegratorKind::Light {
+        let paths = u64::from(scene.camera.width)
+            * u64::from(scene.camera.height)
+            * u64::from(scene.settings.spp.max(1));
+        sayln!(
+            "light: {paths} light paths ({:.0} paths/s), {} light-path rays, {} connections to the camera, rr depth {}, sampler {}",
+            paths as f64 / secs,
+            r.light,
+            r.connection,
+            scene.settings.rr_depth,
+            scene.settings.sampler_kind().name()
+        )?;
+    }
     if let Some((x, y, s)) = r.first_dropped {
         warnln!(
             "warning: {} samples were not a number or infinite and were dropped (counted black); first: sample {s} of pixel {x},{y} (`raytree trace --pixel {x},{y}`, sample {s})",

@@ -157,9 +157,17 @@ impl EffectPlan {
             ),
         ];
         out.extend(material_lines(scene, &names));
-        if s.integrator == crate::scene::IntegratorKind::Path {
-            path::restate(&mut out, scene);
-            out.extend(path::lines(scene, &names));
+        match s.integrator {
+            crate::scene::IntegratorKind::Path => {
+                path::restate(&mut out, scene);
+                out.extend(path::lines(scene, &names));
+            }
+            crate::scene::IntegratorKind::Light => {
+                path::restate(&mut out, scene);
+                path::restate_light(&mut out);
+                out.extend(path::light_lines(scene, &names));
+            }
+            crate::scene::IntegratorKind::Whitted => {}
         }
         let unused: Vec<&str> = (0..scene.materials.len())
             .filter(|&m| !scene.material_used(m))

@@ -105,3 +105,82 @@ pub(super) fn lines(scene: &Scene, names: Names<'_>) -> Vec<EffectLine> {
         ),
     ]
 }
+
+/// What light tracing does with the scene, for `raytree effects`: [`lines`] with its own
+/// first line (light paths, camera connections, what it cannot see) and the same ignored
+/// approximations.
+pub(super) fn light_lines(scene: &Scene, names: Names<'_>) -> Vec<EffectLine> {
+    let s = &scene.settings;
+    let emitters = (0..scene.objects.len())
+        .filter(|&i| scene.area_light(i).is_some())
+        .count();
+    let filter = if matches!(s.filter, crate::scene::FilterDesc::Box {}) {
+        String::new()
+    } else {
+        "; splats use the box filter (settings.filter is the camera integrators')".to_string()
+    };
+    let adaptive = if s.adaptive.is_some() {
+        "; settings.adaptive is ignored (every pixel's splats are divided by spp)"
+    } else {
+        ""
+    };
+    let mut out = lines(scene, names);
+    for l in &mut out {
+        l.effect = l.effect.replace("path integrator", "light tracing");
+        l.reason = l.reason.replace("the path integrator", "light tracing");
+    }
+    if scene.background.max_element() > 0.0 {
+        out.push(EffectLine {
+            effect: "background as a light (light tracing ignores it)".to_string(),
+            on: false,
+            reason: "the camera sees the background directly, but light paths start only on \
+                     the scene's lights: the sky lights nothing here (under path escaping rays \
+                     gather it)"
+                .to_string(),
+        });
+    }
+    let unbounded = scene.objects.iter().any(|o| o.shape.bounds().is_none());
+    let directional = scene
+        .lights
+        .iter()
+        .any(|l| matches!(l.kind, crate::scene::LightKind::Directional { .. }));
+    if unbounded && directional {
+        let (c, r) = scene.bounding_sphere();
+        out.push(EffectLine {
+            effect: "directional lights over unbounded shapes".to_string(),
+            on: false,
+            reason: format!(
+                "directional light paths start on a disc over the bounded objects' sphere \
+                 (centre [{:.3}, {:.3}, {:.3}], radius {:.3}): an infinite plane beyond it is \
+                 unlit by them (use a quad)",
+                c.x, c.y, c.z, r
+            ),
+        });
+    }
+    out[0].reason = format!(
+        "one light path per pixel sample from {} lights chosen by power ({} point/directional, \
+         {emitters} emissive spheres/quads/triangles); every vertex on a non-specular surface \
+         connects to the camera and is splatted to the pixel it lands in; what the camera sees \
+         directly comes from one camera ray per sample; light seen through glass or in a \
+         mirror is not found (no connection reaches the camera through a specular surface: \
+         use path); Russian roulette from bounce {}, max depth {}{filter}{adaptive}{}",
+        scene.lights.len() + emitters,
+        scene.lights.len(),
+        s.rr_depth,
+        s.max_depth,
+        super::dark_note(scene)
+    );
+    out
+}
+
+/// [`restate`]'s area-light line as light tracing reads it: its paths start on the lights.
+pub(super) fn restate_light(out: &mut [EffectLine]) {
+    for l in out {
+        if l.effect == "area lights" {
+            l.reason = l.reason.replace(
+                "next-event estimation, one light sample per bounce",
+                "light paths start on them (points by area, directions by cosine)",
+            );
+        }
+    }
+}

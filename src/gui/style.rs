@@ -14,6 +14,8 @@ pub fn kind_colour(kind: RayKind) -> Color32 {
         RayKind::Refracted => Color32::from_rgb(77, 171, 247),
         RayKind::Shadow => Color32::from_rgb(255, 212, 59),
         RayKind::Diffuse => Color32::from_rgb(105, 219, 124),
+        RayKind::Light => Color32::from_rgb(255, 146, 43),
+        RayKind::Connection => Color32::from_rgb(204, 153, 255),
     }
 }
 

@@ -8,7 +8,7 @@
 //! lecture's recursion, or [`PathTracer`], the Monte Carlo path tracer.
 
 use super::shading::NoSamples;
-use super::{PathTracer, RayCounts, Recorder, Whitted};
+use super::{LightTracer, PathTracer, RayCounts, Recorder, Splat, Whitted};
 use crate::bvh::TraversalCost;
 use crate::integrator::EffectPlan;
 use crate::math::{Ray, Rgb};
@@ -68,6 +68,29 @@ pub trait Integrator: Sync {
         rec: &mut R,
         counts: &mut RayCounts,
     );
+
+    /// Whether the integrator also traces paths from the lights whose connections land in
+    /// other pixels (light tracing): the render then runs one light path per pixel sample
+    /// ([`Integrator::trace_light_path`]) and adds the splats to the camera samples' mean
+    /// (`crate::render`).
+    fn splats(&self) -> bool {
+        false
+    }
+
+    /// Light path `seed` (the pixel sample that seeds it), each contribution handed to
+    /// `splat`; recorded into `rec`, returning its root node. Called only when
+    /// [`Integrator::splats`]; the default traces nothing.
+    fn trace_light_path<R: Recorder, S: PixelSampler, F: FnMut(Splat)>(
+        &self,
+        seed: (u32, u32, u32),
+        sampler: &mut S,
+        rec: &mut R,
+        counts: &mut RayCounts,
+        splat: &mut F,
+    ) -> Option<NodeId> {
+        let _ = (seed, sampler, rec, counts, splat);
+        None
+    }
 }
 
 impl Integrator for Whitted<'_> {
@@ -164,6 +187,70 @@ impl Integrator for PathTracer<'_> {
     }
 }
 
+impl Integrator for LightTracer<'_> {
+    fn kind(&self) -> IntegratorKind {
+        IntegratorKind::Light
+    }
+
+    #[inline]
+    fn scene(&self) -> &Scene {
+        LightTracer::scene(self)
+    }
+
+    #[inline]
+    fn film(&self) -> &Film<'_> {
+        LightTracer::film(self)
+    }
+
+    /// The camera ray's own part (what it sees directly); draws nothing from `sampler`.
+    #[inline]
+    fn camera_radiance<R: Recorder, S: PixelSampler>(
+        &self,
+        ray: Ray,
+        _: &mut S,
+        rec: &mut R,
+        counts: &mut RayCounts,
+    ) -> (Rgb, Option<NodeId>) {
+        self.trace_camera(ray, rec, counts)
+    }
+
+    /// Never: the light paths are the render's main work, and they are traced one by one.
+    #[inline]
+    fn traces_packets(&self) -> bool {
+        false
+    }
+
+    /// Not called ([`Integrator::traces_packets`] is false); traces each ray alone.
+    fn camera_packet_radiance<R: Recorder>(
+        &self,
+        rays: &[Ray],
+        _: (&[Option<Hit>], &[TraversalCost]),
+        out: &mut [Rgb],
+        rec: &mut R,
+        counts: &mut RayCounts,
+    ) {
+        for (ray, o) in rays.iter().zip(out.iter_mut()) {
+            *o = self.trace_camera(*ray, rec, counts).0;
+        }
+    }
+
+    fn splats(&self) -> bool {
+        true
+    }
+
+    #[inline]
+    fn trace_light_path<R: Recorder, S: PixelSampler, F: FnMut(Splat)>(
+        &self,
+        seed: (u32, u32, u32),
+        sampler: &mut S,
+        rec: &mut R,
+        counts: &mut RayCounts,
+        splat: &mut F,
+    ) -> Option<NodeId> {
+        LightTracer::trace_light_path(self, seed, sampler, rec, counts, splat)
+    }
+}
+
 /// The integrator a scene's `settings.integrator` names, ready to trace. Every command builds
 /// this one, so a new [`IntegratorKind`] is one more arm here and nothing else in the commands.
 #[derive(Clone, Debug)]
@@ -172,6 +259,8 @@ pub enum SceneIntegrator<'a> {
     Whitted(Whitted<'a>),
     /// `"path"`.
     Path(PathTracer<'a>),
+    /// `"light"`.
+    Light(LightTracer<'a>),
 }
 
 impl<'a> SceneIntegrator<'a> {
@@ -188,6 +277,7 @@ impl<'a> SceneIntegrator<'a> {
             IntegratorKind::Whitted => Self::Whitted(Whitted::with_plan(scene, plan)),
             // The path tracer runs every effect (its own plan): `plan` is Whitted's.
             IntegratorKind::Path => Self::Path(PathTracer::new(scene)),
+            IntegratorKind::Light => Self::Light(LightTracer::new(scene)),
         }
     }
 
@@ -196,7 +286,7 @@ impl<'a> SceneIntegrator<'a> {
     pub fn whitted(&self) -> Option<&Whitted<'a>> {
         match self {
             Self::Whitted(t) => Some(t),
-            Self::Path(_) => None,
+            Self::Path(_) | Self::Light(_) => None,
         }
     }
 }
@@ -206,6 +296,7 @@ impl Integrator for SceneIntegrator<'_> {
         match self {
             Self::Whitted(t) => t.kind(),
             Self::Path(t) => t.kind(),
+            Self::Light(t) => t.kind(),
         }
     }
 
@@ -214,6 +305,7 @@ impl Integrator for SceneIntegrator<'_> {
         match self {
             Self::Whitted(t) => Integrator::scene(t),
             Self::Path(t) => Integrator::scene(t),
+            Self::Light(t) => Integrator::scene(t),
         }
     }
 
@@ -222,6 +314,7 @@ impl Integrator for SceneIntegrator<'_> {
         match self {
             Self::Whitted(t) => Integrator::film(t),
             Self::Path(t) => Integrator::film(t),
+            Self::Light(t) => Integrator::film(t),
         }
     }
 
@@ -236,6 +329,7 @@ impl Integrator for SceneIntegrator<'_> {
         match self {
             Self::Whitted(t) => t.camera_radiance(ray, sampler, rec, counts),
             Self::Path(t) => t.camera_radiance(ray, sampler, rec, counts),
+            Self::Light(t) => t.camera_radiance(ray, sampler, rec, counts),
         }
     }
 
@@ -244,6 +338,7 @@ impl Integrator for SceneIntegrator<'_> {
         match self {
             Self::Whitted(t) => t.traces_packets(),
             Self::Path(t) => t.traces_packets(),
+            Self::Light(t) => t.traces_packets(),
         }
     }
 
@@ -259,6 +354,27 @@ impl Integrator for SceneIntegrator<'_> {
         match self {
             Self::Whitted(t) => t.camera_packet_radiance(rays, found, out, rec, counts),
             Self::Path(t) => t.camera_packet_radiance(rays, found, out, rec, counts),
+            Self::Light(t) => t.camera_packet_radiance(rays, found, out, rec, counts),
+        }
+    }
+
+    #[inline]
+    fn splats(&self) -> bool {
+        matches!(self, Self::Light(_))
+    }
+
+    #[inline]
+    fn trace_light_path<R: Recorder, S: PixelSampler, F: FnMut(Splat)>(
+        &self,
+        seed: (u32, u32, u32),
+        sampler: &mut S,
+        rec: &mut R,
+        counts: &mut RayCounts,
+        splat: &mut F,
+    ) -> Option<NodeId> {
+        match self {
+            Self::Light(t) => t.trace_light_path(seed, sampler, rec, counts, splat),
+            Self::Whitted(_) | Self::Path(_) => None,
         }
     }
 }

@@ -9,12 +9,14 @@
 //!   shadow event.
 //! - [`Whitted`] (`whitted/`): the lecture's `trace(ray, objects, lights)` recursion.
 //! - [`PathTracer`] (`path/`): unidirectional path tracing with NEE and MIS.
+//! - [`LightTracer`] (`light/`): light tracing, paths from the lights splatted to the camera.
 //!
 //! See `docs/architecture.md`.
 
 pub mod diagnose;
 mod direct;
 mod interface;
+pub mod light;
 pub mod offset;
 mod path;
 pub mod plan;
@@ -26,6 +28,7 @@ pub mod whitted;
 pub use crate::interaction::SurfaceInteraction;
 pub use crate::media::{MediaStack, Medium};
 pub use interface::{Integrator, SceneIntegrator};
+pub use light::{LightTracer, Splat};
 pub use path::{PathStrategy, PathTracer};
 pub use plan::EffectPlan;
 pub use recorder::{DiagnosticRecorder, NoopRecorder, Recorder, TreeRecorder};
@@ -55,6 +58,10 @@ pub struct RayCounts {
     pub shadow: u64,
     /// Diffuse bounces sampled from the BSDF (path integrator).
     pub diffuse: u64,
+    /// Rays of light subpaths (light tracing).
+    pub light: u64,
+    /// Connections of light-subpath vertices to the camera (light tracing).
+    pub connection: u64,
     /// Spawned rays that re-hit the surface they left (counted only by diagnosing recorders).
     pub self_hits: u64,
     /// Spawned rays whose offset skipped a surface (counted only by diagnosing recorders).
@@ -92,7 +99,13 @@ impl RayCounts {
     /// All rays.
     #[must_use]
     pub fn total(&self) -> u64 {
-        self.camera + self.reflected + self.refracted + self.shadow + self.diffuse
+        self.camera
+            + self.reflected
+            + self.refracted
+            + self.shadow
+            + self.diffuse
+            + self.light
+            + self.connection
     }
 
     pub(crate) fn add_kind(&mut self, kind: RayKind) {
@@ -102,6 +115,8 @@ impl RayCounts {
             RayKind::Refracted => self.refracted += 1,
             RayKind::Shadow => self.shadow += 1,
             RayKind::Diffuse => self.diffuse += 1,
+            RayKind::Light => self.light += 1,
+            RayKind::Connection => self.connection += 1,
         }
     }
 }
@@ -113,6 +128,8 @@ impl std::ops::AddAssign for RayCounts {
         self.refracted += o.refracted;
         self.shadow += o.shadow;
         self.diffuse += o.diffuse;
+        self.light += o.light;
+        self.connection += o.connection;
         self.self_hits += o.self_hits;
         self.leaks += o.leaks;
         self.budget_cuts += o.budget_cuts;

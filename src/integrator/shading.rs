@@ -16,7 +16,7 @@ use crate::media::MediaStack;
 use crate::mesh::shading;
 use crate::sampling::PixelSampler;
 use crate::scene::{Film, Hit, OffsetStrategy, Scene};
-use crate::tree::{Attenuation, Blocker, EndReason, Interface, NodeId, RayKind};
+use crate::tree::{Attenuation, Blocker, EndReason, HitInfo, Interface, NodeId, RayKind};
 use glam::DVec3;
 
 /// The shadow ray to a sampled point on an emitter (or to where it meets the emitter first)
@@ -305,6 +305,20 @@ impl<'a> Shading<'a> {
         counts: &mut RayCounts,
     ) -> Cast {
         counts.add_kind(RayKind::Shadow);
+        self.cast((ray, seg), (p, from), id, rec, counts)
+    }
+
+    /// [`Shading::cast_shadow`] without counting the ray (the caller counts it as its own
+    /// kind: a light tracer's connection to the camera).
+    #[inline(always)]
+    pub(crate) fn cast<R: Recorder>(
+        &self,
+        (ray, seg): (&Ray, f64),
+        (p, from): (DVec3, SurfaceId),
+        id: Option<NodeId>,
+        rec: &mut R,
+        counts: &mut RayCounts,
+    ) -> Cast {
         if R::DIAGNOSE {
             let first = self.scene.intersect(ray, seg);
             self.diagnose((ray, p, from), first, id, rec, counts);
@@ -324,6 +338,32 @@ impl<'a> Shading<'a> {
             blockers: blockers.unwrap_or_default(),
             cost,
         }
+    }
+
+    /// The hit as recorded on the ray's node.
+    #[inline(always)]
+    pub(crate) fn record_hit<R: Recorder>(
+        &self,
+        si: &SurfaceInteraction,
+        hit: &Hit,
+        id: Option<NodeId>,
+        rec: &mut R,
+    ) {
+        let scene = self.scene;
+        rec.update(id, |n| {
+            n.hit = Some(HitInfo {
+                t: hit.t,
+                point: si.p,
+                normal: hit.normal,
+                object: hit.object,
+                object_name: scene.objects[hit.object].name.clone(),
+                material: si.material.name.clone(),
+                entering: si.entering,
+                cos_i: si.cos_i,
+                triangle: scene.source_triangle(hit),
+                shading_normal: si.smooth.map(|_| si.outward_shading_normal()),
+            });
+        });
     }
 
     /// The length of the shadow ray `ray` (nominal length `seg`, from the offset origin of

@@ -14,7 +14,7 @@ use crate::integrator::{
 use crate::math::{Ray, Rgb};
 use crate::sampling::{PixelFilter, PixelSampler, SceneSampler, StratifiedJitter};
 use crate::scene::{Film, Scene};
-use crate::tree::{RayTree, SampleRecord, TREE_SCHEMA};
+use crate::tree::{RayTree, SampleRecord, TREE_SCHEMA, TREE_SCHEMA_SPLATS};
 use glam::DVec2;
 use rayon::prelude::*;
 
@@ -135,6 +135,19 @@ pub fn trace_pixel(scene: &Scene, x: u32, y: u32) -> Option<RayTree> {
         .map(|p| samples.len() > p.first as usize);
     // The settings as traced: the automatic cut and roulette weight are recorded as the values
     // they took (an automatic roulette that is off stays absent).
+    // Light tracing: the light paths that land here, recorded after the camera samples.
+    let (splats, splat_divisor) = if integrator.splats() {
+        let (records, _) = splat::pixel_splats(&integrator, (x, y), &mut rec);
+        let spp = scene.settings.spp.max(1);
+        (records, spp)
+    } else {
+        (Vec::new(), 0)
+    };
+    let radiance = if integrator.splats() {
+        splat::with_splats(radiance, splat::splat_sum(&splats), splat_divisor)
+    } else {
+        radiance
+    };
     let roulette = crate::integrator::bound::carried::effective_roulette_below(scene);
     let settings = crate::scene::Settings {
         min_weight: Some(crate::integrator::bound::effective_min_weight(scene)),
@@ -142,14 +155,21 @@ pub fn trace_pixel(scene: &Scene, x: u32, y: u32) -> Option<RayTree> {
             .then_some(roulette),
         ..scene.settings
     };
+    let schema = if splats.is_empty() {
+        TREE_SCHEMA
+    } else {
+        TREE_SCHEMA_SPLATS
+    };
     Some(RayTree {
-        schema: TREE_SCHEMA.to_string(),
+        schema: schema.to_string(),
         pixel: [x, y],
         settings,
         radiance,
         samples,
         nodes: rec.nodes,
         edge,
+        splats,
+        splat_divisor,
     })
 }
 
@@ -310,6 +330,12 @@ fn render_recorded<R: Recorder + Default, I: Integrator, S: PixelSampler>(
                 rows
             })
             .collect()
+    } else if integrator.splats() {
+        // The light pass reports the progress: it is most of the work.
+        let mut rows = pixel_loop::rows(integrator, sampler, || Beauty(R::default()), &|_| {});
+        let (sums, counts) = splat::light_pass(integrator, progress);
+        splat::add_to_rows(&mut rows, &sums, spp, counts);
+        rows
     } else {
         pixel_loop::rows(integrator, sampler, || Beauty(R::default()), progress)
     };
@@ -341,6 +367,7 @@ mod image;
 mod packets;
 pub mod pixel_loop;
 mod plan;
+pub mod splat;
 pub use image::{DiagnosticMap, Image, RenderStats};
 use packets::packet_bands;
 use pixel_loop::{Beauty, PixelOut, SinkRow};

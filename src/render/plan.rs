@@ -41,6 +41,10 @@ pub const AUTO_FIRST_DIVISOR: u32 = 16;
 pub fn adaptive_plan<I: Integrator>(integrator: &I) -> Option<AdaptivePlan> {
     let settings = &integrator.scene().settings;
     let spp = settings.spp.max(1);
+    // Light tracing divides every pixel's splats by the same `spp` (`super::splat`).
+    if integrator.splats() {
+        return None;
+    }
     if let Some(a) = settings.adaptive {
         return Some(AdaptivePlan {
             first: spp,

@@ -111,6 +111,60 @@ impl Film<'_> {
         Ray::new(c.position + on_lens, (focus - on_lens).normalize(), 0.0)
     }
 
+    /// The connection of point `p` to the camera, for light tracing (pbrt-v4
+    /// `PerspectiveCamera::SampleWi`; Veach 1997, section 10.2): the point on the lens (the eye
+    /// for a pinhole; for a thin lens `aperture_radius` times the concentric disk map of `u`, as
+    /// in [`Film::lens_ray`], which a pinhole ignores), the unit direction from it to `p`, the
+    /// distance, the film position the camera ray along that line has, and the importance
+    /// factor `1 / (A cos^3 theta)` (`A` the film's area on the plane at distance 1, `theta` the
+    /// angle to `forward`). A light-path vertex of throughput `beta` then adds
+    /// `beta f |cos| importance / distance^2` (visibility aside) to the sum of its pixel, which
+    /// the render divides by `spp` like the camera samples' sum. `None` behind the lens plane
+    /// or off the film.
+    #[must_use]
+    pub fn connect(&self, p: DVec3, u: glam::DVec2) -> Option<CameraConnection> {
+        let c = self.camera;
+        let on_lens = if self.has_lens() {
+            let lens = c.aperture_radius * crate::sampling::warp::square_to_concentric_disk(u);
+            lens.x * c.right + lens.y * c.up
+        } else {
+            DVec3::ZERO
+        };
+        // Relative to the eye, as the camera rays are made.
+        let rel = p - c.position - on_lens;
+        let along = rel.dot(c.forward);
+        let distance = rel.length();
+        if !(along > 0.0 && distance > 0.0 && distance.is_finite()) {
+            return None;
+        }
+        let direction = rel / distance;
+        // Where the line meets the plane in focus (at distance 1 for a pinhole), back in the
+        // pinhole's plane coordinates ([`Film::to_plane`]).
+        let depth = if self.has_lens() {
+            c.focus_distance
+        } else {
+            1.0
+        };
+        let on_plane = on_lens + rel * (depth / along);
+        let (pu, pv) = (on_plane.dot(c.right) / depth, on_plane.dot(c.up) / depth);
+        let fx = (pu / self.half_w + 1.0) * 0.5 * f64::from(c.width);
+        let fy = (1.0 - pv / self.half_h) * 0.5 * f64::from(c.height);
+        let inside =
+            (0.0..f64::from(c.width)).contains(&fx) && (0.0..f64::from(c.height)).contains(&fy);
+        if !inside {
+            return None;
+        }
+        let cos = direction.dot(c.forward);
+        let area = 4.0 * self.half_w * self.half_h;
+        Some(CameraConnection {
+            film: (fx, fy),
+            lens: c.position + on_lens,
+            direction,
+            distance,
+            importance: 1.0 / (area * cos * cos * cos),
+        })
+    }
+
     /// [`Camera::film_to_plane`].
     #[must_use]
     #[inline]
@@ -119,5 +173,95 @@ impl Film<'_> {
         let u = (2.0 * fx / f64::from(c.width) - 1.0) * self.half_w;
         let v = (1.0 - 2.0 * fy / f64::from(c.height)) * self.half_h;
         (u, v)
+    }
+}
+
+/// A point connected to the camera ([`Film::connect`]).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct CameraConnection {
+    /// Film position in pixels where the point is seen.
+    pub film: (f64, f64),
+    /// The point on the lens (the eye for a pinhole).
+    pub lens: DVec3,
+    /// Unit direction from `lens` to the point.
+    pub direction: DVec3,
+    /// Distance from `lens` to the point.
+    pub distance: f64,
+    /// `1 / (A cos^3 theta)`: the camera's importance per unit of `f |cos| / distance^2`.
+    pub importance: f64,
+}
+
+impl CameraConnection {
+    /// The pixel of [`Self::film`].
+    #[must_use]
+    pub fn pixel(&self) -> (u32, u32) {
+        // In range: `Film::connect` keeps only positions on the film.
+        (self.film.0 as u32, self.film.1 as u32)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn camera(aperture: f64) -> Camera {
+        Camera {
+            position: DVec3::new(0.5, 1.0, 4.0),
+            forward: DVec3::NEG_Z,
+            right: DVec3::X,
+            up: DVec3::Y,
+            fov_y: 40.0,
+            width: 64,
+            height: 48,
+            aperture_radius: aperture,
+            focus_distance: 3.0,
+        }
+    }
+
+    /// A camera ray's points connect back to its film position, through a pinhole and through
+    /// the lens point it left from.
+    #[test]
+    fn connect_inverts_the_camera_ray() {
+        for aperture in [0.0, 0.2] {
+            let cam = camera(aperture);
+            let film = cam.film();
+            for (fx, fy, u) in [(10.25, 7.5, (0.3, 0.8)), (63.9, 0.1, (0.9, 0.1))] {
+                let u = glam::DVec2::new(u.0, u.1);
+                let ray = if aperture > 0.0 {
+                    film.lens_ray(fx, fy, u)
+                } else {
+                    film.ray(fx, fy)
+                };
+                let c = film.connect(ray.at(5.0), u).unwrap();
+                assert!((c.film.0 - fx).abs() < 1e-9 && (c.film.1 - fy).abs() < 1e-9);
+                assert!((c.lens - ray.origin).length() < 1e-12);
+                assert!((c.distance - 5.0).abs() < 1e-12);
+                assert!((c.direction - ray.direction).length() < 1e-12);
+            }
+        }
+    }
+
+    /// The importance integrates to 1 over the film: `A cos^3` is the solid angle a unit of
+    /// film area subtends, so `importance * dA / dω` is 1 at the centre (cos 1) and off-axis.
+    #[test]
+    fn importance_is_one_over_the_film_area_at_the_centre() {
+        let cam = camera(0.0);
+        let film = cam.film();
+        let c = film
+            .connect(cam.position + 2.0 * cam.forward, glam::DVec2::ZERO)
+            .unwrap();
+        let half_h = 20f64.to_radians().tan();
+        let area = 4.0 * half_h * half_h * 64.0 / 48.0;
+        assert!((c.importance * area - 1.0).abs() < 1e-12);
+        assert_eq!(c.pixel(), (32, 24));
+        // Behind the camera and off the film: no connection.
+        assert!(
+            film.connect(cam.position - cam.forward, glam::DVec2::ZERO)
+                .is_none()
+        );
+        assert!(
+            film.connect(cam.position + DVec3::new(5.0, 0.0, -1.0), glam::DVec2::ZERO)
+                .is_none()
+        );
     }
 }

@@ -25,7 +25,7 @@ use std::borrow::Cow;
 
 pub use crate::bsdf::{Material, Texture};
 pub use accel::{Accel, traversal_cost_image};
-pub use camera::{Camera, Film};
+pub use camera::{Camera, CameraConnection, Film};
 pub use desc::{
     AUTO_THRESHOLD, AdaptiveDesc, Antialiasing, FilterDesc, IntegratorKind, OffsetDesc,
     OffsetStrategy, SamplerKind, SceneDesc, Settings, ShadowMode,

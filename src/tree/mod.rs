@@ -1,5 +1,6 @@
-//! The recorded ray tree of one pixel: plain data, serializable (`raytree.tree/2`; `/1` trees,
-//! written before the path integrator, read as they are: every field added since has a default).
+//! The recorded ray tree of one pixel: plain data, serializable (`raytree.tree/2`, or
+//! `raytree.tree/3` when it holds light-subpath splats; `/1` trees, written before the path
+//! integrator, and `/2` trees are read as they are: every field added since has a default).
 //!
 //! Nodes live in one arena (`RayTree::nodes`) and refer to each other by [`NodeId`]. Every view
 //! (text, JSON, diagram, inspector) reads this structure; keep it stable.
@@ -21,11 +22,16 @@ pub use info::{
 };
 pub use path::{DeltaTag, PathInfo, Pdf, Roulette};
 
-/// The JSON schema tag of a serialized tree.
+/// The JSON schema tag of a serialized tree traced from the camera only.
 pub const TREE_SCHEMA: &str = "raytree.tree/2";
 
-/// The schema tags a reader accepts: this one and `raytree.tree/1` (no path-tracing fields).
-pub const TREE_SCHEMAS_READ: [&str; 2] = [TREE_SCHEMA, "raytree.tree/1"];
+/// The schema tag of a tree that holds light-subpath splats ([`RayTree::splats`], the `light`
+/// integrator; `docs/bidirectional.md`): `/2` plus the splats and the `light` and `connection`
+/// ray kinds.
+pub const TREE_SCHEMA_SPLATS: &str = "raytree.tree/3";
+
+/// The schema tags a reader accepts: `/3`, `/2` and `raytree.tree/1` (no path-tracing fields).
+pub const TREE_SCHEMAS_READ: [&str; 3] = [TREE_SCHEMA_SPLATS, TREE_SCHEMA, "raytree.tree/1"];
 
 /// Index of a node in [`RayTree::nodes`].
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord, Serialize, Deserialize)]
@@ -54,11 +60,17 @@ pub enum RayKind {
     Shadow,
     /// A diffuse bounce sampled from the BSDF (path integrator).
     Diffuse,
+    /// A ray of a light subpath: leaving an emitter, or scattered along the path from it
+    /// (light tracing; its throughput is flux, not importance).
+    Light,
+    /// The connection of a light-subpath vertex to the camera (light tracing): a visibility
+    /// ray whose contribution is splatted to the pixel it lands in.
+    Connection,
 }
 
 impl RayKind {
     /// Number of kinds.
-    pub const COUNT: usize = 5;
+    pub const COUNT: usize = 7;
 
     /// All kinds, in display order.
     pub const ALL: [RayKind; Self::COUNT] = [
@@ -67,6 +79,8 @@ impl RayKind {
         RayKind::Refracted,
         RayKind::Shadow,
         RayKind::Diffuse,
+        RayKind::Light,
+        RayKind::Connection,
     ];
 
     /// Lower-case name.
@@ -78,6 +92,8 @@ impl RayKind {
             RayKind::Refracted => "refracted",
             RayKind::Shadow => "shadow",
             RayKind::Diffuse => "diffuse",
+            RayKind::Light => "light",
+            RayKind::Connection => "connection",
         }
     }
 }
@@ -264,6 +280,45 @@ pub struct RayTree {
     /// and in files written before it existed.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub edge: Option<bool>,
+    /// Light tracing: every light-subpath contribution that landed in this pixel during the
+    /// render, in the order the render added them (by light path, then along it). The pixel
+    /// radiance is the sample mean plus their sum divided by `splat_divisor`. Empty for
+    /// integrators that trace from the camera only (and absent from their files).
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub splats: Vec<SplatRecord>,
+    /// What the splat sum is divided by: the light paths started per pixel (`spp`); 0 when
+    /// there are no splats.
+    #[serde(default, skip_serializing_if = "is_zero")]
+    pub splat_divisor: u32,
+}
+
+fn is_zero(n: &u32) -> bool {
+    *n == 0
+}
+
+/// One light-subpath contribution splatted into a pixel (light tracing, `docs/bidirectional.md`).
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct SplatRecord {
+    /// The light path's index in the pass (`(y * width + x) * spp + s` of the pixel sample that
+    /// seeds it; the path itself starts on a light, anywhere).
+    pub path: u64,
+    /// The pixel and sample index that seed the light path.
+    pub seed: [u32; 3],
+    /// The strategy: `s` vertices on the light subpath (the emitter's counted), `t` on the
+    /// camera subpath (1: the camera itself).
+    pub strategy: [u32; 2],
+    /// Film position where the connection lands, in pixels.
+    pub film: [f64; 2],
+    /// The light path's first ray (its root node, kind `light`).
+    pub root: NodeId,
+    /// The connection to the camera (kind `connection`).
+    pub connection: NodeId,
+    /// Unweighted contribution (what the splat adds before the division by `splat_divisor`).
+    pub contribution: Rgb,
+    /// MIS weight of the strategy (1: light tracing is the only strategy for these paths).
+    pub mis_weight: f64,
+    /// The light path expression, read from the camera (`C<RD><TS><TS>L`).
+    pub lpe: String,
 }
 
 impl RayTree {

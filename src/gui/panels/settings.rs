@@ -64,7 +64,7 @@ pub fn settings_ui(ui: &mut egui::Ui, doc: &Document, cmds: &mut Vec<Command>) {
                 ui.selectable_value(&mut s.integrator, k, k.name());
             }
         });
-    if s.integrator == IntegratorKind::Path {
+    if s.integrator != IntegratorKind::Whitted {
         ui.add(
             Slider::new(&mut s.rr_depth, 0..=64)
                 .clamping(egui::SliderClamping::Edits)
@@ -157,7 +157,7 @@ pub fn settings_ui(ui: &mut egui::Ui, doc: &Document, cmds: &mut Vec<Command>) {
 /// emitter to sample or a rough material.
 fn stochastic_ui(ui: &mut egui::Ui, doc: &Document, s: &mut crate::scene::Settings) {
     let scene = &doc.scene;
-    if s.integrator == IntegratorKind::Path {
+    if s.integrator != IntegratorKind::Whitted {
         // The path tracer samples lights and lobes itself, one of each per hit.
         return;
     }

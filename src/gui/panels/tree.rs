@@ -193,16 +193,21 @@ pub fn tree_ui(ui: &mut egui::Ui, doc: &Document, view: &mut TreeView, cmds: &mu
         square(ui, swatch(tree.radiance));
         ui.monospace(rgb(tree.radiance));
     });
-    let [c, r, t, s, d] = tree.count_by_kind();
+    let [c, r, t, s, d, l, k] = tree.count_by_kind();
     ui.horizontal(|ui| {
-        let diffuse = if d > 0 {
-            format!(", {d} diffuse")
-        } else {
-            String::new()
+        let optional = |n: usize, what: &str| {
+            if n > 0 {
+                format!(", {n} {what}")
+            } else {
+                String::new()
+            }
         };
         ui.small(format!(
-            "{} rays: {c} camera, {r} reflected, {t} refracted, {s} shadow{diffuse}",
-            tree.nodes.len()
+            "{} rays: {c} camera, {r} reflected, {t} refracted, {s} shadow{}{}{}",
+            tree.nodes.len(),
+            optional(d, "diffuse"),
+            optional(l, "light-path"),
+            optional(k, "to the camera"),
         ));
     });
     ui.horizontal(|ui| {

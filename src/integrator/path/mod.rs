@@ -15,6 +15,8 @@
 mod nee;
 mod walk;
 
+pub(crate) use nee::{event, transmits};
+
 use super::Shading;
 use crate::integrator::EffectPlan;
 use crate::interaction::SurfaceId;

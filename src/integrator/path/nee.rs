@@ -213,7 +213,7 @@ fn lobe_event(bsdf: &Bsdf, reflect: bool) -> &'static str {
 }
 
 /// Whether `kind` crosses the surface.
-pub(super) fn transmits(kind: LobeKind) -> bool {
+pub(crate) fn transmits(kind: LobeKind) -> bool {
     matches!(
         kind,
         LobeKind::SpecularTransmission | LobeKind::GlossyTransmission
@@ -221,7 +221,7 @@ pub(super) fn transmits(kind: LobeKind) -> bool {
 }
 
 /// The light path expression event of a sampled lobe (OSL alphabet).
-pub(super) fn event(kind: LobeKind) -> &'static str {
+pub(crate) fn event(kind: LobeKind) -> &'static str {
     match kind {
         LobeKind::Diffuse => "<RD>",
         LobeKind::SpecularReflection => "<RS>",

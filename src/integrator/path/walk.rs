@@ -14,9 +14,7 @@ use crate::media::MediaStack;
 use crate::sampling::PixelSampler;
 use crate::scene::Hit;
 use crate::scene::Material;
-use crate::tree::{
-    DeltaTag, EndReason, HitInfo, NodeId, PathInfo, Pdf, RayKind, RayNode, Roulette,
-};
+use crate::tree::{DeltaTag, EndReason, NodeId, PathInfo, Pdf, RayKind, RayNode, Roulette};
 use glam::DVec2;
 
 /// The GGX roughness of `m`'s reflection and transmission lobes.
@@ -241,7 +239,7 @@ impl PathTracer<'_> {
     ) -> bool {
         let Vertex { id, mut link, hit } = v;
         let si = self.core.surface(&w.ray, hit, media);
-        self.record_hit(&si, hit, id, rec);
+        self.core.record_hit(&si, hit, id, rec);
         self.emission(w, &si, (hit.object, &mut link), rec);
         if w.depth > self.scene().settings.max_depth {
             return self.stop(w, link, EndReason::MaxDepth, rec);
@@ -296,32 +294,6 @@ impl PathTracer<'_> {
         }
         w.depth += 1;
         true
-    }
-
-    /// The hit as recorded on the ray's node.
-    #[inline(always)]
-    fn record_hit<R: Recorder>(
-        &self,
-        si: &SurfaceInteraction,
-        hit: &Hit,
-        id: Option<NodeId>,
-        rec: &mut R,
-    ) {
-        let scene = self.scene();
-        rec.update(id, |n| {
-            n.hit = Some(HitInfo {
-                t: hit.t,
-                point: si.p,
-                normal: hit.normal,
-                object: hit.object,
-                object_name: scene.objects[hit.object].name.clone(),
-                material: si.material.name.clone(),
-                entering: si.entering,
-                cos_i: si.cos_i,
-                triangle: scene.source_triangle(hit),
-                shading_normal: si.smooth.map(|_| si.outward_shading_normal()),
-            });
-        });
     }
 
     /// Emission of the outer side of `object`, weighted against the light sample that could

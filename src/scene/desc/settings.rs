@@ -93,11 +93,19 @@ pub enum IntegratorKind {
     /// Unidirectional path tracing with next-event estimation, MIS and Russian roulette
     /// ([`crate::integrator::PathTracer`]).
     Path,
+    /// Light tracing (particle tracing): paths start on the lights and every non-specular
+    /// vertex connects to the camera ([`crate::integrator::LightTracer`],
+    /// `docs/bidirectional.md`).
+    Light,
 }
 
 impl IntegratorKind {
     /// Every integrator, in documentation order.
-    pub const ALL: [IntegratorKind; 2] = [IntegratorKind::Whitted, IntegratorKind::Path];
+    pub const ALL: [IntegratorKind; 3] = [
+        IntegratorKind::Whitted,
+        IntegratorKind::Path,
+        IntegratorKind::Light,
+    ];
 
     /// The settings (field names) only the Whitted integrator reads: the path integrator
     /// ignores them ([`IntegratorKind::WHITTED_ONLY_WHY`]). `raytree cost` leaves out their axes
@@ -125,6 +133,7 @@ impl IntegratorKind {
         match self {
             IntegratorKind::Whitted => "whitted",
             IntegratorKind::Path => "path",
+            IntegratorKind::Light => "light",
         }
     }
 
@@ -136,8 +145,9 @@ impl IntegratorKind {
         match name {
             "whitted" => Ok(IntegratorKind::Whitted),
             "path" => Ok(IntegratorKind::Path),
+            "light" => Ok(IntegratorKind::Light),
             _ => Err(format!(
-                "unknown integrator {name:?}, expected \"whitted\" or \"path\""
+                "unknown integrator {name:?}, expected \"whitted\", \"path\" or \"light\""
             )),
         }
     }
@@ -321,13 +331,13 @@ pub struct Settings {
 }
 
 impl Settings {
-    /// The sampler in effect: `sampler` if set, otherwise Sobol for the path integrator (lower
-    /// error per sample, `docs/path-tracing.md`) and stratified for Whitted (its images as
-    /// they always were).
+    /// The sampler in effect: `sampler` if set, otherwise Sobol for the path and light
+    /// integrators (lower error per sample, `docs/path-tracing.md`) and stratified for Whitted
+    /// (its images as they always were).
     #[must_use]
     pub fn sampler_kind(&self) -> SamplerKind {
         self.sampler.unwrap_or(match self.integrator {
-            IntegratorKind::Path => SamplerKind::Sobol,
+            IntegratorKind::Path | IntegratorKind::Light => SamplerKind::Sobol,
             IntegratorKind::Whitted => SamplerKind::Stratified,
         })
     }

@@ -9,7 +9,7 @@ use super::Job;
 use crate::gui::jobs::delivery::Delivery;
 use crate::gui::jobs::progressive;
 use crate::gui::model::stats::{PixelStats, StatsRecorder};
-use crate::integrator::{NoopRecorder, RayCounts, SceneIntegrator};
+use crate::integrator::{Integrator, NoopRecorder, RayCounts, SceneIntegrator};
 use crate::math::Rgb;
 use crate::render::{render_pixel_with, render_rows};
 use rayon::prelude::*;
@@ -40,6 +40,9 @@ pub(super) struct JobRun {
     /// On the UI thread (wasm32): bands of one row, filled a pixel at a time until the slice's
     /// time is up ([`Row`]).
     row: Option<Row>,
+    /// Light tracing: the whole image's splat sums, from the light pass the first band runs
+    /// (`crate::render::splat`), added to each band's camera pixels.
+    splats: Option<Vec<Rgb>>,
 }
 
 /// The row under way on the UI thread: its pixels (and statistics) so far.
@@ -69,6 +72,7 @@ impl JobRun {
             image_rows: image_rows.max(1),
             band_rows: band_rows.max(1),
             row: None,
+            splats: None,
         }
     }
 
@@ -132,6 +136,30 @@ impl JobRun {
         !matches!(self.phase, Phase::Finished)
     }
 
+    /// Add light tracing's splats to the camera pixels of the band from row `y0` (the light
+    /// pass runs once, for the first band that needs it): the render's pixels bit for bit. A
+    /// pixel that is not finite is shown black.
+    fn add_splats(&mut self, tracer: &SceneIntegrator<'_>, y0: u32, pixels: &mut [Rgb]) {
+        if tracer.splats() {
+            if self.splats.is_none() {
+                let (sums, counts) = crate::render::splat::light_pass(tracer, &|_| {});
+                self.rays += counts;
+                self.splats = Some(sums);
+            }
+            let sums = self.splats.as_deref().unwrap_or_default();
+            let spp = self.job.scene.settings.spp;
+            let start = y0 as usize * self.job.scene.camera.width as usize;
+            for (p, s) in pixels.iter_mut().zip(&sums[start..]) {
+                *p = crate::render::splat::with_splats(*p, *s, spp);
+            }
+        }
+        for p in pixels {
+            if !p.is_finite() {
+                *p = Rgb::ZERO;
+            }
+        }
+    }
+
     /// Pass 1, the image, on the plain render's path: rows `y0..` of one band.
     fn image_band(
         &mut self,
@@ -145,11 +173,7 @@ impl JobRun {
         }
         let y1 = (y0 + self.image_rows).min(h);
         let (mut pixels, counts) = render_rows(tracer, y0..y1);
-        for p in &mut pixels {
-            if !p.is_finite() {
-                *p = Rgb::ZERO;
-            }
-        }
+        self.add_splats(tracer, y0, &mut pixels);
         self.rays += counts;
         let generation = self.job.generation;
         send(Delivery::Band {
@@ -211,6 +235,7 @@ impl JobRun {
             stats.extend(st);
             self.rays += counts;
         }
+        self.add_splats(tracer, y0, &mut pixels);
         let generation = self.job.generation;
         if !self.job.image_first
             && !send(Delivery::Band {
@@ -277,7 +302,8 @@ impl JobRun {
                 return Some(Phase::Image(y0));
             }
         }
-        let pixels = std::mem::take(&mut row.pixels);
+        let mut pixels = std::mem::take(&mut row.pixels);
+        self.add_splats(tracer, y0, &mut pixels);
         let generation = self.job.generation;
         send(Delivery::Band {
             generation,
@@ -315,6 +341,7 @@ impl JobRun {
             std::mem::take(&mut row.pixels),
             std::mem::take(&mut row.stats),
         );
+        self.add_splats(tracer, y0, &mut pixels);
         let generation = self.job.generation;
         if !self.job.image_first
             && !send(Delivery::Band {
