@@ -337,7 +337,7 @@ impl JobRun {
                 return Some(Phase::Stats(y0));
             }
         }
-        let (pixels, stats) = (
+        let (mut pixels, stats) = (
             std::mem::take(&mut row.pixels),
             std::mem::take(&mut row.stats),
         );
