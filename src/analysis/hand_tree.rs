@@ -131,6 +131,8 @@ fn info(lpe: &str, contribution: Rgb) -> PathInfo {
         bsdf_cos_pdf: None,
         mis_weight: None,
         roulette: None,
+        strategy: None,
+        unweighted: None,
         contribution,
         lpe: lpe.into(),
     }

@@ -58,6 +58,13 @@ pub struct PathInfo {
     /// The Russian-roulette decision taken at this ray's hit.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub roulette: Option<Roulette>,
+    /// Bidirectional strategies (`bdpt`, and light tracing's connections): `[s, t]`, the
+    /// vertices taken from the light subpath and from the camera subpath.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub strategy: Option<[u32; 2]>,
+    /// The strategy's contribution before its MIS weight (`contribution / mis_weight`).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub unweighted: Option<Rgb>,
     /// What this node adds to the sample's radiance.
     pub contribution: Rgb,
     /// Light path expression (OSL alphabet) of the path to this node; ends in `L` or `B` when

@@ -140,6 +140,8 @@ pub(crate) fn path_info() -> PathInfo {
         bsdf_cos_pdf: None,
         mis_weight: None,
         roulette: None,
+        strategy: None,
+        unweighted: None,
         contribution: Rgb::ZERO,
         lpe: String::new(),
     }

@@ -103,6 +103,8 @@ impl DirectKernel for PathKernel<'_> {
             bsdf_cos_pdf: Some(eval.brdf * eval.cos.abs()),
             mis_weight: Some(eval.mis),
             roulette: None,
+            strategy: None,
+            unweighted: None,
             contribution: Rgb::ZERO,
             lpe: format!("{}{}L", self.lpe, lobe_event(self.bsdf, reflect)),
         });

@@ -193,6 +193,8 @@ impl PathTracer<'_> {
                 bsdf_cos_pdf: w.sampled.2,
                 mis_weight: None,
                 roulette: None,
+                strategy: None,
+                unweighted: None,
                 contribution: Rgb::ZERO,
                 lpe: w.lpe.clone(),
             });
