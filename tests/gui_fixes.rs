@@ -326,3 +326,216 @@ fn the_layout_does_not_jump_while_rendering() {
     settle(&mut h);
     assert!(h.state().session.doc.progress.growth_current);
 }
+
+// Issue 32 item 6: the smaller defects, each checked on what was painted (the frame's text
+// shapes, their screen rectangles and clip rectangles).
+
+const CAUSTIC: &str = include_str!("../fixtures/caustic.json");
+
+/// The caustic fixture at 96x72 with `spp` samples, rendered.
+fn caustic(spp: u32) -> Harness<'static, InspectorApp> {
+    read_only_inspector(
+        CAUSTIC,
+        Box::new(move |s: &mut raytree::Scene| {
+            s.settings.spp = spp;
+            s.camera = s.camera.with_size(96, 72);
+            Ok(())
+        }),
+    )
+}
+
+/// One painted text: its galley, where it was painted and the rectangle it was clipped to.
+struct Painted {
+    galley: Arc<egui::Galley>,
+    pos: egui::Pos2,
+    clip: egui::Rect,
+}
+
+impl Painted {
+    fn rect(&self) -> egui::Rect {
+        self.galley.rect.translate(self.pos.to_vec2())
+    }
+    fn text(&self) -> &str {
+        self.galley.text()
+    }
+    /// The screen x of the first glyph of `needle` and of the right edge of its last, on the
+    /// first row holding it.
+    fn span_of(&self, needle: &str) -> Option<(f32, f32)> {
+        for row in &self.galley.rows {
+            let chars: String = row.row.glyphs.iter().map(|g| g.chr).collect();
+            if let Some(at) = chars.find(needle) {
+                let k = chars[..at].chars().count();
+                let n = needle.chars().count();
+                let first = &row.row.glyphs[k];
+                let last = &row.row.glyphs[k + n - 1];
+                let x = self.pos.x + row.pos.x;
+                return Some((x + first.pos.x, x + last.pos.x + last.advance_width));
+            }
+        }
+        None
+    }
+}
+
+/// Every text the last frame painted.
+fn painted(h: &Harness<'static, InspectorApp>) -> Vec<Painted> {
+    fn walk(shape: &egui::Shape, clip: egui::Rect, out: &mut Vec<Painted>) {
+        match shape {
+            egui::Shape::Text(t) => out.push(Painted {
+                galley: t.galley.clone(),
+                pos: t.pos,
+                clip,
+            }),
+            egui::Shape::Vec(v) => v.iter().for_each(|s| walk(s, clip, out)),
+            _ => {}
+        }
+    }
+    let mut out = Vec::new();
+    for c in &h.output().shapes {
+        walk(&c.shape, c.clip_rect, &mut out);
+    }
+    out
+}
+
+/// The Whitted vs path class table's columns line up: each class's expression starts at the
+/// same x and each luminance ends at the same x (they were one proportional-font text, since
+/// `.monospace().small()` is the small proportional style).
+#[test]
+fn the_whitted_vs_path_class_table_is_aligned() {
+    let mut h = caustic(4);
+    h.get_by_label("Whitted vs path").click();
+    h.run();
+    h.get_by_label("compare Whitted and path").click();
+    while h.state().versus().0.is_none() {
+        h.step(); // the spinner repaints every frame
+        std::thread::sleep(std::time::Duration::from_millis(10));
+    }
+    h.run();
+    let scene = h.state().session.doc.scene.clone();
+    let v = raytree::aov::versus(&scene, None, &|_| {}).unwrap();
+    let texts = painted(&h);
+    let mut starts = Vec::new();
+    let mut ends = Vec::new();
+    for c in &v.classes {
+        let lpe = texts.iter().find_map(|t| t.span_of(c.lpe));
+        let value = format!("{:.4}", c.luminance);
+        let lum = texts
+            .iter()
+            .filter(|t| t.text().contains(c.lpe) || t.text().trim() == value)
+            .find_map(|t| t.span_of(&value));
+        starts.push(lpe.expect(c.lpe).0);
+        ends.push(lum.expect("its luminance").1);
+    }
+    for (what, xs) in [("expressions start", &starts), ("luminances end", &ends)] {
+        let (lo, hi) = xs
+            .iter()
+            .fold((f32::INFINITY, f32::NEG_INFINITY), |(a, b), x| {
+                (a.min(*x), b.max(*x))
+            });
+        assert!(hi - lo < 0.5, "{what} at {xs:?}");
+    }
+}
+
+/// The sample list's last row is painted whole, above the Explain header (the list's height
+/// left out a point of spacing per row, so its last row's bottom was clipped).
+#[test]
+fn the_last_sample_row_is_not_hidden_under_the_explain_header() {
+    let mut h = caustic(8);
+    // Tall enough that the Samples section is on screen whole.
+    h.set_size(egui::vec2(1500.0, 1700.0));
+    h.run();
+    click_pixel(&mut h, 48, 50);
+    h.run();
+    let rows = h.state().samples_view().shown_rows().len();
+    assert_eq!(rows, 8, "every row fits without scrolling");
+    let last = h.state().samples_view().shown_rows()[rows - 1].index;
+    let tree = h.state().session.doc.tree.as_ref().unwrap();
+    let record = tree.samples[last].index;
+    let texts = painted(&h);
+    let prefix = format!("sample {record:<3} ");
+    let row = texts
+        .iter()
+        .find(|t| t.text().starts_with(&prefix) && t.text().contains("len "))
+        .expect("the last row is painted");
+    let r = row.rect();
+    assert!(
+        row.clip.min.y <= r.min.y + 0.5 && r.max.y <= row.clip.max.y + 0.5,
+        "row {r:?} clipped to {:?}",
+        row.clip
+    );
+    let header = texts
+        .iter()
+        .find(|t| t.text() == "Explain")
+        .expect("the Explain header");
+    assert!(
+        r.max.y <= header.rect().min.y,
+        "{r:?} under {:?}",
+        header.rect()
+    );
+}
+
+/// The noise legend's lines wrap inside their strip in a narrow image panel (at 200 points the
+/// colour bar and "... and above (99th percentile)" ran past the strip and were cut).
+#[test]
+fn the_noise_legend_fits_a_narrow_panel() {
+    let mut h = caustic(4);
+    h.set_size(egui::vec2(960.0, 950.0));
+    let mut view = h.state().session.doc.view;
+    view.debug = DebugView::Noise;
+    h.state_mut()
+        .session
+        .apply(raytree::gui::Command::SetView(view));
+    h.run();
+    h.run();
+    let strip = h.state().placement().unwrap().legend.expect("a legend");
+    assert!(strip.width() < 260.0, "a narrow panel: {strip:?}");
+    let texts = painted(&h);
+    let inside: Vec<&Painted> = texts
+        .iter()
+        .filter(|t| t.rect().intersects(strip) && t.clip == strip)
+        .collect();
+    assert!(
+        inside.iter().any(|t| t.text().contains("noise")),
+        "the legend's title is painted"
+    );
+    for t in inside {
+        let r = t.rect();
+        assert!(
+            strip.expand(0.5).contains_rect(r),
+            "{:?} at {r:?} cut by the strip {strip:?}",
+            t.text()
+        );
+    }
+}
+
+/// Pin and compare reads the default roulette depth as 5, not "none", and both header lines
+/// give the integrator and the roulette depth.
+#[test]
+fn pin_and_compare_names_the_roulette_depth() {
+    let mut h = caustic(2);
+    h.state_mut()
+        .session
+        .apply(raytree::gui::Command::SelectPixel([48, 50]));
+    h.run();
+    h.get_by_label("pin this tree").click();
+    h.run();
+    let mut s = h.state().session.doc.scene.settings;
+    assert_eq!(s.rr_depth, 5);
+    s.rr_depth = 2;
+    h.state_mut()
+        .session
+        .apply(raytree::gui::Command::SetSettings(s));
+    settle(&mut h);
+    assert!(has(&h, "settings.rr_depth: 5 -> 2"));
+    assert!(!has(&h, "settings.rr_depth: none"));
+    // The pinned tree's line (rr_depth 5) and the current one's (2).
+    assert!(has(&h, "pinned:  pixel 48,50"));
+    assert!(has(&h, "current: pixel 48,50"));
+    assert!(has(
+        &h,
+        ": path, depth 16, spp 2, roulette from bounce 5, offset"
+    ));
+    assert!(has(
+        &h,
+        ": path, depth 16, spp 2, roulette from bounce 2, offset"
+    ));
+}

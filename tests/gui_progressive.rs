@@ -147,3 +147,51 @@ fn the_roulette_weight_is_opt_in_from_the_suggested_weight() {
     assert_ne!(roulette, default);
     assert_eq!(h.state().session.doc.image, roulette);
 }
+
+/// Issue 32 item 11: the progressive panel says what the noise estimate is made of; on the
+/// caustic fixture a few rare-event pixels (the caustic under the glass ball) carry most of
+/// its squared error, and the panel says so and why the estimate plateaus, in the library's
+/// words ([`raytree::gui::model::progressive::Composition::sentence`]).
+#[test]
+fn the_progressive_panel_says_when_rare_event_pixels_dominate() {
+    let adjust = Box::new(|s: &mut raytree::Scene| {
+        s.camera = s.camera.with_size(80, 60);
+        Ok(())
+    });
+    let mut h = read_only_inspector(include_str!("../fixtures/caustic.json"), adjust);
+    let capped = Options {
+        on: true,
+        target: 0.0,
+        cap: 64,
+    };
+    h.state_mut().session.apply(Command::SetProgressive(capped));
+    h.state_mut().session.wait_image();
+    h.run();
+    let report = h.state().session.doc.progressive.report.unwrap();
+    assert_eq!((report.spp, report.stop), (64, Some(Stop::Cap)));
+    let c = report.composition.expect("a composition");
+    assert!(c.dominated(), "{c:?}");
+    let sentence = c.sentence();
+    assert!(sentence.starts_with("A few rare-event pixels dominate"));
+    assert!(has(&h, &sentence), "the panel shows {sentence}");
+    // On the Cornell box the noise is spread, and the panel says that instead.
+    let adjust = Box::new(|s: &mut raytree::Scene| {
+        s.camera = s.camera.with_size(32, 32);
+        Ok(())
+    });
+    let mut h = read_only_inspector(CORNELL, adjust);
+    h.state_mut().session.apply(Command::SetProgressive(capped));
+    h.state_mut().session.wait_image();
+    h.run();
+    let c = h
+        .state()
+        .session
+        .doc
+        .progressive
+        .report
+        .unwrap()
+        .composition
+        .unwrap();
+    assert!(!c.dominated(), "{c:?}");
+    assert!(has(&h, "The noise is spread over the image"));
+}

@@ -1,7 +1,7 @@
 //! Annotations at hits and on segments: normals, angle arcs, n1/n2, R/T, TIR, Beer factors.
 
 use super::DiagramOptions;
-use super::layout::Pending;
+use super::layout::{Owner, Pending};
 use super::model::{Anchor, AngleArc, HitMark, LabelRole, Point, RayEnd, RaySegment};
 use super::plane::PlaneFrame;
 use super::segments::Seg3;
@@ -81,6 +81,11 @@ pub(super) fn hits(
             continue;
         }
         let h = r.to;
+        // Marks no longer than a fraction of the shortest ray drawn at this vertex, so a short
+        // ray is not hidden under its normal and arcs (issue 32: the caustic's diffuse bounce,
+        // 5 px long, lay under 40 px of marks).
+        let shortest = shortest_at(n.id, r, segs, rays);
+        let normal_cap = shortest.max(0.6 * fs);
         let ni = if hit.entering {
             hit.normal
         } else {
@@ -88,7 +93,7 @@ pub(super) fn hits(
         };
         let proj = frame.dir_to_canvas(ni);
         let nc = proj.try_normalize().unwrap_or(DVec2::ZERO);
-        let normal_len = 2.4 * fs * proj.length().min(1.0);
+        let normal_len = (2.4 * fs * proj.length().min(1.0)).min(normal_cap);
         let tir = n.interface.as_ref().is_some_and(|i| i.tir);
         let w = frame
             .dir_to_canvas(-n.direction)
@@ -100,11 +105,11 @@ pub(super) fn hits(
         if labelled {
             let theta_i = hit.cos_i.clamp(-1.0, 1.0).acos().to_degrees();
             let in_plane = !r.off_plane && proj.length() > 0.9 && w != DVec2::ZERO;
-            let radius = 1.9 * fs;
+            let radius = (1.9 * fs).min((0.6 * shortest).max(0.3 * fs));
             let mut angle_label = |a: Option<&AngleArc>, text: String, fallback: Point| {
                 let spot = a.map_or(fallback, |a| {
                     let mid = a.start + a.sweep * 0.5;
-                    a.center + (a.radius + 1.1 * fs) * DVec2::new(mid.cos(), mid.sin())
+                    a.center + (a.radius + 0.9 * fs) * DVec2::new(mid.cos(), mid.sin())
                 });
                 let alt = spot + (spot - h).normalize_or_zero() * 1.2 * fs;
                 pending.push(
@@ -118,7 +123,8 @@ pub(super) fn hits(
                         LabelRole::Angle,
                         prio,
                     )
-                    .for_node(n.id, n.kind),
+                    .for_node(n.id, n.kind)
+                    .owned_by(Owner::Vertex(h)),
                 );
             };
             if in_plane {
@@ -151,7 +157,7 @@ pub(super) fn hits(
                 );
             }
             if let Some(i) = &n.interface {
-                let tip = normal_len + 1.0 * fs;
+                let tip = normal_len + 0.6 * fs;
                 let n1 = h + nc * tip;
                 let n2 = h - nc * tip;
                 for (p, text) in [
@@ -171,7 +177,8 @@ pub(super) fn hits(
                             LabelRole::Interface,
                             prio,
                         )
-                        .for_node(n.id, n.kind),
+                        .for_node(n.id, n.kind)
+                        .owned_by(Owner::Vertex(h)),
                     );
                 }
                 let rt = if i.tir {
@@ -194,7 +201,8 @@ pub(super) fn hits(
                         LabelRole::Interface,
                         prio,
                     )
-                    .for_node(n.id, n.kind),
+                    .for_node(n.id, n.kind)
+                    .owned_by(Owner::Vertex(h)),
                 );
             }
         }
@@ -213,6 +221,18 @@ pub(super) fn hits(
         });
     }
     out
+}
+
+/// The length in pixels of the shortest ray drawn at the hit of ray `id` (drawn as `r`): `r`
+/// itself and the rays spawned there.
+fn shortest_at(id: crate::tree::NodeId, r: &RaySegment, segs: &[Seg3], rays: &[RaySegment]) -> f64 {
+    segs.iter()
+        .zip(rays)
+        .filter(|(s, _)| s.node.parent == Some(id))
+        .map(|(_, c)| (c.to - c.from).length())
+        .chain([(r.to - r.from).length()])
+        .filter(|l| *l > 0.0)
+        .fold(f64::INFINITY, f64::min)
 }
 
 /// Beer factors on segments and the outcome of shadow rays.
@@ -263,6 +283,7 @@ fn segment_labels(s: &Seg3, r: &RaySegment, fs: f64, prio: u32, pending: &mut Ve
             LabelRole::Attenuation,
             prio + 1,
         )
-        .for_node(n.id, n.kind),
+        .for_node(n.id, n.kind)
+        .owned_by(Owner::Segment(r.from, r.to)),
     );
 }

@@ -205,10 +205,16 @@ impl Diagram {
         };
         let mut placed_boxes: Vec<Rect> = insets.iter().map(|i| i.rect).collect();
         placed_boxes.push(legend_rect);
+        // Labels avoid the rays, the normals and the hit points (a label over another ray's
+        // vertex reads as that ray's).
         let lines: Vec<(DVec2, DVec2)> = rays
             .iter()
             .filter(|r| r.to != r.from)
             .map(|r| (r.from, r.to))
+            .chain(hits.iter().flat_map(|h| {
+                let n = h.normal * h.normal_len;
+                [(h.point - n, h.point + n), (h.point, h.point)]
+            }))
             .collect();
         let labels = layout::place(
             pending,

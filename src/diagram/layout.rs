@@ -13,6 +13,68 @@ use super::share::Kept;
 use crate::tree::{NodeId, RayKind};
 use glam::DVec2;
 
+/// How far a label that belongs to a vertex or a segment may lie from it: the distance from
+/// its box's nearest point, in font sizes (issue 32: "θi = 64.5°" of the camera ray's floor
+/// hit drifted three font sizes away, into the ball beside another ray).
+pub const OWNER_REACH: f64 = 2.5;
+
+/// What a label is about, in canvas pixels: it is placed within [`OWNER_REACH`] of it.
+#[derive(Clone, Copy, Debug)]
+pub(super) enum Owner {
+    /// A hit: angles, n1/n2, R/T.
+    Vertex(Point),
+    /// A ray's drawn segment: Beer factors, shadow outcomes.
+    Segment(Point, Point),
+}
+
+impl Owner {
+    /// Distance from the owner to box `b` (0 when they touch).
+    fn distance(&self, b: &Rect) -> f64 {
+        match *self {
+            Owner::Vertex(v) => rect_distance(b, v),
+            Owner::Segment(a, c) => {
+                if crosses(b, a, c) {
+                    return 0.0;
+                }
+                // The nearest point is a corner of the box or an end of the segment.
+                let corners = [
+                    b.min,
+                    b.max,
+                    DVec2::new(b.min.x, b.max.y),
+                    DVec2::new(b.max.x, b.min.y),
+                ];
+                let to_seg = |p: Point| {
+                    let d = c - a;
+                    let t = if d.length_squared() > 0.0 {
+                        ((p - a).dot(d) / d.length_squared()).clamp(0.0, 1.0)
+                    } else {
+                        0.0
+                    };
+                    (a + d * t - p).length()
+                };
+                corners
+                    .into_iter()
+                    .map(to_seg)
+                    .chain([rect_distance(b, a), rect_distance(b, c)])
+                    .fold(f64::INFINITY, f64::min)
+            }
+        }
+    }
+
+    /// The point spots are generated around: the vertex, or the segment's middle.
+    fn centre(&self) -> Point {
+        match *self {
+            Owner::Vertex(v) => v,
+            Owner::Segment(a, c) => (a + c) * 0.5,
+        }
+    }
+}
+
+/// Distance from point `p` to box `b` (0 inside).
+fn rect_distance(b: &Rect, p: Point) -> f64 {
+    (b.min - p).max(p - b.max).max(DVec2::ZERO).length()
+}
+
 /// A label waiting for a position.
 #[derive(Clone, Debug)]
 pub(super) struct Pending {
@@ -24,6 +86,7 @@ pub(super) struct Pending {
     fixed: bool,
     node: Option<NodeId>,
     kind: Option<RayKind>,
+    owner: Option<Owner>,
 }
 
 impl Pending {
@@ -44,6 +107,7 @@ impl Pending {
             fixed: false,
             node: None,
             kind: None,
+            owner: None,
         }
     }
 
@@ -61,6 +125,36 @@ impl Pending {
         self.kind = Some(kind);
         self
     }
+
+    /// Keep the label within [`OWNER_REACH`] of what it is about.
+    pub fn owned_by(mut self, owner: Owner) -> Self {
+        self.owner = Some(owner);
+        self
+    }
+}
+
+/// Spots hugging `owner`'s centre: 16 directions at three gaps, each a baseline position for
+/// a centred label of `text` whose box lies `gap` beyond the centre along that direction; with
+/// its preference (0 = the direction `towards`, the nearest gap), for the cost.
+fn hugging(owner: &Owner, towards: Point, text: &str, size: f64) -> Vec<(Point, f64)> {
+    let c = owner.centre();
+    let half = DVec2::new(text_width(text, size) * 0.5 + size * 0.12, size * 0.63);
+    let want = (towards - c)
+        .try_normalize()
+        .unwrap_or(DVec2::new(0.0, -1.0));
+    let mut out = Vec::new();
+    for (g, gap) in [0.4, 1.0, 1.8].into_iter().enumerate() {
+        for k in 0..16 {
+            let a = f64::from(k) * std::f64::consts::TAU / 16.0;
+            let u = DVec2::new(a.cos(), a.sin());
+            let reach = gap * size + u.x.abs() * half.x + u.y.abs() * half.y;
+            // Baseline = box centre + 0.27 size (see `label_box`).
+            let pos = c + u * reach + DVec2::new(0.0, 0.27 * size);
+            let turn = u.dot(want).clamp(-1.0, 1.0).acos() / std::f64::consts::PI;
+            out.push((pos, 0.25 * g as f64 + 0.5 * turn));
+        }
+    }
+    out
 }
 
 /// The box a label occupies.
@@ -137,28 +231,23 @@ pub(super) fn place(
     let mut taken: Vec<Rect> = Vec::new();
     let mut out = Vec::new();
     for p in pending {
-        let mut cands = p.cands.clone();
-        let own = cands.len();
-        if !p.fixed
-            && let Some(&(pos, anchor)) = p.cands.first()
-        {
-            cands.extend(ring(pos, p.size).into_iter().map(|q| (q, anchor)));
-        }
+        let (cands, prefs) = candidates(&p);
         let boxes: Vec<Rect> = cands
             .iter()
             .map(|(pos, a)| label_box(*pos, *a, &p.text, p.size))
             .collect();
+        let near = |b: &Rect| {
+            p.owner
+                .is_none_or(|o| o.distance(b) <= OWNER_REACH * p.size)
+        };
         let free = |b: &Rect| {
-            canvas.contains_rect(b) && !taken.iter().chain(&obstacles).any(|t| t.overlaps(b))
+            canvas.contains_rect(b)
+                && near(b)
+                && !taken.iter().chain(&obstacles).any(|t| t.overlaps(b))
         };
         let cost = |i: usize, b: &Rect| {
             let hits = lines.iter().filter(|(a, c)| crosses(b, *a, *c)).count();
-            let far = if i < own {
-                0.0
-            } else {
-                1.0 + ((i - own) / 8) as f64
-            };
-            hits as f64 * 2.5 + far + i as f64 * 1e-3
+            hits as f64 * 2.5 + prefs[i] + i as f64 * 1e-3
         };
         let chosen = if p.fixed {
             Some(0)
@@ -196,6 +285,35 @@ pub(super) fn place(
         });
     }
     out
+}
+
+/// A label's spots and the preference of each (0 best): its own spots; then, for a label
+/// that belongs to a vertex or a segment, spots hugging it (nearest the first own spot's
+/// direction first), else a ring around its first spot.
+fn candidates(p: &Pending) -> (Vec<(Point, Anchor)>, Vec<f64>) {
+    let mut cands = p.cands.clone();
+    let mut prefs = vec![0.0; cands.len()];
+    if p.fixed {
+        return (cands, prefs);
+    }
+    let Some(&(first, anchor)) = p.cands.first() else {
+        return (cands, prefs);
+    };
+    match &p.owner {
+        Some(o) => {
+            for (pos, pref) in hugging(o, first, &p.text, p.size) {
+                cands.push((pos, Anchor::Middle));
+                prefs.push(0.5 + pref);
+            }
+        }
+        None => {
+            for (k, q) in ring(first, p.size).into_iter().enumerate() {
+                cands.push((q, anchor));
+                prefs.push(1.0 + (k / 8) as f64);
+            }
+        }
+    }
+    (cands, prefs)
 }
 
 /// `"s"` for a count other than 1 (`"1 ray"`, `"2 rays"`, `"0 rays"`).

@@ -194,13 +194,20 @@ pub fn matched_children(
 }
 
 /// A tree's settings as JSON, with the defaults its serialization leaves out written in:
-/// `antialiasing` "auto", and `roulette_below` 0 (a tree records the weight whenever the
-/// roulette was on), so that a diff does not read an omitted default as "none".
+/// `antialiasing` "auto", `roulette_below` 0 (a tree records the weight whenever the
+/// roulette was on), and the values in force of `rr_depth`, `glossy_samples` and `filter`
+/// (issue 32: the default `rr_depth` 5 read as "none -> 2"), so that a diff does not read an
+/// omitted default as "none".
 fn settings_value(s: &crate::scene::Settings) -> Value {
     let mut v = serde_json::to_value(s).unwrap_or(Value::Null);
     if let Value::Object(m) = &mut v {
         m.entry("antialiasing").or_insert_with(|| "auto".into());
         m.entry("roulette_below").or_insert_with(|| 0.0.into());
+        m.insert("rr_depth".into(), s.rr_depth.into());
+        m.insert("glossy_samples".into(), s.glossy_samples.into());
+        if let Ok(f) = serde_json::to_value(&s.filter) {
+            m.insert("filter".into(), f);
+        }
     }
     v
 }
@@ -318,6 +325,28 @@ mod tests {
         );
         let (was, now) = text("settings.roulette_below");
         assert!(was == "0.0" && now == "0.25", "{was} -> {now}");
+    }
+
+    /// Issue 32: the default roulette depth (5, left out of a tree's JSON) reads as 5, not
+    /// "none", and an unchanged default is no change.
+    #[test]
+    fn the_default_rr_depth_reads_as_its_value() {
+        let mut scene = Scene::default_scene();
+        scene.settings.integrator = crate::scene::IntegratorKind::Path;
+        let a = trace_pixel(&scene, 400, 200).unwrap();
+        assert!(diff(&a, &a.clone()).settings.is_empty());
+        scene.settings.rr_depth = 2;
+        let b = trace_pixel(&scene, 400, 200).unwrap();
+        let d = diff(&a, &b);
+        let c = d
+            .settings
+            .iter()
+            .find(|c| c.field == "settings.rr_depth")
+            .expect("rr_depth changed");
+        assert_eq!(
+            (c.a.to_string(), c.b.to_string()),
+            (crate::scene::desc::DEFAULT_RR_DEPTH.to_string(), "2".into())
+        );
     }
 
     #[test]

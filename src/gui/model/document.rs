@@ -122,7 +122,9 @@ pub struct Pin {
     pub version: u64,
 }
 
-/// What a tree was traced with, in words: pixel, scene and the settings a teacher changes.
+/// What a tree was traced with, in words: pixel, scene and the settings a teacher changes,
+/// the integrator and its roulette among them (the path tracer's `rr_depth`; Whitted's
+/// `roulette_below` when it is on).
 #[must_use]
 pub fn tree_label(scene_label: &str, tree: &RayTree) -> String {
     let s = &tree.settings;
@@ -131,10 +133,18 @@ pub fn tree_label(scene_label: &str, tree: &RayTree) -> String {
             .and_then(|v| v.as_str().map(str::to_string))
             .unwrap_or_default()
     };
+    let roulette = match (s.integrator, s.roulette_below) {
+        (crate::scene::IntegratorKind::Path, _) => {
+            format!(", roulette from bounce {}", s.rr_depth)
+        }
+        (_, Some(w)) if w > 0.0 => format!(", roulette below {w}"),
+        _ => String::new(),
+    };
     format!(
-        "pixel {},{} of {scene_label}: depth {}, spp {}, offset {} {:e}, Fresnel {}, shadows {}",
+        "pixel {},{} of {scene_label}: {}, depth {}, spp {}{roulette}, offset {} {:e}, Fresnel {}, shadows {}",
         tree.pixel[0],
         tree.pixel[1],
+        name(serde_json::to_value(s.integrator)),
         s.max_depth,
         s.spp,
         name(serde_json::to_value(s.offset.strategy)),

@@ -7,15 +7,18 @@ use crate::gui::model::stats::{self, DebugView};
 use crate::gui::style::{SELECTED, kind_colour, rgb};
 use crate::math::linear_to_srgb8;
 use egui::epaint::{Mesh, TessellationOptions, Tessellator};
-use egui::{
-    Align2, Color32, FontId, Pos2, Rect, Sense, Shape, Stroke, StrokeKind, Vec2, pos2, vec2,
-};
+use egui::{Color32, FontId, Pos2, Rect, Sense, Shape, Stroke, StrokeKind, Vec2, pos2, vec2};
 use std::sync::Arc;
 
 /// Zoom at which the pixel grid appears (screen points per pixel).
 const GRID_ZOOM: f32 = 8.0;
-/// Height of the legend strip under the image when a debug view is on (points).
+/// Least height of the legend strip under the image when a debug view is on (points); it
+/// grows when the panel is too narrow for the legend's lines.
 const LEGEND_HEIGHT: f32 = 58.0;
+/// The legend's margin from the strip's left and right edges (points).
+const LEGEND_MARGIN: f32 = 12.0;
+/// The legend's colour bar: at most this wide (points), narrower in a narrow panel.
+const LEGEND_BAR: f32 = 240.0;
 
 /// What the overlay mesh was built from.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -71,9 +74,11 @@ pub fn image_ui(
     cmds: &mut Vec<Command>,
 ) -> ImagePlacement {
     let mut area = ui.available_rect_before_wrap();
-    let legend_strip = (doc.view.debug != DebugView::Off).then(|| {
-        let strip = Rect::from_min_max(pos2(area.min.x, area.max.y - LEGEND_HEIGHT), area.max);
-        area.max.y -= LEGEND_HEIGHT;
+    let legend_text =
+        (doc.view.debug != DebugView::Off).then(|| legend_layout(ui, doc, area.width()));
+    let legend_strip = legend_text.as_ref().map(|l| {
+        let strip = Rect::from_min_max(pos2(area.min.x, area.max.y - l.height), area.max);
+        area.max.y -= l.height;
         strip
     });
     let resp = ui.allocate_rect(area, Sense::click_and_drag());
@@ -114,8 +119,8 @@ pub fn image_ui(
     if let Some(p) = resp.hover_pos() {
         hover_readout(ui, area, place.film_of(p), doc);
     }
-    if let Some(strip) = legend_strip {
-        legend(&ui.painter_at(strip), strip, doc);
+    if let (Some(strip), Some(text)) = (legend_strip, legend_text) {
+        legend(&ui.painter_at(strip), strip, text);
     }
     place
 }
@@ -345,10 +350,62 @@ fn hover_readout(ui: &egui::Ui, area: Rect, film: Vec2, doc: &Document) {
         });
 }
 
-fn legend(painter: &egui::Painter, area: Rect, doc: &Document) {
+/// The legend's text laid out for a strip `width` points wide, and the strip's height: every
+/// line wraps inside the strip (issue 32: the noise legend was cut at the panel's edge).
+struct LegendText {
+    title: Arc<egui::Galley>,
+    low: Arc<egui::Galley>,
+    high: Arc<egui::Galley>,
+    bar: f32,
+    /// The high end's text goes under the low end's (they do not fit side by side).
+    stacked: bool,
+    height: f32,
+}
+
+fn legend_layout(ui: &egui::Ui, doc: &Document, width: f32) -> LegendText {
     let view = doc.view.debug;
     let (_, max) = stats::range(view, &doc.stats);
-    let bar = Rect::from_min_size(area.left_top() + vec2(12.0, 20.0), vec2(240.0, 14.0));
+    let font = FontId::proportional(12.0);
+    let wrap = (width - 2.0 * LEGEND_MARGIN).max(40.0);
+    // A pixel of one sample has no spread to estimate: its 0 is not a measured zero.
+    let label = if view == DebugView::Noise && doc.stats.iter().any(|s| s.samples < 2) {
+        format!("{}; black: one sample, not estimable", view.label())
+    } else {
+        view.label().to_string()
+    };
+    let high = if view.clips() && max >= 10.0 {
+        format!("{max:.0} and above (99th percentile)")
+    } else if view.clips() {
+        format!("{max:.3} and above (99th percentile)")
+    } else {
+        format!("{max:.3}")
+    };
+    let layout = |t: String| ui.painter().layout(t, font.clone(), Color32::WHITE, wrap);
+    let (title, low, high) = (layout(label), layout("0 (black)".into()), layout(high));
+    let bar = LEGEND_BAR.min(wrap);
+    let stacked = low.size().x + 8.0 + high.size().x > bar;
+    let below = if stacked {
+        low.size().y + high.size().y
+    } else {
+        low.size().y.max(high.size().y)
+    };
+    let height = (title.size().y + 4.0 + 14.0 + 3.0 + below + 10.0).max(LEGEND_HEIGHT);
+    LegendText {
+        title,
+        low,
+        high,
+        bar,
+        stacked,
+        height,
+    }
+}
+
+fn legend(painter: &egui::Painter, area: Rect, text: LegendText) {
+    let top = area.left_top() + vec2(LEGEND_MARGIN, 4.0);
+    let bar = Rect::from_min_size(
+        top + vec2(0.0, text.title.size().y + 4.0),
+        vec2(text.bar, 14.0),
+    );
     let steps = 48;
     for i in 0..steps {
         let t = (i as f32 + 0.5) / steps as f32;
@@ -360,38 +417,13 @@ fn legend(painter: &egui::Painter, area: Rect, doc: &Document) {
         );
         painter.rect_filled(cell, 0.0, Color32::from_rgb(r, g, b));
     }
-    let font = FontId::proportional(12.0);
-    // A pixel of one sample has no spread to estimate: its 0 is not a measured zero.
-    let label = if view == DebugView::Noise && doc.stats.iter().any(|s| s.samples < 2) {
-        format!("{}; black: one sample, not estimable", view.label())
+    let low_at = bar.left_bottom() + vec2(0.0, 3.0);
+    let high_at = if text.stacked {
+        low_at + vec2(0.0, text.low.size().y)
     } else {
-        view.label().to_string()
+        bar.right_bottom() + vec2(-text.high.size().x, 3.0)
     };
-    painter.text(
-        bar.left_top() - vec2(0.0, 4.0),
-        Align2::LEFT_BOTTOM,
-        label,
-        font.clone(),
-        Color32::WHITE,
-    );
-    painter.text(
-        bar.left_bottom() + vec2(0.0, 3.0),
-        Align2::LEFT_TOP,
-        "0 (black)",
-        font.clone(),
-        Color32::WHITE,
-    );
-    painter.text(
-        bar.right_bottom() + vec2(0.0, 3.0),
-        Align2::RIGHT_TOP,
-        if view.clips() && max >= 10.0 {
-            format!("{max:.0} and above (99th percentile)")
-        } else if view.clips() {
-            format!("{max:.3} and above (99th percentile)")
-        } else {
-            format!("{max:.3}")
-        },
-        font,
-        Color32::WHITE,
-    );
+    painter.galley(top, text.title, Color32::WHITE);
+    painter.galley(low_at, text.low, Color32::WHITE);
+    painter.galley(high_at, text.high, Color32::WHITE);
 }

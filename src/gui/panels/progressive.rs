@@ -1,4 +1,5 @@
-//! The progressive mode's controls and its live noise estimate (in the Settings section).
+//! The progressive mode's controls, its live noise estimate and what that estimate is made of
+//! (in the Settings section).
 
 use crate::gui::model::document::{Command, Document};
 use crate::gui::model::progressive::{Options, Report, Stop};
@@ -54,6 +55,16 @@ pub fn progressive_ui(ui: &mut egui::Ui, doc: &Document, cmds: &mut Vec<Command>
             None => "noise: first pass...".to_string(),
         };
         ui.label(line);
+        // What the estimate is made of (issue 32): which pixels carry it, and why it
+        // plateaus when a few rare-event pixels do.
+        if let Some(c) = doc.progressive.report.and_then(|r| r.composition) {
+            let text = egui::RichText::new(c.sentence()).small();
+            ui.label(if c.dominated() {
+                text.color(crate::gui::style::WARNING)
+            } else {
+                text
+            });
+        }
     }
     if o != old {
         cmds.push(Command::SetProgressive(o));

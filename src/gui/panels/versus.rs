@@ -4,7 +4,7 @@
 //! Whitted misses here: 79% caustics, 21% indirect").
 
 use crate::Scene;
-use crate::aov::{Versus, versus};
+use crate::aov::{ClassShare, Versus, versus};
 use crate::gui::model::document::Document;
 use egui::{ColorImage, TextureHandle, TextureOptions};
 use std::path::PathBuf;
@@ -22,6 +22,9 @@ struct Made {
 struct Done {
     made: Made,
     summary: String,
+    /// The summary's class table as rows (class, expression, luminance, Whitted renders it),
+    /// shown in a grid rather than as spaced text (issue 32: it was misaligned).
+    classes: Vec<ClassShare>,
     textures: [TextureHandle; 3],
     /// The render generation its staleness was last checked at, and whether it was stale then.
     checked: Option<(u64, bool)>,
@@ -118,6 +121,7 @@ impl VersusPanel {
                     made,
                     checked: None,
                     summary: v.summary(),
+                    classes: v.classes.clone(),
                     textures: [
                         texture(ctx, "versus-whitted", w, &v.whitted.to_srgb8()),
                         texture(ctx, "versus-path", w, &v.path.beauty.to_srgb8()),
@@ -129,6 +133,7 @@ impl VersusPanel {
                 made,
                 checked: None,
                 summary: format!("the comparison failed: {e}"),
+                classes: Vec::new(),
                 textures: std::array::from_fn(|_| texture(ctx, "versus-empty", 1, &[0, 0, 0])),
             },
         });
@@ -201,6 +206,39 @@ impl VersusPanel {
             }
         });
         ui.small("difference: red where the path tracer is brighter, blue where Whitted is");
-        ui.label(egui::RichText::new(&done.summary).monospace().small());
+        // The summary's sentences wrap; its table is a grid, one cell per column.
+        let prose = done
+            .summary
+            .split("\nclass ")
+            .next()
+            .unwrap_or(&done.summary);
+        ui.small(prose);
+        classes_ui(ui, &done.classes);
     }
+}
+
+/// The class table: class, expression, luminance (right-aligned), whether Whitted renders it.
+fn classes_ui(ui: &mut egui::Ui, classes: &[ClassShare]) {
+    if classes.is_empty() {
+        return;
+    }
+    ui.style_mut().wrap_mode = Some(egui::TextWrapMode::Extend);
+    let mono = |t: String| egui::RichText::new(t).monospace();
+    egui::Grid::new("versus-classes")
+        .striped(true)
+        .num_columns(4)
+        .show(ui, |ui| {
+            for h in ["class", "expression", "luminance", "Whitted renders it"] {
+                ui.label(egui::RichText::new(h).strong());
+            }
+            ui.end_row();
+            for c in classes {
+                ui.label(c.name);
+                ui.label(mono(c.lpe.to_string()));
+                // Monospace and padded: the decimal points line up.
+                ui.label(mono(format!("{:>12.4}", c.luminance)));
+                ui.label(if c.whitted { "yes" } else { "no" });
+                ui.end_row();
+            }
+        });
 }

@@ -26,7 +26,7 @@ mod tests;
 
 use super::delivery::Delivery;
 use crate::bsdf::luminance;
-use crate::gui::model::progressive::{Options, Report, Stop};
+use crate::gui::model::progressive::{Composition, Options, Report, Stop, composition};
 use crate::integrator::{Integrator, NoopRecorder, RayCounts};
 use crate::math::Rgb;
 use crate::render::pixel_loop::{self, Beauty};
@@ -122,15 +122,28 @@ impl Accumulator {
         if self.samples < 2 || self.pixels.is_empty() {
             return f64::INFINITY;
         }
-        let sum: f64 = self
-            .pixels
+        let sum: f64 = self.terms().iter().sum();
+        (sum / self.pixels.len() as f64).sqrt()
+    }
+
+    /// Each pixel's squared relative error `var of mean / (mean luminance + OFFSET)^2`
+    /// (row-major; infinite below two samples): the terms whose mean is the square of
+    /// [`Self::error`].
+    #[must_use]
+    pub fn terms(&self) -> Vec<f64> {
+        self.pixels
             .iter()
             .map(|p| {
                 let (m, v) = p.mean_and_variance(self.samples);
                 v / (m.abs() + OFFSET).powi(2)
             })
-            .sum();
-        (sum / self.pixels.len() as f64).sqrt()
+            .collect()
+    }
+
+    /// Which pixels carry the estimate ([`composition`]).
+    #[must_use]
+    pub fn composition(&self) -> Option<Composition> {
+        composition(&self.terms(), self.width)
     }
 
     /// Trace samples `first..first + count` of rows `rows` (in parallel over rows) into the
@@ -290,6 +303,7 @@ impl Run {
             error,
             seconds: self.start.elapsed().as_secs_f64(),
             stop,
+            composition: self.acc.composition(),
         };
         if !send(Delivery::Pass { generation, report }) {
             return Step::Stopped;

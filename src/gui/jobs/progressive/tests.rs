@@ -159,3 +159,38 @@ fn a_progressive_job_refines_and_stops_at_the_target() {
     scene.settings.spp = 16;
     assert_eq!(image, crate::render(&scene, &|_| {}).0.pixels);
 }
+
+/// Issue 32: the estimate's composition. Its terms are what the estimate is the RMS of; on the
+/// caustic fixture a few pixels under the glass ball (the caustic, found by rare BSDF samples)
+/// carry most of the squared error, so the estimate plateaus; on the Cornell box the noise is
+/// spread.
+#[test]
+fn the_composition_says_when_rare_event_pixels_dominate() {
+    let compose = |scene: &Scene, spp: u32| {
+        let integrator = SceneIntegrator::new(scene);
+        let sampler = SceneSampler::for_settings(&scene.settings);
+        let mut acc = Accumulator::new(scene.camera.width, scene.camera.height);
+        acc.trace(
+            &integrator,
+            &sampler,
+            (0, spp),
+            0..scene.camera.height,
+            &|| false,
+        );
+        acc.finish_pass(spp);
+        let terms = acc.terms();
+        let mean = terms.iter().sum::<f64>() / terms.len() as f64;
+        assert!((mean.sqrt() - acc.error()).abs() <= 1e-12 * acc.error());
+        (acc.composition().expect("a composition"), acc.error())
+    };
+    let mut caustic = Scene::from_json(include_str!("../../../../fixtures/caustic.json")).unwrap();
+    caustic.camera = caustic.camera.with_size(80, 60);
+    let (c, error) = compose(&caustic, 64);
+    assert!(c.dominated(), "{c:?} {error}");
+    // Under the ball, whose contact point is below the image centre.
+    let [wx, wy] = c.worst;
+    assert!((20..60).contains(&wx) && (25..55).contains(&wy), "{c:?}");
+    assert!(c.rest_error < 0.75 * error, "{c:?} {error}");
+    let (spread, error) = compose(&cornell(32), 64);
+    assert!(!spread.dominated(), "{spread:?} {error}");
+}

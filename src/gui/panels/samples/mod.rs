@@ -11,7 +11,7 @@ use crate::gui::model::document::{Command, Document};
 use crate::gui::style::{ERROR, SELECTED, WARNING, rgb, square, swatch};
 use egui::RichText;
 
-/// Height of one row of the sample list.
+/// Least height of one row of the sample list (a row is as tall as a button of the style).
 const ROW_HEIGHT: f32 = 18.0;
 /// Rows of the list shown before it scrolls.
 const ROWS_SHOWN: usize = 8;
@@ -245,13 +245,22 @@ fn list_ui(
             }
         };
     });
-    let height = ROWS_SHOWN.min(rows.len()).max(1) as f32 * (ROW_HEIGHT + 2.0);
+    // Exactly the rows shown, each with the spacing `show_rows` puts under it (issue 32: 2
+    // points a row instead of the style's 3 hid the last row's bottom under the next header).
+    // Each row takes exactly `row` points (a button of the style) and `show_rows` puts the
+    // style's spacing under it; the list is exactly the rows shown (issue 32: 18 + 2 points a
+    // row against 20.4 + 3 drawn hid the last row under the next header).
+    let gap = ui.spacing().item_spacing.y;
+    let row = ROW_HEIGHT.max(ui.spacing().interact_size.y).max(
+        ui.text_style_height(&egui::TextStyle::Monospace) + 2.0 * ui.spacing().button_padding.y,
+    );
+    let height = ROWS_SHOWN.min(rows.len()).max(1) as f32 * (row + gap) - gap;
     let Some(tree) = &doc.tree else { return };
     egui::ScrollArea::vertical()
         .id_salt("samples-scroll")
         .max_height(height)
         .auto_shrink([false, true])
-        .show_rows(ui, ROW_HEIGHT, rows.len(), |ui, range| {
+        .show_rows(ui, row, rows.len(), |ui, range| {
             for r in &rows[range] {
                 let on = selected == Some(r.index);
                 let lpe = match (r.dominant(), r.paths.len()) {
@@ -269,7 +278,12 @@ fn list_ui(
                     value_text(r.value),
                     r.length
                 );
-                ui.horizontal(|ui| {
+                let (cell, _) = ui.allocate_exact_size(
+                    egui::vec2(ui.available_width(), row),
+                    egui::Sense::hover(),
+                );
+                let layout = egui::Layout::left_to_right(egui::Align::Center);
+                ui.scope_builder(egui::UiBuilder::new().max_rect(cell).layout(layout), |ui| {
                     square(ui, swatch(r.radiance));
                     let text = RichText::new(line).monospace();
                     let text = if on { text.color(SELECTED) } else { text };
