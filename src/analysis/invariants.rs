@@ -27,6 +27,7 @@ fn close(a: Rgb, b: Rgb) -> bool {
 #[must_use]
 pub fn tree_violations(tree: &RayTree, background: Rgb) -> Vec<String> {
     let mut v = Vec::new();
+    let bidirectional = tree.settings.integrator == crate::scene::IntegratorKind::Bdpt;
     let spp = tree.samples.len().max(1) as f64;
     // The path integrator drops a sample that is not finite (black in the pixel's mean).
     let path = tree.nodes.iter().any(|n| n.path.is_some());
@@ -62,11 +63,14 @@ pub fn tree_violations(tree: &RayTree, background: Rgb) -> Vec<String> {
             }
         }
         let atten = n.attenuation.as_ref().map_or(Rgb::ONE, |a| a.factor);
-        // A light subpath carries flux forwards: its nodes answer to the splat checks.
+        // A light subpath carries flux forwards: its nodes answer to the splat checks. Under
+        // bidirectional path tracing a camera vertex's light arrives by weighted strategies,
+        // not as Whitted-shaped sums: its samples answer to the contribution sums.
         if matches!(
             n.kind,
             RayKind::Shadow | RayKind::Light | RayKind::Connection
-        ) {
+        ) || bidirectional
+        {
             continue;
         }
         let mut local = n.emitted + n.ambient;
@@ -176,6 +180,11 @@ fn path_violations(tree: &RayTree, v: &mut Vec<String>) {
                 continue;
             };
             sum += p.contribution;
+            // A light subpath's expressions read from the light.
+            let light_side = matches!(n.kind, RayKind::Light);
+            if light_side {
+                continue;
+            }
             if let Some(parent) = n.parent.and_then(|q| tree.node(q).path.as_ref()) {
                 let stem = parent.lpe.trim_end_matches(['L', 'B']);
                 if !p.lpe.starts_with(stem) {
@@ -186,10 +195,12 @@ fn path_violations(tree: &RayTree, v: &mut Vec<String>) {
                 }
             }
             let killed = p.roulette.is_some_and(|r| !r.survived);
-            let continued = n
-                .children
-                .iter()
-                .any(|c| tree.node(*c).kind != RayKind::Shadow);
+            let continued = n.children.iter().any(|c| {
+                !matches!(
+                    tree.node(*c).kind,
+                    RayKind::Shadow | RayKind::Connection | RayKind::Light
+                )
+            });
             if killed && continued {
                 v.push(format!("node {}: killed by roulette but continued", id.0));
             }

@@ -167,6 +167,10 @@ impl EffectPlan {
                 path::restate_light(&mut out);
                 out.extend(path::light_lines(scene, &names));
             }
+            crate::scene::IntegratorKind::Bdpt => {
+                path::restate(&mut out, scene);
+                out.extend(path::bdpt_lines(scene, &names));
+            }
             crate::scene::IntegratorKind::Whitted => {}
         }
         let unused: Vec<&str> = (0..scene.materials.len())

@@ -184,3 +184,31 @@ pub(super) fn restate_light(out: &mut [EffectLine]) {
         }
     }
 }
+
+/// What bidirectional path tracing does with the scene, for `raytree effects`: [`lines`] with
+/// its own first line and the same ignored approximations.
+pub(super) fn bdpt_lines(scene: &Scene, names: Names<'_>) -> Vec<EffectLine> {
+    let s = &scene.settings;
+    let mut out = lines(scene, names);
+    for l in &mut out {
+        l.effect = l
+            .effect
+            .replace("path integrator", "bidirectional path tracing");
+        l.reason = l
+            .reason
+            .replace("the path integrator", "bidirectional path tracing");
+    }
+    out[0].reason = format!(
+        "a camera subpath and a light subpath per pixel sample, joined by every strategy \
+         (s, t) up to {} scattering vertices: the camera subpath finding an emitter (s = 0), a \
+         light sampled from its vertices (s = 1), light-subpath vertices connected to the \
+         camera and splatted (t = 1), and visibility rays between the two; weighted by the \
+         balance heuristic over all strategies (delta vertices excluded); Russian roulette \
+         from bounce {} on both subpaths; the background lights nothing from the light's \
+         side (only escaping camera subpaths see it){}",
+        s.max_depth + 1,
+        s.rr_depth,
+        super::dark_note(scene)
+    );
+    out
+}

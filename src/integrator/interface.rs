@@ -8,7 +8,7 @@
 //! lecture's recursion, or [`PathTracer`], the Monte Carlo path tracer.
 
 use super::shading::NoSamples;
-use super::{LightTracer, PathTracer, RayCounts, Recorder, Splat, Whitted};
+use super::{Bdpt, LightTracer, PathTracer, RayCounts, Recorder, Splat, Whitted};
 use crate::bvh::TraversalCost;
 use crate::integrator::EffectPlan;
 use crate::math::{Ray, Rgb};
@@ -251,6 +251,69 @@ impl Integrator for LightTracer<'_> {
     }
 }
 
+impl Integrator for Bdpt<'_> {
+    fn kind(&self) -> IntegratorKind {
+        IntegratorKind::Bdpt
+    }
+
+    #[inline]
+    fn scene(&self) -> &Scene {
+        Bdpt::scene(self)
+    }
+
+    #[inline]
+    fn film(&self) -> &Film<'_> {
+        Bdpt::film(self)
+    }
+
+    #[inline]
+    fn camera_radiance<R: Recorder, S: PixelSampler>(
+        &self,
+        ray: Ray,
+        sampler: &mut S,
+        rec: &mut R,
+        counts: &mut RayCounts,
+    ) -> (Rgb, Option<NodeId>) {
+        self.trace_camera(ray, sampler, rec, counts)
+    }
+
+    /// Never: every sample draws from its pixel's sampler.
+    #[inline]
+    fn traces_packets(&self) -> bool {
+        false
+    }
+
+    /// Not called ([`Integrator::traces_packets`] is false).
+    fn camera_packet_radiance<R: Recorder>(
+        &self,
+        rays: &[Ray],
+        _: (&[Option<Hit>], &[TraversalCost]),
+        out: &mut [Rgb],
+        rec: &mut R,
+        counts: &mut RayCounts,
+    ) {
+        for (ray, o) in rays.iter().zip(out.iter_mut()) {
+            *o = self.trace_camera(*ray, &mut NoSamples, rec, counts).0;
+        }
+    }
+
+    fn splats(&self) -> bool {
+        true
+    }
+
+    #[inline]
+    fn trace_light_path<R: Recorder, S: PixelSampler, F: FnMut(Splat)>(
+        &self,
+        seed: (u32, u32, u32),
+        sampler: &mut S,
+        rec: &mut R,
+        counts: &mut RayCounts,
+        splat: &mut F,
+    ) -> Option<NodeId> {
+        self.trace_splats(seed, sampler, rec, counts, splat)
+    }
+}
+
 /// The integrator a scene's `settings.integrator` names, ready to trace. Every command builds
 /// this one, so a new [`IntegratorKind`] is one more arm here and nothing else in the commands.
 #[derive(Clone, Debug)]
@@ -261,6 +324,8 @@ pub enum SceneIntegrator<'a> {
     Path(PathTracer<'a>),
     /// `"light"`.
     Light(LightTracer<'a>),
+    /// `"bdpt"`.
+    Bdpt(Bdpt<'a>),
 }
 
 impl<'a> SceneIntegrator<'a> {
@@ -278,6 +343,7 @@ impl<'a> SceneIntegrator<'a> {
             // The path tracer runs every effect (its own plan): `plan` is Whitted's.
             IntegratorKind::Path => Self::Path(PathTracer::new(scene)),
             IntegratorKind::Light => Self::Light(LightTracer::new(scene)),
+            IntegratorKind::Bdpt => Self::Bdpt(Bdpt::new(scene)),
         }
     }
 
@@ -286,7 +352,7 @@ impl<'a> SceneIntegrator<'a> {
     pub fn whitted(&self) -> Option<&Whitted<'a>> {
         match self {
             Self::Whitted(t) => Some(t),
-            Self::Path(_) | Self::Light(_) => None,
+            Self::Path(_) | Self::Light(_) | Self::Bdpt(_) => None,
         }
     }
 }
@@ -297,6 +363,7 @@ impl Integrator for SceneIntegrator<'_> {
             Self::Whitted(t) => t.kind(),
             Self::Path(t) => t.kind(),
             Self::Light(t) => t.kind(),
+            Self::Bdpt(t) => t.kind(),
         }
     }
 
@@ -306,6 +373,7 @@ impl Integrator for SceneIntegrator<'_> {
             Self::Whitted(t) => Integrator::scene(t),
             Self::Path(t) => Integrator::scene(t),
             Self::Light(t) => Integrator::scene(t),
+            Self::Bdpt(t) => Integrator::scene(t),
         }
     }
 
@@ -315,6 +383,7 @@ impl Integrator for SceneIntegrator<'_> {
             Self::Whitted(t) => Integrator::film(t),
             Self::Path(t) => Integrator::film(t),
             Self::Light(t) => Integrator::film(t),
+            Self::Bdpt(t) => Integrator::film(t),
         }
     }
 
@@ -330,6 +399,7 @@ impl Integrator for SceneIntegrator<'_> {
             Self::Whitted(t) => t.camera_radiance(ray, sampler, rec, counts),
             Self::Path(t) => t.camera_radiance(ray, sampler, rec, counts),
             Self::Light(t) => t.camera_radiance(ray, sampler, rec, counts),
+            Self::Bdpt(t) => t.camera_radiance(ray, sampler, rec, counts),
         }
     }
 
@@ -339,6 +409,7 @@ impl Integrator for SceneIntegrator<'_> {
             Self::Whitted(t) => t.traces_packets(),
             Self::Path(t) => t.traces_packets(),
             Self::Light(t) => t.traces_packets(),
+            Self::Bdpt(t) => t.traces_packets(),
         }
     }
 
@@ -355,12 +426,13 @@ impl Integrator for SceneIntegrator<'_> {
             Self::Whitted(t) => t.camera_packet_radiance(rays, found, out, rec, counts),
             Self::Path(t) => t.camera_packet_radiance(rays, found, out, rec, counts),
             Self::Light(t) => t.camera_packet_radiance(rays, found, out, rec, counts),
+            Self::Bdpt(t) => t.camera_packet_radiance(rays, found, out, rec, counts),
         }
     }
 
     #[inline]
     fn splats(&self) -> bool {
-        matches!(self, Self::Light(_))
+        matches!(self, Self::Light(_) | Self::Bdpt(_))
     }
 
     #[inline]
@@ -374,6 +446,7 @@ impl Integrator for SceneIntegrator<'_> {
     ) -> Option<NodeId> {
         match self {
             Self::Light(t) => t.trace_light_path(seed, sampler, rec, counts, splat),
+            Self::Bdpt(t) => t.trace_splats(seed, sampler, rec, counts, splat),
             Self::Whitted(_) | Self::Path(_) => None,
         }
     }

@@ -10,9 +10,11 @@
 //! - [`Whitted`] (`whitted/`): the lecture's `trace(ray, objects, lights)` recursion.
 //! - [`PathTracer`] (`path/`): unidirectional path tracing with NEE and MIS.
 //! - [`LightTracer`] (`light/`): light tracing, paths from the lights splatted to the camera.
+//! - [`Bdpt`] (`bdpt/`): bidirectional path tracing, every strategy (s, t) with MIS.
 //!
 //! See `docs/architecture.md`.
 
+pub mod bdpt;
 pub mod diagnose;
 mod direct;
 mod interface;
@@ -27,6 +29,7 @@ pub mod whitted;
 
 pub use crate::interaction::SurfaceInteraction;
 pub use crate::media::{MediaStack, Medium};
+pub use bdpt::Bdpt;
 pub use interface::{Integrator, SceneIntegrator};
 pub use light::{LightTracer, Splat};
 pub use path::{PathStrategy, PathTracer};

@@ -132,7 +132,7 @@ pub fn pixel_splats<I: Integrator, R: Recorder>(
                 root,
                 connection: sp.connection?,
                 contribution: sp.contribution,
-                mis_weight: 1.0,
+                mis_weight: sp.mis_weight,
                 lpe: sp.lpe,
             })
         }));

@@ -138,17 +138,7 @@ impl Film<'_> {
             return None;
         }
         let direction = rel / distance;
-        // Where the line meets the plane in focus (at distance 1 for a pinhole), back in the
-        // pinhole's plane coordinates ([`Film::to_plane`]).
-        let depth = if self.has_lens() {
-            c.focus_distance
-        } else {
-            1.0
-        };
-        let on_plane = on_lens + rel * (depth / along);
-        let (pu, pv) = (on_plane.dot(c.right) / depth, on_plane.dot(c.up) / depth);
-        let fx = (pu / self.half_w + 1.0) * 0.5 * f64::from(c.width);
-        let fy = (1.0 - pv / self.half_h) * 0.5 * f64::from(c.height);
+        let (fx, fy) = self.film_of(on_lens, rel, along);
         let inside =
             (0.0..f64::from(c.width)).contains(&fx) && (0.0..f64::from(c.height)).contains(&fy);
         if !inside {
@@ -163,6 +153,51 @@ impl Film<'_> {
             distance,
             importance: 1.0 / (area * cos * cos * cos),
         })
+    }
+
+    /// The solid-angle density with which the camera's rays leave lens point `lens` along unit
+    /// `w` (pbrt-v3 `PerspectiveCamera::Pdf_We`'s `pdfDir`): `1 / (A cos^3 theta)` where the
+    /// ray lands on the film, 0 elsewhere. The lens point's own density (`1 / (pi r^2)`, 1 for a
+    /// pinhole) cancels in BDPT's ratios, which use only this.
+    #[must_use]
+    pub fn pdf_dir(&self, lens: DVec3, w: DVec3) -> f64 {
+        let c = self.camera;
+        match self.connect_from(lens - c.position, w) {
+            Some(cos) => 1.0 / (4.0 * self.half_w * self.half_h * cos * cos * cos),
+            None => 0.0,
+        }
+    }
+
+    /// The cosine to `forward` of the ray from lens offset `on_lens` (relative to the eye)
+    /// along `rel`, when it lands on the film.
+    fn connect_from(&self, on_lens: DVec3, rel: DVec3) -> Option<f64> {
+        let c = self.camera;
+        let along = rel.dot(c.forward);
+        let len = rel.length();
+        if !(along > 0.0 && len > 0.0 && len.is_finite()) {
+            return None;
+        }
+        let (fx, fy) = self.film_of(on_lens, rel, along);
+        let inside =
+            (0.0..f64::from(c.width)).contains(&fx) && (0.0..f64::from(c.height)).contains(&fy);
+        inside.then_some(along / len)
+    }
+
+    /// The film position of the ray from lens offset `on_lens` along `rel` (`along` its
+    /// component on `forward`, > 0): where it meets the plane in focus (distance 1 for a
+    /// pinhole), in the pinhole's plane coordinates ([`Film::to_plane`]).
+    fn film_of(&self, on_lens: DVec3, rel: DVec3, along: f64) -> (f64, f64) {
+        let c = self.camera;
+        let depth = if self.has_lens() {
+            c.focus_distance
+        } else {
+            1.0
+        };
+        let on_plane = on_lens + rel * (depth / along);
+        let (pu, pv) = (on_plane.dot(c.right) / depth, on_plane.dot(c.up) / depth);
+        let fx = (pu / self.half_w + 1.0) * 0.5 * f64::from(c.width);
+        let fy = (1.0 - pv / self.half_h) * 0.5 * f64::from(c.height);
+        (fx, fy)
     }
 
     /// [`Camera::film_to_plane`].

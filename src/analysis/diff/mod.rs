@@ -205,7 +205,7 @@ fn settings_value(s: &crate::scene::Settings) -> Value {
         m.entry("roulette_below").or_insert_with(|| 0.0.into());
         m.insert("rr_depth".into(), s.rr_depth.into());
         m.insert("glossy_samples".into(), s.glossy_samples.into());
-        if let Ok(f) = serde_json::to_value(&s.filter) {
+        if let Ok(f) = serde_json::to_value(s.filter) {
             m.insert("filter".into(), f);
         }
     }

@@ -32,6 +32,8 @@ pub struct Splat {
     pub connection: Option<NodeId>,
     /// Vertices of the light subpath, the emitter's counted (`s` of the strategy (s, 1)).
     pub vertices: u32,
+    /// The strategy's MIS weight (1 under light tracing; `contribution` is weighted).
+    pub mis_weight: f64,
     /// The light path expression read from the camera (recording only; empty otherwise).
     pub lpe: String,
 }
@@ -381,6 +383,7 @@ impl LightTracer<'_> {
             contribution,
             connection: cid,
             vertices: w.depth + 2,
+            mis_weight: 1.0,
             lpe,
         });
     }
@@ -409,7 +412,7 @@ fn adjoint_cos(si: &SurfaceInteraction, wi: DVec3) -> f64 {
 }
 
 /// The light path's continuation weight `f |cos| / pdf` with [`adjoint_cos`].
-fn adjoint_weight(si: &SurfaceInteraction, bs: &BsdfSample) -> Rgb {
+pub(crate) fn adjoint_weight(si: &SurfaceInteraction, bs: &BsdfSample) -> Rgb {
     if bs.pdf > 0.0 {
         bs.value * (adjoint_cos(si, bs.wi) / bs.pdf)
     } else {
@@ -420,7 +423,7 @@ fn adjoint_weight(si: &SurfaceInteraction, bs: &BsdfSample) -> Rgb {
 /// The event of a connection through `bsdf`'s non-delta lobes: diffuse reflection when it has
 /// a Lambert lobe and the camera is on the light's side, otherwise glossy reflection or
 /// transmission.
-fn connection_event(bsdf: &Bsdf, reflects: bool) -> &'static str {
+pub(crate) fn connection_event(bsdf: &Bsdf, reflects: bool) -> &'static str {
     let lambert = bsdf.lobes().any(|(l, _)| matches!(l, Lobe::Lambert { .. }));
     match (reflects, lambert) {
         (true, true) => "<RD>",

@@ -97,14 +97,18 @@ pub enum IntegratorKind {
     /// vertex connects to the camera ([`crate::integrator::LightTracer`],
     /// `docs/bidirectional.md`).
     Light,
+    /// Bidirectional path tracing: every strategy (s, t) joining a camera and a light subpath,
+    /// weighted by MIS ([`crate::integrator::Bdpt`], `docs/bidirectional.md`).
+    Bdpt,
 }
 
 impl IntegratorKind {
     /// Every integrator, in documentation order.
-    pub const ALL: [IntegratorKind; 3] = [
+    pub const ALL: [IntegratorKind; 4] = [
         IntegratorKind::Whitted,
         IntegratorKind::Path,
         IntegratorKind::Light,
+        IntegratorKind::Bdpt,
     ];
 
     /// The settings (field names) only the Whitted integrator reads: the path integrator
@@ -134,6 +138,7 @@ impl IntegratorKind {
             IntegratorKind::Whitted => "whitted",
             IntegratorKind::Path => "path",
             IntegratorKind::Light => "light",
+            IntegratorKind::Bdpt => "bdpt",
         }
     }
 
@@ -146,8 +151,9 @@ impl IntegratorKind {
             "whitted" => Ok(IntegratorKind::Whitted),
             "path" => Ok(IntegratorKind::Path),
             "light" => Ok(IntegratorKind::Light),
+            "bdpt" => Ok(IntegratorKind::Bdpt),
             _ => Err(format!(
-                "unknown integrator {name:?}, expected \"whitted\", \"path\" or \"light\""
+                "unknown integrator {name:?}, expected \"whitted\", \"path\", \"light\" or \"bdpt\""
             )),
         }
     }
@@ -337,7 +343,9 @@ impl Settings {
     #[must_use]
     pub fn sampler_kind(&self) -> SamplerKind {
         self.sampler.unwrap_or(match self.integrator {
-            IntegratorKind::Path | IntegratorKind::Light => SamplerKind::Sobol,
+            IntegratorKind::Path | IntegratorKind::Light | IntegratorKind::Bdpt => {
+                SamplerKind::Sobol
+            }
             IntegratorKind::Whitted => SamplerKind::Stratified,
         })
     }
