@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""Light tracing against path tracing: time to equal error on a region (issue 30).
+"""Light tracing and BDPT against path tracing: time to equal error on a region (issue 30).
 
 For each integrator and spp, renders the scene (the binary's own timer: the `time X s` line),
 compares a region against a converged path-traced reference (`raytree compare --region`), and
@@ -48,7 +48,7 @@ def main():
     for spp in spps:
         eff = {}
         rows = []
-        for integ in ["path", "light"]:
+        for integ in ["path", "light", "bdpt"]:
             out = d / f"{integ}-{spp}.exr"
             t = render(binary, scene, integ, spp, out, 1)
             e = rmse(binary, out, ref, region)

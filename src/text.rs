@@ -172,6 +172,12 @@ pub fn path_text(n: &RayNode) -> String {
         return String::new();
     };
     let mut s = format!("  | {}", p.lpe);
+    if let Some([ls, ct]) = p.strategy {
+        let _ = write!(s, " s={ls} t={ct}");
+    }
+    if let Some(u) = p.unweighted {
+        let _ = write!(s, " unweighted {}", rgb(u));
+    }
     if let Some(l) = p.lobe {
         let name = serde_json::to_string(&l).unwrap_or_default();
         let _ = write!(s, " lobe {}", name.trim_matches('"'));

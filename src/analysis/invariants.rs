@@ -180,9 +180,10 @@ fn path_violations(tree: &RayTree, v: &mut Vec<String>) {
                 continue;
             };
             sum += p.contribution;
-            // A light subpath's expressions read from the light.
-            let light_side = matches!(n.kind, RayKind::Light);
-            if light_side {
+            // A light subpath's expressions read from the light; a connection that carried
+            // nothing (blocked) names no path.
+            let unnamed = n.kind == RayKind::Connection && p.contribution == Rgb::ZERO;
+            if n.kind == RayKind::Light || unnamed {
                 continue;
             }
             if let Some(parent) = n.parent.and_then(|q| tree.node(q).path.as_ref()) {

@@ -196,7 +196,9 @@ impl Session {
         let image_first = self.doc.view.debug == crate::gui::model::stats::DebugView::Off;
         let scene = Arc::clone(&self.doc.scene);
         let options = self.doc.progressive.options;
-        self.doc.progress.generation = if options.on {
+        // Light tracing and BDPT splat across the image: their passes are whole renders.
+        let progressive = options.on && !self.doc.scene.settings.integrator.splats();
+        self.doc.progress.generation = if progressive {
             self.worker.start_progressive(scene, options)
         } else {
             self.worker.start(scene, image_first)

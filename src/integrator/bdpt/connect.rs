@@ -12,7 +12,7 @@ use crate::integrator::light::connection_event;
 use crate::integrator::offset::scaled_epsilon;
 use crate::integrator::shading::shadow_end;
 use crate::integrator::{RayCounts, Recorder};
-use crate::lights::Light;
+use crate::lights::{AreaShape, Light};
 use crate::math::Rgb;
 use crate::sampling::PixelSampler;
 use crate::tree::{NodeId, PathInfo, RayKind, RayNode};
@@ -219,6 +219,23 @@ impl Bdpt<'_> {
         let (a, b) = sampler.next_2d();
         let mut q = Vertex::at(Kind::Light { index }, pt.p);
         match *light {
+            Light::Area {
+                shape: AreaShape::Sphere { center, .. },
+                ..
+            } => {
+                // The path tracer's cone sampling (pbrt-v3 samples s = 1 by `Sample_Li` too);
+                // the MIS weights keep the light's area density, as pbrt's do.
+                let ls = light.sample_li(pt.p, (a, b))?;
+                let y = pt.p + ls.direction * ls.distance;
+                let n = (y - center).normalize_or_zero();
+                let pdf_area = ls.pdf * n.dot(ls.direction).abs() / (ls.distance * ls.distance);
+                let area = light_area(light);
+                q.p = y;
+                q.ng = n;
+                q.ns = n;
+                q.pdf_fwd = p_choose / area;
+                q.beta = ls.radiance / (p_choose * pdf_area);
+            }
             Light::Area { .. } => {
                 let er = light.sample_le(DVec2::new(a, b), DVec2::new(0.5, 0.5))?;
                 let n = er.normal?;
@@ -391,4 +408,12 @@ fn geometry(a: &Vertex, b: &Vertex) -> f64 {
         g *= b.ns.dot(w).abs();
     }
     g
+}
+
+/// The surface area of an area light (1 for the others).
+fn light_area(light: &Light<'_>) -> f64 {
+    match light {
+        Light::Area { shape, .. } => shape.area(),
+        _ => 1.0,
+    }
 }

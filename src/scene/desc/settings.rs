@@ -125,6 +125,14 @@ impl IntegratorKind {
         "roulette_below",
     ];
 
+    /// Whether the integrator splats light paths into other pixels (light tracing, BDPT): its
+    /// pixels are not sums of their own samples alone, so per-pixel refinement (progressive
+    /// passes, adaptive sampling) does not apply.
+    #[must_use]
+    pub fn splats(self) -> bool {
+        matches!(self, IntegratorKind::Light | IntegratorKind::Bdpt)
+    }
+
     /// Why the path integrator ignores [`IntegratorKind::WHITTED_ONLY`], in one clause.
     pub const WHITTED_ONLY_WHY: &'static str = "it always uses exact Fresnel, its shadow rays \
         are visibility tests, so light through glass arrives by BSDF sampling, it takes one \
