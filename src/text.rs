@@ -273,7 +273,14 @@ fn node_summary(n: &RayNode) -> String {
             } else {
                 "unblocked"
             };
-            let _ = write!(s, " -> the camera: {seen}");
+            // Light tracing's and BDPT's t = 1 connections end at the lens; BDPT's others at
+            // a light sample (s = 1) or the light subpath's end vertex.
+            let to = match n.path.as_ref().and_then(|p| p.strategy) {
+                None | Some([_, 1]) => "the camera",
+                Some([1, _]) => "a light sample",
+                Some(_) => "the light subpath",
+            };
+            let _ = write!(s, " -> {to}: {seen}");
         }
         None => s.push_str(" -> miss (background)"),
         Some(h) => {
