@@ -385,6 +385,30 @@ fn command_line_light_tracing() {
     );
     let o = raytree(&["effects", s, "--integrator", "bdpt"], d.path());
     assert!(String::from_utf8_lossy(&o.stdout).contains("bidirectional path tracing"));
+    // Images built from camera samples alone are refused (exit 2, nothing written).
+    for extra in [
+        &["--denoise"][..],
+        &["--aov", "caustic=C<RD>S+L"],
+        &["--debug-view", "noise"],
+    ] {
+        let refused = d.path().join("refused.png");
+        let mut args = vec!["render", s, "--integrator", "bdpt", "--size", "8x8", "-o"];
+        args.push(refused.to_str().unwrap());
+        args.extend_from_slice(extra);
+        let o = raytree(&args, d.path());
+        assert_eq!(
+            o.status.code(),
+            Some(2),
+            "{extra:?}: {}",
+            common::stderr(&o)
+        );
+        assert!(
+            common::stderr(&o).contains("light-path splats"),
+            "{}",
+            common::stderr(&o)
+        );
+        assert!(!refused.exists(), "{extra:?} wrote an image");
+    }
 }
 
 /// The caustic under the glass ball (`C<RD><TS><TS>L`) comes from the light's side under BDPT:

@@ -210,5 +210,11 @@ pub(super) fn bdpt_lines(scene: &Scene, names: Names<'_>) -> Vec<EffectLine> {
         s.rr_depth,
         super::dark_note(scene)
     );
+    if !matches!(s.filter, crate::scene::FilterDesc::Box {}) || s.adaptive.is_some() {
+        out[0].reason.push_str(
+            "; its splats use the box filter and every pixel's splats are divided by spp \
+             (settings.filter and settings.adaptive are the camera integrators')",
+        );
+    }
     out
 }
