@@ -54,7 +54,7 @@ pub fn run(a: &RenderArgs) -> Result<()> {
     let (aovs, views) = parse(a)?;
     let loaded = load(a.scene.as_deref(), &a.overrides)?;
     let scene = &loaded.scene;
-    super::render_cmd::refuse_splat_views(scene, true, "--aov and --debug-view")?;
+    super::load::refuse_splat_views(scene, true, "--aov and --debug-view")?;
     let whitted = scene.settings.integrator == IntegratorKind::Whitted;
     if whitted && !aovs.is_empty() {
         bail!("--aov: {}", raytree::aov::AovError::Whitted);

@@ -248,6 +248,20 @@ pub fn apply(scene: &mut Scene, o: &Overrides) -> Result<()> {
     Ok(())
 }
 
+/// Refuse `what` (flags whose images are built from camera samples alone: the denoiser's
+/// features, AOVs, debug views) under an integrator whose pixels also hold light-path splats
+/// (`light`, `bdpt`): their images would leave the splats out.
+pub fn refuse_splat_views(scene: &Scene, given: bool, what: &str) -> Result<()> {
+    let kind = scene.settings.integrator;
+    if given && kind.splats() {
+        anyhow::bail!(
+            "{what}: not available under --integrator {} (its pixels also hold light-path splats, which these images leave out): render without them, or under --integrator path",
+            kind.name()
+        );
+    }
+    Ok(())
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

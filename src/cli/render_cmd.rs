@@ -35,7 +35,7 @@ pub fn run(a: &RenderArgs) -> Result<()> {
     }
     let loaded = load(a.scene.as_deref(), &a.overrides)?;
     let scene = &loaded.scene;
-    refuse_splat_views(scene, a.denoise || a.features, "--denoise and --features")?;
+    super::load::refuse_splat_views(scene, a.denoise || a.features, "--denoise and --features")?;
     let mib = super::budget::mib(a.overrides.max_memory);
     super::budget::check_image(scene, mib)?;
     if a.denoise || a.features {
@@ -180,19 +180,5 @@ pub fn run(a: &RenderArgs) -> Result<()> {
         )?;
     }
     warn_image(a, scene, &stats, clamped, format);
-    Ok(())
-}
-
-/// Refuse `what` (flags whose images are built from camera samples alone: the denoiser's
-/// features, AOVs, debug views) under an integrator whose pixels also hold light-path splats
-/// (`light`, `bdpt`): their images would leave the splats out.
-pub(super) fn refuse_splat_views(scene: &raytree::Scene, given: bool, what: &str) -> Result<()> {
-    let kind = scene.settings.integrator;
-    if given && kind.splats() {
-        anyhow::bail!(
-            "{what}: not available under --integrator {} (its pixels also hold light-path splats, which these images leave out): render without them, or under --integrator path",
-            kind.name()
-        );
-    }
     Ok(())
 }
