@@ -94,6 +94,19 @@ impl MediaStack {
         }
     }
 
+    /// The stack after a ray transmitted through `object`'s surface: entering it (with the
+    /// material's `ior`, or the current index when it has none), or leaving it.
+    #[must_use]
+    #[inline]
+    pub fn crossed(self, object: usize, entering: bool, ior: Option<f64>) -> Self {
+        if entering {
+            let ior = ior.unwrap_or(self.ior());
+            self.entered(object, ior)
+        } else {
+            self.left(object)
+        }
+    }
+
     /// The stack after leaving `object` (wherever it is on the stack; unchanged if absent).
     #[must_use]
     pub fn left(mut self, object: usize) -> Self {

@@ -136,17 +136,13 @@ pub fn trace_pixel(scene: &Scene, x: u32, y: u32) -> Option<RayTree> {
     // The settings as traced: the automatic cut and roulette weight are recorded as the values
     // they took (an automatic roulette that is off stays absent).
     // Light tracing: the light paths that land here, recorded after the camera samples.
-    let (splats, splat_divisor) = if integrator.splats() {
+    let (splats, splat_divisor, radiance) = if integrator.splats() {
         let (records, _) = splat::pixel_splats(&integrator, (x, y), &mut rec);
         let spp = scene.settings.spp.max(1);
-        (records, spp)
+        let radiance = splat::with_splats(radiance, splat::splat_sum(&records), spp);
+        (records, spp, radiance)
     } else {
-        (Vec::new(), 0)
-    };
-    let radiance = if integrator.splats() {
-        splat::with_splats(radiance, splat::splat_sum(&splats), splat_divisor)
-    } else {
-        radiance
+        (Vec::new(), 0, radiance)
     };
     let roulette = crate::integrator::bound::carried::effective_roulette_below(scene);
     let settings = crate::scene::Settings {

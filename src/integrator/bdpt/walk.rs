@@ -5,8 +5,7 @@
 use super::Bdpt;
 use super::vertex::{Kind, Vertex};
 use crate::bsdf::{Bsdf, LobeKind};
-use crate::integrator::light::adjoint_weight;
-use crate::integrator::offset::scaled_epsilon;
+use crate::integrator::light::{adjoint_weight, emitted_ray};
 use crate::integrator::path::{event, transmits};
 use crate::integrator::{RayCounts, Recorder};
 use crate::interaction::SurfaceId;
@@ -106,13 +105,7 @@ impl Bdpt<'_> {
         v.delta_light = er.delta_pos || er.delta_dir;
         v.infinite = er.delta_dir;
         path.push(v);
-        let ray = match er.normal {
-            Some(n) => {
-                let eps = scaled_epsilon(self.scene().settings.offset.epsilon, er.origin);
-                Ray::new(er.origin + eps * n, er.direction, 0.0)
-            }
-            None => Ray::new(er.origin, er.direction, 0.0),
-        };
+        let ray = emitted_ray(self.scene(), &er);
         let start = Start {
             ray,
             beta,
@@ -303,11 +296,7 @@ impl Bdpt<'_> {
             w.beta *= weight;
             w.rel *= weight;
             if transmits(bs.kind) {
-                media = if entering {
-                    media.entered(hit.object, ior.unwrap_or(media.ior()))
-                } else {
-                    media.left(hit.object)
-                };
+                media = media.crossed(hit.object, entering, ior);
             }
             let side = if bs.wi.dot(n_geo) < 0.0 {
                 -n_geo

@@ -37,7 +37,7 @@ use crate::scene::{Film, Scene};
 use crate::tree::{EndReason, NodeId, PathInfo, RayKind, RayNode};
 
 pub use walk::Splat;
-pub(crate) use walk::{adjoint_weight, connection_event};
+pub(crate) use walk::{adjoint_weight, connection_event, emitted_ray};
 
 /// The light-tracing integrator (`settings.integrator: "light"`).
 #[derive(Clone, Debug)]

@@ -102,7 +102,7 @@ impl LightTracer<'_> {
         let mut w = LightWalk {
             beta,
             rel: Rgb::ONE,
-            ray: self.emitted_ray(&er),
+            ray: emitted_ray(self.scene(), &er),
             spawn_point: er.origin,
             from: light.object().map(|object| SurfaceId {
                 object,
@@ -152,18 +152,6 @@ impl LightTracer<'_> {
             }
         }
         root
-    }
-
-    /// The emitted ray, leaving an area light's surface by the scene's epsilon scaled to the
-    /// point (the emitter's own triangle is not known for a mesh, so no other offset applies).
-    fn emitted_ray(&self, er: &EmittedRay) -> Ray {
-        match er.normal {
-            Some(n) => {
-                let eps = scaled_epsilon(self.scene().settings.offset.epsilon, er.origin);
-                Ray::new(er.origin + eps * n, er.direction, 0.0)
-            }
-            None => Ray::new(er.origin, er.direction, 0.0),
-        }
     }
 
     /// Count and record the current ray of the light path.
@@ -283,13 +271,8 @@ impl LightTracer<'_> {
         bs: &BsdfSample,
         (f_cos_pdf, weight): (Rgb, Rgb),
     ) {
-        let object = at.from.object;
         if transmits(bs.kind) {
-            *media = if at.entering {
-                media.entered(object, at.ior.unwrap_or(media.ior()))
-            } else {
-                media.left(object)
-            };
+            *media = media.crossed(at.from.object, at.entering, at.ior);
         }
         let side = if bs.wi.dot(at.n) < 0.0 { -at.n } else { at.n };
         w.ray = self.core.spawn_ray(at.from, at.p, side, bs.wi);
@@ -386,6 +369,19 @@ impl LightTracer<'_> {
             mis_weight: 1.0,
             lpe,
         });
+    }
+}
+
+/// The ray `er` leaves its light along, off an area light's surface by the scene's epsilon
+/// scaled to the point (the emitter's own triangle is not known for a mesh, so no other offset
+/// applies); shared by light tracing and BDPT's light subpaths.
+pub(crate) fn emitted_ray(scene: &crate::scene::Scene, er: &EmittedRay) -> Ray {
+    match er.normal {
+        Some(n) => {
+            let eps = scaled_epsilon(scene.settings.offset.epsilon, er.origin);
+            Ray::new(er.origin + eps * n, er.direction, 0.0)
+        }
+        None => Ray::new(er.origin, er.direction, 0.0),
     }
 }
 

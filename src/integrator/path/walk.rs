@@ -380,11 +380,7 @@ impl PathTracer<'_> {
             ior,
         } = *at;
         if transmits(bs.kind) {
-            *media = if entering {
-                media.entered(hit.object, ior.unwrap_or(media.ior()))
-            } else {
-                media.left(hit.object)
-            };
+            *media = media.crossed(hit.object, entering, ior);
         }
         let side = if bs.wi.dot(n) < 0.0 { -n } else { n };
         let from = SurfaceId {
