@@ -90,8 +90,9 @@ pub struct Overrides {
     /// 4096, or half the address-space limit (`ulimit -v`) when that is smaller].
     #[arg(long, value_name = "MIB")]
     pub max_memory: Option<u64>,
-    /// Integrator: whitted (the lecture's recursion) or path (Monte Carlo path tracing).
-    #[arg(long, value_name = "whitted|path")]
+    /// Integrator: whitted (the lecture's recursion), path (Monte Carlo path tracing), light
+    /// (light tracing) or bdpt (bidirectional path tracing).
+    #[arg(long, value_name = "whitted|path|light|bdpt")]
     pub integrator: Option<String>,
     /// Path integrator: Russian roulette from this bounce on (default 5).
     #[arg(long, value_name = "N")]
