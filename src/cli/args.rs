@@ -237,8 +237,10 @@ pub struct AcneArgs {
     /// earlier report.
     #[arg(short, long, default_value = "acne-report")]
     pub output: PathBuf,
-    /// Integrator: whitted (the lecture's recursion) or path (Monte Carlo path tracing).
-    #[arg(long, value_name = "whitted|path")]
+    /// Integrator: whitted (the lecture's recursion), path (Monte Carlo path tracing), light
+    /// or bdpt; under light and bdpt only the camera's rays are diagnosed (the light subpaths
+    /// are traced without the self-hit recorder).
+    #[arg(long, value_name = "whitted|path|light|bdpt")]
     pub integrator: Option<String>,
     /// Path integrator: Russian roulette from this bounce on (default 5).
     #[arg(long, value_name = "N")]

@@ -10,7 +10,7 @@ pub struct Fragment {
     pub scene: Option<String>,
     /// The pixel to trace (`pixel=x,y`).
     pub pixel: Option<[u32; 2]>,
-    /// `integrator=whitted|path`.
+    /// `integrator=whitted|path|light|bdpt`.
     pub integrator: Option<IntegratorKind>,
     /// `spp=N` (samples per pixel).
     pub spp: Option<u32>,
@@ -51,7 +51,7 @@ impl Fragment {
                 "integrator" => {
                     f.integrator = Some(
                         serde_json::from_value(serde_json::Value::String(value.to_owned()))
-                            .map_err(|_| bad("whitted or path"))?,
+                            .map_err(|_| bad("whitted, path, light or bdpt"))?,
                     );
                 }
                 "spp" => f.spp = Some(value.parse().map_err(|_| bad("a whole number"))?),
@@ -102,11 +102,18 @@ mod tests {
         let s = f.settings(Settings::default());
         assert_eq!((s.integrator, s.spp), (IntegratorKind::Path, 16));
         assert_eq!(Fragment::parse("").unwrap(), Fragment::default());
+        for (name, kind) in [
+            ("light", IntegratorKind::Light),
+            ("bdpt", IntegratorKind::Bdpt),
+        ] {
+            let f = Fragment::parse(&format!("integrator={name}")).unwrap();
+            assert_eq!(f.integrator, Some(kind), "{name}");
+        }
         for (text, want) in [
             ("scene=nope", "expected one of absorption, caustic"),
             ("pixel=3", "expected x,y"),
             ("pixel=a,2", "whole numbers"),
-            ("integrator=bdpt", "whitted or path"),
+            ("integrator=mlt", "whitted, path, light or bdpt"),
             ("spp=-1", "a whole number"),
             ("zoom=2", "unknown key \"zoom\""),
             ("scene", "is not key=value"),
