@@ -15,4 +15,5 @@ mod hand_tree;
 pub mod invariants;
 pub mod outliers;
 pub mod samples;
+pub mod strategies;
 pub mod teach;

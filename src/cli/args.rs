@@ -48,6 +48,9 @@ pub enum Command {
     /// The worst pixels: ranked by their excess over a robust neighbourhood estimate (and, for
     /// a scene, by the standard error of their mean), with the trace/explain command for each.
     Outliers(OutliersArgs),
+    /// Veach's figure: the bidirectional render split by strategy (s, t), one image per
+    /// strategy weighted and unweighted, a labelled contact sheet and each strategy's share.
+    Strategies(StrategiesArgs),
 }
 
 /// Settings every tracing command can override (defaults come from the scene file).
@@ -502,6 +505,24 @@ pub struct VersusArgs {
     #[arg(long)]
     pub json: bool,
     /// Settings overrides (the integrator is set by the command).
+    #[command(flatten)]
+    pub overrides: Overrides,
+}
+
+/// `raytree strategies`.
+#[derive(Debug, Args)]
+pub struct StrategiesArgs {
+    /// Scene JSON (default: the built-in classic scene).
+    pub scene: Option<PathBuf>,
+    /// Output directory (sheet.png, report.md, report.json, and per strategy sS-tT.png and
+    /// sS-tT-unweighted.png; background.png and longer.png when they are not black).
+    #[arg(short, long, default_value = "strategies")]
+    pub output: PathBuf,
+    /// Paths with up to this many bounces get an image per strategy; longer ones are summed
+    /// into longer.png (0..=6).
+    #[arg(long, default_value_t = 3)]
+    pub bounces: u32,
+    /// Settings overrides (the integrator is bdpt: the command splits its render).
     #[command(flatten)]
     pub overrides: Overrides,
 }

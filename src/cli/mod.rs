@@ -30,6 +30,7 @@ mod render_cmd;
 mod render_warnings;
 mod say;
 mod spp_map;
+mod strategies_cmd;
 mod trace_cmd;
 mod versus_cmd;
 #[cfg(feature = "gui")]
@@ -69,6 +70,7 @@ pub fn run() -> ExitCode {
         Command::Versus(a) => versus_cmd::run(&a),
         Command::Convert(a) => convert_cmd::run(&a),
         Command::Outliers(a) => outliers_cmd::run(&a),
+        Command::Strategies(a) => strategies_cmd::run(&a),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,

@@ -29,7 +29,7 @@ pub mod whitted;
 
 pub use crate::interaction::SurfaceInteraction;
 pub use crate::media::{MediaStack, Medium};
-pub use bdpt::Bdpt;
+pub use bdpt::{Bdpt, StrategyPart};
 pub use interface::{Integrator, SceneIntegrator};
 pub use light::{LightTracer, Splat};
 pub use path::{PathStrategy, PathTracer};

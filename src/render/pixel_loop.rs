@@ -121,6 +121,19 @@ impl<'a> Camera<'a> {
             whitted: integrator.kind() == IntegratorKind::Whitted,
         }
     }
+
+    /// Start sample `s` of pixel (x, y) in `sampler`: its film position and camera ray, as
+    /// the pixel loop draws them.
+    #[inline(always)]
+    pub(crate) fn sample<S: PixelSampler>(
+        self,
+        sampler: &mut S,
+        x: u32,
+        y: u32,
+        s: u32,
+    ) -> ((f64, f64), Ray) {
+        camera_sample(self.film, self.filter, sampler, x, y, s)
+    }
 }
 
 /// Sample `s` of pixel (x, y) traced into `sink`: returns its radiance and whether it is kept.
@@ -136,7 +149,7 @@ pub(crate) fn one_sample<I: Integrator, S: PixelSampler, K: SampleSink>(
     px: &mut K::Pixel,
     counts: &mut RayCounts,
 ) -> (Rgb, bool) {
-    let (film, ray) = camera_sample(cam.film, cam.filter, sampler, x, y, s);
+    let (film, ray) = cam.sample(sampler, x, y, s);
     sink.start_sample();
     let (l, root) = integrator.camera_radiance(ray, sampler, sink.recorder(), counts);
     let kept = counts.keep_sample(l, cam.whitted, (x, y, s));

@@ -24,7 +24,7 @@ fn light_sampler<I: Integrator>(integrator: &I) -> SceneSampler {
 }
 
 /// The light paths seeded by row `y`, in order, each splat handed to `f` with its path index.
-fn light_row<I: Integrator, R: Recorder, F: FnMut(u64, Splat)>(
+pub(crate) fn light_row<I: Integrator, R: Recorder, F: FnMut(u64, Splat)>(
     integrator: &I,
     y: u32,
     rec: &mut R,

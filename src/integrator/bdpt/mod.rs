@@ -31,6 +31,17 @@ use crate::scene::{Film, Scene};
 use crate::tree::NodeId;
 use vertex::{Kind, Vertex};
 
+/// One strategy's part of a camera sample ([`Bdpt::trace_camera_observed`]).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct StrategyPart {
+    /// `[s, t]`, or `None` for the background the camera subpath escaped to.
+    pub strategy: Option<[u32; 2]>,
+    /// The contribution before its MIS weight.
+    pub unweighted: Rgb,
+    /// The MIS weight (1 for the background).
+    pub weight: f64,
+}
+
 /// The bidirectional path tracer (`settings.integrator: "bdpt"`).
 #[derive(Clone, Debug)]
 pub struct Bdpt<'a> {
@@ -72,6 +83,7 @@ impl<'a> Bdpt<'a> {
     /// One camera sample: its camera subpath from `ray`, a light subpath, and every strategy
     /// with `t >= 2`; the sum of their weighted contributions (and of the background the camera
     /// subpath escaped to), with the camera ray's node.
+    #[inline]
     pub fn trace_camera<R: Recorder, S: PixelSampler>(
         &self,
         ray: Ray,
@@ -79,9 +91,29 @@ impl<'a> Bdpt<'a> {
         rec: &mut R,
         counts: &mut RayCounts,
     ) -> (Rgb, Option<NodeId>) {
+        self.trace_camera_observed(ray, sampler, rec, counts, |_| {})
+    }
+
+    /// [`Bdpt::trace_camera`] that also hands every strategy's part to `observe`, in the order
+    /// they are added (first the background the camera subpath escaped to, with
+    /// [`StrategyPart::strategy`] `None`): the same random numbers and the same sum, so
+    /// `raytree strategies` splits exactly the render's samples.
+    pub fn trace_camera_observed<R: Recorder, S: PixelSampler, F: FnMut(StrategyPart)>(
+        &self,
+        ray: Ray,
+        sampler: &mut S,
+        rec: &mut R,
+        counts: &mut RayCounts,
+        mut observe: F,
+    ) -> (Rgb, Option<NodeId>) {
         let mut cam: Vec<Vertex> = Vec::with_capacity(8);
         let mut light: Vec<Vertex> = Vec::with_capacity(8);
         let (mut l, root) = self.camera_subpath(ray, &mut cam, sampler, rec, counts);
+        observe(StrategyPart {
+            strategy: None,
+            unweighted: l,
+            weight: 1.0,
+        });
         self.light_subpath(root, &mut light, sampler, rec, counts);
         for t in 2..=cam.len() {
             for s in 0..=light.len() {
@@ -94,6 +126,11 @@ impl<'a> Bdpt<'a> {
                 };
                 let contribution = c.unweighted * c.weight;
                 l += contribution;
+                observe(StrategyPart {
+                    strategy: Some([s as u32, t as u32]),
+                    unweighted: c.unweighted,
+                    weight: c.weight,
+                });
                 if R::RECORDS {
                     let lpe = Self::lpe(&light, &cam, c.sampled.as_ref(), (s, t));
                     let at = if s == 0 { cam[t - 1].id } else { node };
@@ -179,6 +216,7 @@ impl<'a> Bdpt<'a> {
             connection: node,
             vertices: s as u32,
             mis_weight: weight,
+            unweighted: l,
             lpe,
         });
     }

@@ -34,6 +34,8 @@ pub struct Splat {
     pub vertices: u32,
     /// The strategy's MIS weight (1 under light tracing; `contribution` is weighted).
     pub mis_weight: f64,
+    /// The contribution before its MIS weight (`contribution` itself under light tracing).
+    pub unweighted: Rgb,
     /// The light path expression read from the camera (recording only; empty otherwise).
     pub lpe: String,
 }
@@ -367,6 +369,7 @@ impl LightTracer<'_> {
             connection: cid,
             vertices: w.depth + 2,
             mis_weight: 1.0,
+            unweighted: contribution,
             lpe,
         });
     }
