@@ -264,6 +264,9 @@ fn camera_row(bdpt: &Bdpt<'_>, y: u32, max_bounces: u32) -> (Sums, RayCounts) {
 /// Rows of seeding pixels traced per parallel round of the light pass (as the render's).
 const ROUND_ROWS: u32 = 16;
 
+/// A splat as the split keeps it: pixel index, part, unweighted value, MIS weight.
+type SplitSplat = (usize, Part, Rgb, f64);
+
 /// The light pass, its `t = 1` splats added to `sums` by strategy, in path order.
 fn light_rows(
     bdpt: &Bdpt<'_>,
@@ -278,7 +281,7 @@ fn light_rows(
     let mut y0 = 0;
     while y0 < h {
         let round = y0..(y0 + ROUND_ROWS).min(h);
-        let parts: Vec<(Vec<(usize, Part, Rgb, f64)>, RayCounts)> = round
+        let parts: Vec<(Vec<SplitSplat>, RayCounts)> = round
             .into_par_iter()
             .map(|y| {
                 let mut c = RayCounts::default();

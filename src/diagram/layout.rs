@@ -413,6 +413,15 @@ pub(super) fn legend(
     let avail = w - 2.0 * fs;
     let mut rows: Vec<Vec<(LegendKey, String, f64)>> = vec![Vec::new()];
     let mut x = 0.0;
+    // A note wider than the strip is broken at spaces into lines that fit.
+    let items = items.into_iter().flat_map(|(key, text)| {
+        let lines = if key == LegendKey::Note && text_width(&text, size) > avail {
+            wrap_words(&text, avail, |t| text_width(t, size))
+        } else {
+            vec![text]
+        };
+        lines.into_iter().map(move |t| (key.clone(), t))
+    });
     for (key, text) in items {
         let lead = if key == LegendKey::Note {
             0.0
@@ -461,6 +470,27 @@ pub(super) fn legend(
     (pending, entries, rect)
 }
 
+/// `text` broken at spaces into lines no wider than `avail` by `width` (a word wider than
+/// `avail` keeps a line of its own).
+fn wrap_words(text: &str, avail: f64, width: impl Fn(&str) -> f64) -> Vec<String> {
+    let mut lines: Vec<String> = Vec::new();
+    let mut line = String::new();
+    for word in text.split(' ') {
+        let candidate = if line.is_empty() {
+            word.to_string()
+        } else {
+            format!("{line} {word}")
+        };
+        if !line.is_empty() && width(&candidate) > avail {
+            lines.push(std::mem::replace(&mut line, word.to_string()));
+        } else {
+            line = candidate;
+        }
+    }
+    lines.push(line);
+    lines
+}
+
 /// A fraction as a percentage with as many decimals as it needs (at least two significant
 /// digits below 1 %).
 #[must_use]
@@ -473,4 +503,22 @@ pub fn percent(f: f64) -> String {
     let s = format!("{p:.digits$}");
     let s = s.trim_end_matches('0').trim_end_matches('.');
     format!("{s}%")
+}
+
+#[cfg(test)]
+mod tests {
+    use super::wrap_words;
+
+    #[test]
+    fn a_long_note_breaks_at_spaces_into_lines_that_fit() {
+        let width = |t: &str| t.chars().count() as f64;
+        let text = "Plane: through the connection ray #6 and its parent #0, chosen over the plane";
+        let lines = wrap_words(text, 20.0, width);
+        assert!(lines.len() > 3, "{lines:?}");
+        assert!(lines.iter().all(|l| width(l) <= 20.0), "{lines:?}");
+        assert_eq!(lines.join(" "), text);
+        let long = wrap_words("a incomprehensibilities b", 5.0, width);
+        assert_eq!(long, ["a", "incomprehensibilities", "b"]);
+        assert_eq!(wrap_words("short", 20.0, width), ["short"]);
+    }
 }
