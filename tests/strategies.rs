@@ -162,3 +162,48 @@ fn command_line_strategies() {
         assert!(!fresh.exists(), "{bad:?} created the directory");
     }
 }
+
+/// `explain` on a caustic pixel under BDPT names the strategies that brought its light, the
+/// light-tracing one (s = 4, t = 1: emitter, glass, glass, floor) first with its MIS weight;
+/// the shares in the sentence add up to 100%.
+#[test]
+fn explain_names_the_strategy_of_a_caustic() {
+    let p = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("fixtures/caustic.json");
+    let mut scene = Scene::from_json(&std::fs::read_to_string(p).unwrap()).unwrap();
+    scene.settings.integrator = IntegratorKind::Bdpt;
+    scene.settings.spp = 4;
+    let tree = raytree::trace_pixel(&scene, 105, 116).unwrap();
+    let e = raytree::analysis::explain::explain(&tree, &scene);
+    let s = e
+        .sentences
+        .iter()
+        .find(|s| s.text.starts_with("the light came "))
+        .unwrap_or_else(|| panic!("{:#?}", e.sentences));
+    assert!(
+        s.text.starts_with("the light came ") && s.text.contains("% from s=4 t=1 (light tracing"),
+        "{}",
+        s.text
+    );
+    let first = s.text.split(" from ").nth(1).unwrap();
+    assert!(first.starts_with("s=4 t=1"), "{}", s.text);
+    let percents: f64 = s
+        .text
+        .split("% from ")
+        .filter_map(|part| part.rsplit([' ', ',']).next()?.parse::<f64>().ok())
+        .sum();
+    assert!((percents - 100.0).abs() < 1.0, "{percents}: {}", s.text);
+    assert!(
+        !e.sentences
+            .iter()
+            .any(|s| s.text.contains("by light sampling (shadow rays)"))
+    );
+    // The shares add up to the pixel: only the splats that landed here count, not the other
+    // connections of their light paths.
+    let sum = e.shares.iter().fold(Rgb::ZERO, |a, s| a + s.value);
+    let d = (sum - tree.radiance).abs().max_element();
+    assert!(
+        d <= 1e-9 * tree.radiance.max_element(),
+        "{sum:?} vs {:?}",
+        tree.radiance
+    );
+}

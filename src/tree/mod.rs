@@ -328,6 +328,26 @@ impl RayTree {
         &self.nodes[id.index()]
     }
 
+    /// Per node (by index), whether it adds to this pixel: it is under one of the pixel's
+    /// camera samples, or it is the connection of a splat that landed here. A light path
+    /// recorded for its splats here also holds the connections it splatted to other pixels;
+    /// those are marked `false`.
+    #[must_use]
+    pub fn pixel_nodes(&self) -> Vec<bool> {
+        let mut mark = vec![false; self.nodes.len()];
+        for s in &self.samples {
+            for id in self.depth_first(s.root) {
+                mark[id.index()] = true;
+            }
+        }
+        for s in &self.splats {
+            if let Some(m) = mark.get_mut(s.connection.index()) {
+                *m = true;
+            }
+        }
+        mark
+    }
+
     /// Node ids in depth-first order starting at `root`.
     #[must_use]
     pub fn depth_first(&self, root: NodeId) -> Vec<NodeId> {

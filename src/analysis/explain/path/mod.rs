@@ -10,6 +10,7 @@
 //! after them (strategies, lobes and roulette, energy, noise) are in `sentences`.
 
 mod sentences;
+mod strategy;
 
 use super::words::chain;
 use super::{Explanation, Sentence, SentenceKind, Share, ids, luminance, rgb};
@@ -107,9 +108,10 @@ pub(super) fn explain_path(tree: &RayTree, scene: &Scene) -> Explanation {
     let mut example: Vec<String> = Vec::new();
     let (mut by_light, mut by_bsdf) = (Rgb::ZERO, Rgb::ZERO);
     let (mut light_nodes, mut bsdf_nodes) = (Vec::new(), Vec::new());
+    let counted = tree.pixel_nodes();
     for n in &tree.nodes {
         let Some(p) = &n.path else { continue };
-        if p.contribution == Rgb::ZERO || !p.contribution.is_finite() {
+        if p.contribution == Rgb::ZERO || !p.contribution.is_finite() || !counted[n.id.index()] {
             continue;
         }
         let value = p.contribution / spp;
@@ -180,11 +182,15 @@ pub(super) fn explain_path(tree: &RayTree, scene: &Scene) -> Explanation {
             nodes: ids(&s.nodes),
         });
     }
-    strategies(
-        &mut sentences,
-        (by_light, light_nodes),
-        (by_bsdf, bsdf_nodes),
-    );
+    if strategy::has_strategies(tree) {
+        strategy::bidirectional(tree, &mut sentences);
+    } else {
+        strategies(
+            &mut sentences,
+            (by_light, light_nodes),
+            (by_bsdf, bsdf_nodes),
+        );
+    }
     events_sentences(tree, &mut sentences);
     energy(tree, scene, &mut sentences);
     noise(tree, &mut sentences);
