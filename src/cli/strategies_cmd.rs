@@ -7,6 +7,7 @@ use super::load::load;
 use super::output::{Inputs, Origin, OutDir, OutputSet};
 use super::say::sayln;
 use anyhow::{Result, bail};
+use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
 use raytree::analysis::strategies::{Part, PartImage, Split, split};
 use raytree::math::Rgb;
 use raytree::render::Image;
@@ -41,8 +42,20 @@ pub fn run(a: &StrategiesArgs) -> Result<()> {
     let mib = super::budget::mib(a.overrides.max_memory);
     super::budget::check_image_with(scene, mib, parts * PART_PIXEL_BYTES)?;
     let inputs = Inputs::new(loaded.inputs.iter().map(|p| p.as_path()));
+    let h = scene.camera.height;
+    let bar = ProgressBar::with_draw_target(Some(2 * u64::from(h)), ProgressDrawTarget::stderr())
+        .with_style(
+            ProgressStyle::with_template("{msg} [{bar:40}] {pos}/{len} rows {elapsed_precise}")
+                .expect("valid template")
+                .progress_chars("=> "),
+        );
+    bar.set_message(format!(
+        "splitting {} by strategy (camera rows, then light rows)",
+        loaded.label
+    ));
     let start = Instant::now();
-    let s = split(scene, a.bounces, &|_| {});
+    let s = split(scene, a.bounces, &|rows| bar.set_position(u64::from(rows)));
+    bar.finish_and_clear();
     let secs = start.elapsed().as_secs_f64();
     let shares = s.shares();
     if s.parts
