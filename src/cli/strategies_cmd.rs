@@ -58,9 +58,11 @@ pub fn run(a: &StrategiesArgs) -> Result<()> {
     bar.finish_and_clear();
     let secs = start.elapsed().as_secs_f64();
     let shares = s.shares();
-    if s.parts
+    let finite = |v: &[Rgb]| v.iter().all(|c| c.is_finite());
+    if !s
+        .parts
         .iter()
-        .any(|p| p.weighted.iter().any(|c| !c.is_finite()))
+        .all(|p| finite(&p.weighted) && finite(&p.unweighted))
     {
         bail!(
             "a strategy's image is not finite (the scene's radiance overflows a 64-bit float); nothing was written"
