@@ -12,7 +12,7 @@
 use crate::integrator::{Bdpt, Integrator, NoopRecorder, RayCounts, StrategyPart};
 use crate::math::Rgb;
 use crate::render::pixel_loop::Camera;
-use crate::render::splat::light_row;
+use crate::render::splat::light_rounds;
 use crate::sampling::SceneSampler;
 use crate::scene::Scene;
 use rayon::prelude::*;
@@ -140,11 +140,15 @@ impl Split {
 /// Per-part sums of one row or of the whole image: weighted, unweighted, contributions.
 type Sums = BTreeMap<Part, (Vec<Rgb>, Vec<Rgb>, u64)>;
 
+/// `part`'s sums in images of `n` pixels, black where it is new.
+fn entry(sums: &mut Sums, n: usize, part: Part) -> &mut (Vec<Rgb>, Vec<Rgb>, u64) {
+    sums.entry(part)
+        .or_insert_with(|| (vec![Rgb::ZERO; n], vec![Rgb::ZERO; n], 0))
+}
+
 /// Add `part` at pixel `i` of an image of `n` pixels.
 fn add(sums: &mut Sums, n: usize, part: Part, i: usize, unweighted: Rgb, weight: f64) {
-    let e = sums
-        .entry(part)
-        .or_insert_with(|| (vec![Rgb::ZERO; n], vec![Rgb::ZERO; n], 0));
+    let e = entry(sums, n, part);
     e.0[i] += unweighted * weight;
     e.1[i] += unweighted;
     if unweighted != Rgb::ZERO {
@@ -184,9 +188,7 @@ pub fn split(scene: &Scene, max_bounces: u32, progress: &(dyn Fn(u32) + Sync)) -
     let mut rays = RayCounts::default();
     for (y, (row, c)) in rows.into_iter().enumerate() {
         for (part, (wt, un, k)) in row {
-            let e = sums
-                .entry(part)
-                .or_insert_with(|| (vec![Rgb::ZERO; n], vec![Rgb::ZERO; n], 0));
+            let e = entry(&mut sums, n, part);
             let at = y * w as usize;
             for x in 0..w as usize {
                 e.0[at + x] += wt[x];
@@ -197,7 +199,7 @@ pub fn split(scene: &Scene, max_bounces: u32, progress: &(dyn Fn(u32) + Sync)) -
         rays += c;
     }
     let dropped = rays.dropped_samples;
-    light_rows(&bdpt, max_bounces, &mut sums, &mut rays, &tick);
+    rays += light_rows(&bdpt, max_bounces, &mut sums, &|rows| progress(h + rows));
     let parts = sums
         .into_iter()
         .filter(|(_, (_, _, contributions))| *contributions > 0)
@@ -261,47 +263,26 @@ fn camera_row(bdpt: &Bdpt<'_>, y: u32, max_bounces: u32) -> (Sums, RayCounts) {
     (sums, counts)
 }
 
-/// Rows of seeding pixels traced per parallel round of the light pass (as the render's).
-const ROUND_ROWS: u32 = 16;
-
 /// A splat as the split keeps it: pixel index, part, unweighted value, MIS weight.
 type SplitSplat = (usize, Part, Rgb, f64);
 
-/// The light pass, its `t = 1` splats added to `sums` by strategy, in path order.
+/// The light pass ([`light_rounds`], as the render's), its `t = 1` splats added to `sums` by
+/// strategy, in path order; `progress` gets the seeding rows finished.
 fn light_rows(
     bdpt: &Bdpt<'_>,
     max_bounces: u32,
     sums: &mut Sums,
-    rays: &mut RayCounts,
-    tick: &(dyn Fn() + Sync),
-) {
+    progress: &(dyn Fn(u32) + Sync),
+) -> RayCounts {
     let scene = Integrator::scene(bdpt);
-    let (w, h) = (scene.camera.width, scene.camera.height);
-    let n = (w * h) as usize;
-    let mut y0 = 0;
-    while y0 < h {
-        let round = y0..(y0 + ROUND_ROWS).min(h);
-        let parts: Vec<(Vec<SplitSplat>, RayCounts)> = round
-            .into_par_iter()
-            .map(|y| {
-                let mut c = RayCounts::default();
-                let mut out = Vec::new();
-                light_row(bdpt, y, &mut NoopRecorder, &mut c, |_, sp| {
-                    let (px, py) = sp.pixel;
-                    let part = part_of(Some([sp.vertices, 1]), max_bounces);
-                    let i = py as usize * w as usize + px as usize;
-                    out.push((i, part, sp.unweighted, sp.mis_weight));
-                });
-                tick();
-                (out, c)
-            })
-            .collect();
-        for (splats, c) in parts {
-            for (i, part, un, weight) in splats {
-                add(sums, n, part, i, un, weight);
-            }
-            *rays += c;
-        }
-        y0 = (y0 + ROUND_ROWS).min(h);
-    }
+    let n = (scene.camera.width * scene.camera.height) as usize;
+    light_rounds(
+        bdpt,
+        |i, sp| -> SplitSplat {
+            let part = part_of(Some([sp.vertices, 1]), max_bounces);
+            (i, part, sp.unweighted, sp.mis_weight)
+        },
+        |(i, part, un, weight)| add(sums, n, part, i, un, weight),
+        progress,
+    )
 }

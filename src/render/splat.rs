@@ -24,7 +24,7 @@ fn light_sampler<I: Integrator>(integrator: &I) -> SceneSampler {
 }
 
 /// The light paths seeded by row `y`, in order, each splat handed to `f` with its path index.
-pub(crate) fn light_row<I: Integrator, R: Recorder, F: FnMut(u64, Splat)>(
+fn light_row<I: Integrator, R: Recorder, F: FnMut(u64, Splat)>(
     integrator: &I,
     y: u32,
     rec: &mut R,
@@ -51,34 +51,52 @@ pub fn light_pass<I: Integrator>(
     progress: &(dyn Fn(u32) + Sync),
 ) -> (Vec<Rgb>, RayCounts) {
     let scene = integrator.scene();
+    let mut sums = vec![Rgb::ZERO; scene.camera.width as usize * scene.camera.height as usize];
+    let counts = light_rounds(
+        integrator,
+        |i, sp| (i, sp.contribution),
+        |(i, v)| sums[i] += v,
+        progress,
+    );
+    (sums, counts)
+}
+
+/// Every light path, unrecorded, in rounds of [`ROUND_ROWS`] seeding rows traced in parallel:
+/// each splat is reduced by `keep` (with the row-major index of the pixel it lands in) to what
+/// the caller adds, and handed to `add` in path order, so the result does not depend on the
+/// thread count. Returns the rays traced; `progress` gets the seeding rows finished.
+pub(crate) fn light_rounds<I: Integrator, T: Send>(
+    integrator: &I,
+    keep: impl Fn(usize, Splat) -> T + Sync,
+    mut add: impl FnMut(T),
+    progress: &(dyn Fn(u32) + Sync),
+) -> RayCounts {
+    let scene = integrator.scene();
     let (w, h) = (scene.camera.width, scene.camera.height);
-    let mut sums = vec![Rgb::ZERO; w as usize * h as usize];
     let mut counts = RayCounts::default();
     let mut y0 = 0;
     while y0 < h {
         let rows = y0..(y0 + ROUND_ROWS).min(h);
-        let parts: Vec<(Vec<(usize, Rgb)>, RayCounts)> = rows
+        let parts: Vec<(Vec<T>, RayCounts)> = rows
             .into_par_iter()
             .map(|y| {
                 let mut c = RayCounts::default();
                 let mut out = Vec::new();
                 light_row(integrator, y, &mut NoopRecorder, &mut c, |_, sp| {
                     let (px, py) = sp.pixel;
-                    out.push((py as usize * w as usize + px as usize, sp.contribution));
+                    out.push(keep(py as usize * w as usize + px as usize, sp));
                 });
                 (out, c)
             })
             .collect();
         for (splats, c) in parts {
-            for (i, v) in splats {
-                sums[i] += v;
-            }
+            splats.into_iter().for_each(&mut add);
             counts += c;
         }
         y0 = (y0 + ROUND_ROWS).min(h);
         progress(y0);
     }
-    (sums, counts)
+    counts
 }
 
 /// The splats of pixel `(x, y)`, recorded into `rec`, in the order [`light_pass`] adds them:
