@@ -10,7 +10,7 @@ mod common;
 use common::raytree;
 use raytree::analysis::invariants::tree_violations;
 use raytree::math::Rgb;
-use raytree::scene::IntegratorKind;
+use raytree::scene::{IntegratorKind, MisHeuristic};
 use raytree::tree::{RayKind, TREE_SCHEMA_SPLATS};
 use raytree::{Scene, render, trace_pixel};
 use std::path::PathBuf;
@@ -213,6 +213,43 @@ fn light_tracing_and_bdpt_agree_with_path_tracing_on_the_cornell_box() {
         assert!(mean > 0.05, "{mean}");
         assert!(worst < 5.0, "{}: largest block |t| {worst}", kind.name());
     }
+}
+
+/// The power heuristic (`settings.mis` `"power"`): each pixel's tree is its value bit for bit
+/// (the recorded weights are the ones applied), the weights differ from the balance
+/// heuristic's, and the render agrees with path tracing per 8x8 block on the Cornell box.
+#[test]
+fn the_power_heuristic_is_recorded_and_unbiased() {
+    let mut scene = fixture("cornell-box.json");
+    scene.settings.integrator = IntegratorKind::Bdpt;
+    scene.settings.mis = MisHeuristic::Power;
+    scene.camera = scene.camera.with_size(12, 12);
+    scene.settings.spp = 2;
+    let (image, _) = render(&scene, &|_| {});
+    let mut balance = scene.clone();
+    balance.settings.mis = MisHeuristic::Balance;
+    let mut differ = 0;
+    for (x, y) in [(6, 6), (3, 9), (9, 3), (6, 11)] {
+        let tree = trace_pixel(&scene, x, y).unwrap();
+        assert_eq!(tree.radiance, image.get(x, y), "pixel {x},{y}");
+        let weights = |t: &raytree::RayTree| -> Vec<f64> {
+            t.nodes
+                .iter()
+                .filter_map(|n| n.path.as_ref()?.mis_weight)
+                .collect()
+        };
+        let (p, b) = (
+            weights(&tree),
+            weights(&trace_pixel(&balance, x, y).unwrap()),
+        );
+        assert_eq!(p.len(), b.len(), "the same strategies, other weights");
+        differ += p.iter().zip(&b).filter(|(a, b)| a != b).count();
+    }
+    assert!(differ > 0);
+    scene.camera = scene.camera.with_size(32, 32);
+    scene.settings.spp = 16;
+    let (worst, mean) = agreement(&scene, IntegratorKind::Bdpt, 8);
+    assert!(mean > 0.05 && worst < 5.0, "|t| {worst}, mean {mean}");
 }
 
 /// BDPT's point: on the Cornell box its per-pixel variance at equal spp is below the path

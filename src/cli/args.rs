@@ -100,6 +100,10 @@ pub struct Overrides {
     /// Path integrator: Russian roulette from this bounce on (default 5).
     #[arg(long, value_name = "N")]
     pub rr_depth: Option<u32>,
+    /// Bidirectional path tracing: the MIS heuristic over its strategies, balance (the
+    /// default, pbrt's) or power (exponent 2, Mitsuba's).
+    #[arg(long, value_name = "balance|power")]
+    pub mis: Option<String>,
     /// Sampler: stratified or sobol (default: sobol under the path integrator, stratified
     /// under Whitted).
     #[arg(long, value_name = "stratified|sobol")]

@@ -79,9 +79,23 @@ pub fn load(path: Option<&Path>, o: &Overrides) -> Result<Loaded> {
 }
 
 /// A note when flags the scene's integrator does not read were given, naming them: under the
-/// path integrator the Whitted integrator's own flags, under Whitted `--rr-depth`; `None`
+/// path integrator the Whitted integrator's own flags, under Whitted `--rr-depth`, `--mis` under
+/// every integrator but bdpt; `None`
 /// otherwise.
 pub fn ignored_flags(scene: &Scene, o: &Overrides) -> Option<String> {
+    let mis = (o.mis.is_some() && scene.settings.integrator != IntegratorKind::Bdpt).then(|| {
+        "note: --mis is read by --integrator bdpt alone (the path tracer always weighs its light \
+         and BSDF samples by the power heuristic)"
+            .to_string()
+    });
+    match (ignored_integrator_flags(scene, o), mis) {
+        (Some(a), Some(b)) => Some(format!("{a}\n{b}")),
+        (a, b) => a.or(b),
+    }
+}
+
+/// [`ignored_flags`] but `--mis`.
+fn ignored_integrator_flags(scene: &Scene, o: &Overrides) -> Option<String> {
     if scene.settings.integrator == IntegratorKind::Whitted {
         return o.rr_depth.is_some().then(|| {
             "note: the Whitted integrator ignores --rr-depth: it is the path integrator's \
@@ -175,6 +189,10 @@ pub fn apply(scene: &mut Scene, o: &Overrides) -> Result<()> {
     }
     if let Some(v) = o.rr_depth {
         s.rr_depth = v;
+    }
+    if let Some(v) = &o.mis {
+        s.mis =
+            raytree::scene::MisHeuristic::from_name(v).map_err(|msg| anyhow!("--mis: {msg}"))?;
     }
     if let Some(v) = &o.sampler {
         s.sampler = Some(

@@ -193,7 +193,18 @@ impl EffectPlan {
                 &format!("shadow rays to {}", l.name),
                 on,
                 if on {
-                    "emits, and some material has diffuse or specular".to_string()
+                    let cone = match l.kind {
+                        crate::scene::LightKind::Point {
+                            spot: Some(c), ..
+                        } => format!(
+                            " (a spot light: full within {:.1} deg of its axis, none beyond {:.1} deg, {} falloff)",
+                            c.falloff.to_degrees(),
+                            c.cone.to_degrees(),
+                            c.profile.name()
+                        ),
+                        _ => String::new(),
+                    };
+                    format!("emits, and some material has diffuse or specular{cone}")
                 } else {
                     "zero power, or no material is lit by lights".to_string()
                 },

@@ -12,7 +12,7 @@
 //! The scene hands its lights out in this form (`crate::Scene::light_list`,
 //! `crate::Scene::area_light`); nothing here depends on the scene.
 
-use super::{LightSample, PlanarEmitter, PreparedPlanar, sample_sphere, sphere_pdf};
+use super::{LightSample, PlanarEmitter, PreparedPlanar, Spot, sample_sphere, sphere_pdf};
 use crate::math::Rgb;
 use crate::mesh::Mesh;
 use glam::{DVec2, DVec3};
@@ -81,12 +81,15 @@ impl<'a> AreaShape<'a> {
 /// A light: what every light loop, light sampler and light tracer sees.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub enum Light<'a> {
-    /// A point light of radiant intensity `intensity`.
+    /// A point light of radiant intensity `intensity`, in every direction or, as a spot
+    /// light, falling off within a cone.
     Point {
         /// Position.
         position: DVec3,
-        /// Radiant intensity (irradiance = intensity / r^2).
+        /// Radiant intensity (irradiance = intensity / r^2); a spot light's, on its axis.
         intensity: Rgb,
+        /// The cone of a spot light; `None` for a light that shines in every direction.
+        spot: Option<Spot>,
     },
     /// A directional light, over a scene of bounding sphere (`center`, `radius`).
     Directional {
@@ -139,7 +142,22 @@ impl Light<'_> {
             Light::Point {
                 position,
                 intensity,
-            } => Some(super::sample_point_light(p, *position, *intensity)),
+                spot,
+            } => {
+                let ls = super::sample_point_light(p, *position, *intensity);
+                match spot {
+                    None => Some(ls),
+                    // Outside the cone nothing arrives: no sample, as pbrt-v4's `SampleLi`
+                    // returns none where the intensity is zero.
+                    Some(cone) => {
+                        let f = cone.falloff(-ls.direction);
+                        (f > 0.0).then(|| LightSample {
+                            radiance: ls.radiance * f,
+                            ..ls
+                        })
+                    }
+                }
+            }
             Light::Directional {
                 direction,
                 irradiance,
@@ -163,14 +181,17 @@ impl Light<'_> {
     }
 
     /// The flux `Phi` averaged over RGB (pbrt-v4 `Light::Phi`, `SampledSpectrum::Average`):
-    /// `4 pi I` for a point light, `pi r^2 E` for a directional light over the disc of the
+    /// `4 pi I` for a point light, `I` times the integral of its falloff for a spot light
+    /// ([`Spot::solid_angle`], pbrt-v4 `SpotLight::Phi`), `pi r^2 E` for a directional light over the disc of the
     /// scene's bounding sphere (`DistantLight::Phi`), `pi A Le` for a one-sided diffuse
     /// emitter of area `A` (`DiffuseAreaLight::Phi`). Infinite when it overflows.
     #[must_use]
     pub fn power(&self) -> f64 {
         let mean = |c: Rgb| (c.x + c.y + c.z) / 3.0;
         match *self {
-            Light::Point { intensity, .. } => 4.0 * PI * mean(intensity),
+            Light::Point {
+                intensity, spot, ..
+            } => spot.map_or(4.0 * PI, |s| s.solid_angle()) * mean(intensity),
             Light::Directional {
                 irradiance, radius, ..
             } => PI * radius * radius * mean(irradiance),
@@ -192,6 +213,7 @@ mod tests {
         let l = Light::Point {
             position: DVec3::new(1.0, 4.0, -2.0),
             intensity: Rgb::new(8.0, 16.0, 32.0),
+            spot: None,
         };
         let p = DVec3::new(1.0, 0.0, 1.0);
         let ls = l.sample_li(p, DELTA_U).unwrap();

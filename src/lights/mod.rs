@@ -11,6 +11,7 @@ mod light;
 pub mod mesh;
 mod prepared;
 mod sampler;
+mod spot;
 #[cfg(test)]
 mod tests;
 
@@ -18,6 +19,7 @@ pub use emit::EmittedRay;
 pub use light::{AreaShape, Light};
 pub use prepared::PreparedPlanar;
 pub use sampler::LightSampler;
+pub use spot::{Spot, SpotProfile};
 
 use crate::math::Rgb;
 use crate::sampling::warp::{

@@ -163,6 +163,7 @@ mod tests {
         Light::Point {
             position: glam::DVec3::ZERO,
             intensity: crate::math::Rgb::ONE,
+            spot: None,
         }
     }
 

@@ -244,6 +244,7 @@ fn delta_lights_match_the_scene_lights() {
     let light = Light::Point {
         position: DVec3::new(1.0, 6.0, 3.0),
         intensity: Rgb::splat(32.0),
+        spot: None,
     };
     let s = light.sample_li(p, (0.5, 0.5)).unwrap();
     assert_eq!(

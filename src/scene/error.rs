@@ -93,7 +93,7 @@ pub(super) fn bare_message(e: &serde_json::Error) -> String {
 
 /// The members each `type` of object and light may have (besides `type`), as in
 /// `desc::ObjectDesc` and `desc::LightDesc` (a test holds the two together).
-const MEMBERS: [(&str, &str, &[&str]); 7] = [
+const MEMBERS: [(&str, &str, &[&str]); 8] = [
     (
         "objects",
         "sphere",
@@ -116,6 +116,20 @@ const MEMBERS: [(&str, &str, &[&str]); 7] = [
         ],
     ),
     ("lights", "point", &["position", "intensity", "name"]),
+    (
+        "lights",
+        "spot",
+        &[
+            "position",
+            "direction",
+            "look_at",
+            "intensity",
+            "cone_angle",
+            "falloff_angle",
+            "profile",
+            "name",
+        ],
+    ),
     (
         "lights",
         "directional",
@@ -144,7 +158,7 @@ pub(super) fn field_of_tagged(
         let at = super::locate(src, &field).unwrap_or(at);
         (field, at)
     };
-    if message.starts_with("unknown variant") || message.starts_with("missing field `type`") {
+    if message.starts_with("missing field `type`") {
         return found(path::key(&path, "type"));
     }
     let b = src.as_bytes();
@@ -159,6 +173,11 @@ pub(super) fn field_of_tagged(
     };
     let tag = element.get("type").and_then(Value::as_str).unwrap_or("");
     let Some(&(_, _, known)) = MEMBERS.iter().find(|m| m.0 == list && m.1 == tag) else {
+        // An unknown variant with an unknown tag is the tag's (a known tag's unknown variant
+        // is one of its members', as a spot light's `profile`: found below).
+        if message.starts_with("unknown variant") {
+            return found(path::key(&path, "type"));
+        }
         return (path, at);
     };
     if message.starts_with("unknown field") {

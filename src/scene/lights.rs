@@ -45,9 +45,11 @@ impl Scene {
             LightKind::Point {
                 position,
                 intensity,
+                spot,
             } => Light::Point {
                 position,
                 intensity,
+                spot,
             },
             LightKind::Directional {
                 direction,

@@ -27,8 +27,8 @@ pub use crate::bsdf::{Material, Texture};
 pub use accel::{Accel, traversal_cost_image};
 pub use camera::{Camera, CameraConnection, Film};
 pub use desc::{
-    AUTO_THRESHOLD, AdaptiveDesc, Antialiasing, FilterDesc, IntegratorKind, OffsetDesc,
-    OffsetStrategy, SamplerKind, SceneDesc, Settings, ShadowMode,
+    AUTO_THRESHOLD, AdaptiveDesc, Antialiasing, FilterDesc, IntegratorKind, MisHeuristic,
+    OffsetDesc, OffsetStrategy, SamplerKind, SceneDesc, Settings, ShadowMode,
 };
 pub use error::SceneError;
 pub use generated::icosphere_scene;
@@ -56,12 +56,14 @@ pub struct Object {
 /// A light source.
 #[derive(Clone, Debug, PartialEq)]
 pub enum LightKind {
-    /// Point light with radiant intensity.
+    /// Point light with radiant intensity; with a cone, a spot light.
     Point {
         /// Position.
         position: DVec3,
-        /// Intensity (irradiance = intensity / r^2).
+        /// Intensity (irradiance = intensity / r^2); a spot light's, on its axis.
         intensity: Rgb,
+        /// A spot light's cone and falloff; `None` for light in every direction.
+        spot: Option<crate::lights::Spot>,
     },
     /// Directional light.
     Directional {

@@ -60,6 +60,7 @@ pub fn transformed(scene: &Scene, scale: f64, translation: DVec3) -> Scene {
         if let LightKind::Point {
             position,
             intensity,
+            ..
         } = &mut l.kind
         {
             *position = map(*position);

@@ -155,7 +155,10 @@ pub fn explain(tree: &RayTree, scene: &Scene) -> Explanation {
     if shares.is_empty() {
         sentences.push(Sentence {
             kind: SentenceKind::Sees,
-            text: "the pixel is black: no path brings light to the eye".into(),
+            text: format!(
+                "the pixel is black: no path brings light to the eye{}",
+                outside_spots(tree, scene)
+            ),
             nodes: tree.samples.iter().map(|s| s.root).collect(),
         });
     }
@@ -384,5 +387,55 @@ mod words;
 use suspicious::suspicious;
 pub use text::{explanation_text, node_list};
 use words::path_words;
+/// For a black pixel: the spot lights whose cone leaves out every point the pixel's camera rays
+/// hit (", outside the cone of key spot (58.3 deg from its axis, its cone 24.0 deg)"); empty
+/// when there is none, or a camera ray hit nothing.
+pub(super) fn outside_spots(tree: &RayTree, scene: &Scene) -> String {
+    let hits: Vec<glam::DVec3> = tree
+        .nodes
+        .iter()
+        .filter(|n| n.kind == RayKind::Camera)
+        .filter_map(|n| n.hit.as_ref().map(|h| h.point))
+        .collect();
+    if hits.is_empty() || hits.len() < tree.samples.len() {
+        return String::new();
+    }
+    let outside: Vec<String> = scene
+        .lights
+        .iter()
+        .filter_map(|l| {
+            let crate::scene::LightKind::Point {
+                position,
+                spot: Some(cone),
+                ..
+            } = l.kind
+            else {
+                return None;
+            };
+            let dirs: Vec<glam::DVec3> = hits
+                .iter()
+                .filter_map(|&p| (p - position).try_normalize())
+                .collect();
+            if dirs.len() < hits.len() || dirs.iter().any(|&w| cone.falloff(w) > 0.0) {
+                return None;
+            }
+            let angle = dirs[0].dot(cone.axis).clamp(-1.0, 1.0).acos().to_degrees();
+            Some(format!(
+                "{} ({angle:.1} deg from its axis, its cone {:.1} deg)",
+                l.name,
+                cone.cone.to_degrees()
+            ))
+        })
+        .collect();
+    if outside.is_empty() {
+        String::new()
+    } else {
+        format!(
+            "; the surface lies outside the cone of {}",
+            outside.join(", ")
+        )
+    }
+}
+
 #[cfg(test)]
 mod tests;

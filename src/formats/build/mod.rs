@@ -185,6 +185,28 @@ impl Builder {
         });
     }
 
+    /// A spot light at `p` pointing along `axis` (world space before the camera mirror): its
+    /// cone and falloff half-angles in degrees, already checked by the front-end.
+    pub fn spot_light(
+        &mut self,
+        (p, axis): (DVec3, DVec3),
+        intensity: Triple,
+        (cone, falloff): (f64, f64),
+        profile: crate::lights::SpotProfile,
+    ) {
+        let m = self.world(&DAffine3::IDENTITY);
+        self.lights.push(LightDesc::Spot {
+            position: m.transform_point3(p).to_array(),
+            direction: Some(m.transform_vector3(axis).to_array()),
+            look_at: None,
+            intensity,
+            cone_angle: cone,
+            falloff_angle: Some(falloff),
+            profile,
+            name: None,
+        });
+    }
+
     /// A directional light travelling along `d`.
     pub fn directional_light(&mut self, d: DVec3, irradiance: Triple) {
         let d = self.world(&DAffine3::IDENTITY).transform_vector3(d);

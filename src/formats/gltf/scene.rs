@@ -4,6 +4,7 @@ use super::data::Data;
 use super::material::{self as mat, Mean, Pbr};
 use crate::formats::build::{Builder, CameraSpec, Surface};
 use crate::formats::{Converted, FormatError, Limits};
+use crate::lights::SpotProfile;
 use crate::scene::desc::LightDesc;
 use ::gltf::json::validation::Checked;
 use ::gltf::json::{Node, Root};
@@ -445,22 +446,6 @@ impl<'a, 'r> State<'a, 'r> {
         };
         match ty {
             Type::Point | Type::Spot => {
-                if ty == Type::Spot {
-                    let (inner, outer) = light.spot.as_ref().map_or((0.0, 45.0), |s| {
-                        (
-                            dec(s.inner_cone_angle).to_degrees(),
-                            dec(s.outer_cone_angle).to_degrees(),
-                        )
-                    });
-                    self.note(
-                        &format!("{path}.spot"),
-                        format!(
-                            "a spot light (cone {inner:.1} to {outer:.1} degrees) is a point \
-                             light of the same intensity in every direction: raytree has no \
-                             spot lights, so it also lights what lies outside the cone"
-                        ),
-                    );
-                }
                 let p = a.transform_point3(DVec3::ZERO);
                 if !p.is_finite() {
                     return Err(self.err(
@@ -468,7 +453,19 @@ impl<'a, 'r> State<'a, 'r> {
                         "the light's position is not finite",
                     ));
                 }
-                self.b.point_light(p, power);
+                if ty == Type::Spot {
+                    let cone = self.spot_cone(&path, light.spot.as_ref())?;
+                    // KHR_lights_punctual: a spot light points along the node's -z.
+                    let Some(axis) = a.transform_vector3(-DVec3::Z).try_normalize() else {
+                        return Err(self.err(
+                            &format!("nodes[{node}]"),
+                            "the spot light's transform is singular",
+                        ));
+                    };
+                    self.b.spot_light((p, axis), power, cone, SpotProfile::Gltf);
+                } else {
+                    self.b.point_light(p, power);
+                }
             }
             Type::Directional => {
                 let Some(d) = a.transform_vector3(-DVec3::Z).try_normalize() else {
@@ -481,12 +478,41 @@ impl<'a, 'r> State<'a, 'r> {
             }
         }
         let label = light.name.clone().or_else(|| root.nodes[node].name.clone());
-        if let Some(LightDesc::Point { name, .. } | LightDesc::Directional { name, .. }) =
-            self.b.lights.last_mut()
+        if let Some(
+            LightDesc::Point { name, .. }
+            | LightDesc::Spot { name, .. }
+            | LightDesc::Directional { name, .. },
+        ) = self.b.lights.last_mut()
         {
             *name = label;
         }
         Ok(())
+    }
+
+    /// A spot light's (outer, inner) cone half-angles in degrees: glTF's `outerConeAngle`
+    /// (default pi/4) and `innerConeAngle` (default 0), with `0 <= inner < outer <= pi/2` as
+    /// the extension requires.
+    fn spot_cone(
+        &self,
+        path: &str,
+        spot: Option<&::gltf::json::extensions::scene::khr_lights_punctual::Spot>,
+    ) -> Result<(f64, f64), FormatError> {
+        let (inner, outer) = spot.map_or((0.0, std::f64::consts::FRAC_PI_4), |s| {
+            (dec(s.inner_cone_angle), dec(s.outer_cone_angle))
+        });
+        if !(outer > 0.0 && outer <= std::f64::consts::FRAC_PI_2) {
+            return Err(self.err(
+                &format!("{path}.spot.outerConeAngle"),
+                format!("{outer} is not in (0, pi/2]"),
+            ));
+        }
+        if !(inner >= 0.0 && inner < outer) {
+            return Err(self.err(
+                &format!("{path}.spot.innerConeAngle"),
+                format!("{inner} is not in [0, outerConeAngle)"),
+            ));
+        }
+        Ok((outer.to_degrees(), inner.to_degrees()))
     }
 
     /// Read every primitive of mesh `m` (once).

@@ -329,7 +329,7 @@ fn without_a_camera_a_default_frames_the_geometry() {
 }
 
 #[test]
-fn punctual_lights_in_their_units_with_spot_and_range_noted() {
+fn punctual_lights_in_their_units_with_spot_cones_and_range_noted() {
     let h = std::f64::consts::FRAC_1_SQRT_2;
     let mut v = tri_scene();
     v["extensions"] = json!({"KHR_lights_punctual": {"lights": [
@@ -355,13 +355,22 @@ fn punctual_lights_in_their_units_with_spot_and_range_noted() {
         panic!()
     };
     assert_eq!((*position, *intensity), ([1.0, 2.0, 3.0], [4.0, 2.0, 1.0]));
-    assert!(matches!(
-        c.desc.lights[1],
-        LightDesc::Point {
-            intensity: [2.0, 2.0, 2.0],
-            ..
-        }
-    ));
+    let LightDesc::Spot {
+        direction: Some(direction),
+        intensity: [2.0, 2.0, 2.0],
+        cone_angle,
+        falloff_angle: Some(falloff),
+        profile: crate::lights::SpotProfile::Gltf,
+        ..
+    } = c.desc.lights[1]
+    else {
+        panic!("{:?}", c.desc.lights[1])
+    };
+    // A spot light points along its node's -z; the cone is outerConeAngle, the full beam
+    // innerConeAngle.
+    assert_eq!(direction, [0.0, 0.0, -1.0]);
+    assert!((cone_angle - 0.5f64.to_degrees()).abs() < 1e-12);
+    assert!((falloff - 0.1f64.to_degrees()).abs() < 1e-6, "{falloff}");
     let LightDesc::Directional {
         direction,
         irradiance,
@@ -377,11 +386,14 @@ fn punctual_lights_in_their_units_with_spot_and_range_noted() {
     );
     assert_eq!(*irradiance, [3.0; 3]);
     assert!(has_note(&c, "lights[0].range: range 10 ignored"));
-    assert!(has_note(
-        &c,
-        "lights[1].spot: a spot light (cone 5.7 to 28.6 degrees)"
-    ));
+    assert!(!c.notes.iter().any(|n| n.message.contains("spot")));
     assert!(has_note(&c, "photometric units"));
+    v["extensions"]["KHR_lights_punctual"]["lights"][1]["spot"]["innerConeAngle"] = json!(0.6);
+    assert!(fail(&v).contains("lights[1].spot.innerConeAngle: 0.6 is not in [0, outerConeAngle)"));
+    v["extensions"]["KHR_lights_punctual"]["lights"][1]["spot"] = json!({"outerConeAngle": 2});
+    assert!(fail(&v).contains("lights[1].spot.outerConeAngle: 2 is not in (0, pi/2]"));
+    v["extensions"]["KHR_lights_punctual"]["lights"][1]["spot"] =
+        json!({"innerConeAngle": 0.1, "outerConeAngle": 0.5});
     v["extensions"]["KHR_lights_punctual"]["lights"][0]["intensity"] = json!(-1);
     assert!(fail(&v).contains("lights[0].intensity: -1 is not a finite number >= 0"));
 }

@@ -5,6 +5,7 @@ use super::tree::{El, Reader};
 use crate::formats::build::{Builder, CameraSpec, Surface, disk_triangles};
 use crate::formats::xform::Xf;
 use crate::formats::{Converted, FormatError, Limits, material_map as mm, ply};
+use crate::lights::SpotProfile;
 use crate::scene::desc::{FilterDesc, MaterialDesc};
 use glam::{DAffine3, DVec3};
 use std::collections::HashMap;
@@ -580,13 +581,28 @@ impl<'r> State<'r> {
             ("area", Some(_)) => Some(rgb),
             ("area", None) => return Err(el.err("an area emitter must be inside a <shape>")),
             (_, Some(_)) => return Err(el.err("only area emitters can be attached to a shape")),
-            ("point" | "spot", None) => {
+            ("point", None) => {
                 let pos = p.point("position")?.unwrap_or(DVec3::ZERO);
-                if ty == "spot" {
-                    let _ = (p.float("cutoff_angle", 20.0)?, p.float("beam_width", 15.0)?);
-                    self.b.note(&el.file, el.line, format!("{}: approximated by a point light of the same intensity in every direction", el.label()));
-                }
                 self.b.point_light(m.transform_point3(pos), rgb);
+                None
+            }
+            ("spot", None) => {
+                // Mitsuba 3 `spot`: at to_world's origin, along its +z; full intensity within
+                // `beam_width`, linear in the angle to zero at `cutoff_angle`.
+                let cutoff = p.float("cutoff_angle", 20.0)?;
+                let beam = p.float("beam_width", cutoff * 0.75)?;
+                if !(cutoff > 0.0 && cutoff < 180.0) {
+                    return Err(el.err(format!("cutoff_angle {cutoff} is not in (0, 180) degrees")));
+                }
+                if !(0.0..=cutoff).contains(&beam) {
+                    return Err(el.err(format!("beam_width {beam} is not in [0, cutoff_angle]")));
+                }
+                let Some(axis) = m.transform_vector3(DVec3::Z).try_normalize() else {
+                    return Err(el.err("to_world is singular"));
+                };
+                let at = (m.transform_point3(DVec3::ZERO), axis);
+                self.b
+                    .spot_light(at, rgb, (cutoff, beam), SpotProfile::Linear);
                 None
             }
             ("directional", None) => {

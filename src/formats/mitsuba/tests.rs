@@ -309,3 +309,44 @@ fn paths_extend_the_file_search_and_aliases_rename() {
         fail(r#"<bsdf type="diffuse" id="a"/><bsdf type="diffuse" id="b"/><alias id="a" as="b"/>"#);
     assert!(e.message.contains("already an id"), "{e}");
 }
+
+/// `spot`: Mitsuba 3's cone (`cutoff_angle`, `beam_width` default 3/4 of it) and its linear
+/// falloff, at to_world's origin along its +z; a beam wider than the cutoff is refused.
+#[test]
+fn spot_emitters_keep_their_cone() {
+    let c = run(
+        "<emitter type=\"spot\"><rgb name=\"intensity\" value=\"3\"/>\
+         <float name=\"cutoff_angle\" value=\"40\"/>\
+         <transform name=\"to_world\"><lookat origin=\"0, 4, 0\" target=\"0, 0, 0\" up=\"0, 0, 1\"/></transform>\
+         </emitter>",
+    );
+    let LightDesc::Spot {
+        position,
+        direction: Some(direction),
+        intensity,
+        cone_angle,
+        falloff_angle,
+        profile,
+        ..
+    } = c.desc.lights[0]
+    else {
+        panic!("{:?}", c.desc.lights[0])
+    };
+    assert!((DVec3::from(position) - DVec3::new(0.0, 4.0, 0.0)).length() < 1e-12);
+    assert!(
+        (DVec3::from(direction) - DVec3::NEG_Y).length() < 1e-12,
+        "{direction:?}"
+    );
+    assert_eq!(intensity, [3.0; 3]);
+    assert_eq!((cone_angle, falloff_angle), (40.0, Some(30.0)));
+    assert_eq!(profile, crate::lights::SpotProfile::Linear);
+    let e = fail(
+        "<emitter type=\"spot\"><float name=\"cutoff_angle\" value=\"10\"/>\
+         <float name=\"beam_width\" value=\"12\"/></emitter>",
+    );
+    assert!(
+        e.to_string()
+            .contains("beam_width 12 is not in [0, cutoff_angle]"),
+        "{e}"
+    );
+}

@@ -6,6 +6,7 @@ use super::params::Params;
 use crate::formats::build::{Builder, CameraSpec};
 use crate::formats::xform::Xf;
 use crate::formats::{Converted, FormatError, Limits, Resolver, material_map as mm, relative_to};
+use crate::lights::SpotProfile;
 use crate::scene::desc::{FilterDesc, MaterialDesc, Triple};
 use glam::{DMat4, DVec3};
 use std::collections::HashMap;
@@ -735,13 +736,36 @@ impl<'r> State<'r> {
             );
         }
         match kind {
-            "point" | "spot" => {
-                if kind == "spot" {
-                    let _ = ctx(file, &what, p, &self.textures).float("coneangle", 30.0)?;
-                    let _ = ctx(file, &what, p, &self.textures).float("conedelta", 5.0)?;
-                    self.b.note(file, t.line, format!("{what}: approximated by a point light of the same intensity in every direction (raytree has no spot lights)"));
+            "point" => self.b.point_light(m.transform_point3(from), rgb),
+            "spot" => {
+                let c = ctx(file, &what, p, &self.textures);
+                let cone = c.float("coneangle", 30.0)?;
+                let delta = c.float("conedelta", 5.0)?;
+                // pbrt-v4 `SpotLight`: cosFalloffStart = cos(coneangle - conedelta), so the
+                // falloff starts |coneangle - conedelta| from the axis; its smoothstep needs
+                // that inside the cone.
+                let falloff = (cone - delta).abs();
+                if !(cone > 0.0 && cone < 180.0) {
+                    return Err(err_at(
+                        file,
+                        t,
+                        format!("{what}: \"coneangle\" {cone} is not in (0, 180) degrees"),
+                    ));
                 }
-                self.b.point_light(m.transform_point3(from), rgb);
+                if falloff.is_nan() || falloff > cone {
+                    return Err(err_at(
+                        file,
+                        t,
+                        format!("{what}: \"conedelta\" {delta} is not in [0, 2 coneangle]"),
+                    ));
+                }
+                let axis = m.transform_vector3(to - from);
+                if axis.try_normalize().is_none() {
+                    return Err(err_at(file, t, format!("{what}: from and to coincide")));
+                }
+                let at = (m.transform_point3(from), axis);
+                self.b
+                    .spot_light(at, rgb, (cone, falloff), SpotProfile::Smoothstep);
             }
             "distant" => {
                 let d = m.transform_vector3(to - from);

@@ -392,3 +392,60 @@ fn only_the_start_time_transform_is_used() {
             .any(|n| n.message.contains("ActiveTransform EndTime"))
     );
 }
+
+/// `LightSource "spot"`: pbrt-v4's cone (`coneangle`, falloff from `coneangle - conedelta`,
+/// defaults 30 and 5) and smoothstep profile, along `to - from`; a delta that puts the falloff
+/// outside the cone is refused.
+#[test]
+fn spot_lights_keep_their_cone() {
+    let c = run(
+        "LightSource \"spot\" \"rgb I\" [2 2 2] \"point3 from\" [0 3 0] \"point3 to\" [0 0 1] \
+         \"float coneangle\" 40 \"float conedelta\" 10\n\
+         LightSource \"spot\" \"point3 from\" [0 1 0]\n",
+    );
+    let LightDesc::Spot {
+        position,
+        direction: Some(direction),
+        intensity,
+        cone_angle,
+        falloff_angle,
+        profile,
+        ..
+    } = c.desc.lights[0]
+    else {
+        panic!("{:?}", c.desc.lights[0])
+    };
+    assert_eq!((position, intensity), ([0.0, 3.0, 0.0], [2.0; 3]));
+    let d = DVec3::from(direction).normalize();
+    assert!(
+        (d - DVec3::new(0.0, -3.0, 1.0).normalize()).length() < 1e-12,
+        "{d}"
+    );
+    assert_eq!((cone_angle, falloff_angle), (40.0, Some(30.0)));
+    assert_eq!(profile, crate::lights::SpotProfile::Smoothstep);
+    assert!(matches!(
+        c.desc.lights[1],
+        LightDesc::Spot {
+            cone_angle: 30.0,
+            falloff_angle: Some(25.0),
+            ..
+        }
+    ));
+    assert!(
+        c.notes.iter().all(|n| !n.message.contains("spot")),
+        "{:?}",
+        c.notes
+    );
+    let e = fail(&format!(
+        "{CAMERA}WorldBegin\nLightSource \"spot\" \"float coneangle\" 30 \"float conedelta\" 70\n"
+    ));
+    assert!(
+        e.to_string()
+            .contains("\"conedelta\" 70 is not in [0, 2 coneangle]"),
+        "{e}"
+    );
+    let e = fail(&format!(
+        "{CAMERA}WorldBegin\nLightSource \"spot\" \"point3 from\" [0 0 0] \"point3 to\" [0 0 0]\n"
+    ));
+    assert!(e.to_string().contains("from and to coincide"), "{e}");
+}

@@ -126,12 +126,13 @@ impl Bdpt<'_> {
                 lp[s - 2].1 = self.pdf(q, Some(p), m);
             }
         }
+        let heuristic = self.scene().settings.mis;
         let mut sum = 0.0;
         let mut ri = 1.0;
         for i in (1..t).rev() {
             ri *= remap0(cp[i].1) / remap0(cp[i].0);
             if !cp[i].2 && !cp[i - 1].2 {
-                sum += ri;
+                sum += heuristic.term(ri);
             }
         }
         ri = 1.0;
@@ -146,7 +147,7 @@ impl Bdpt<'_> {
             ri *= remap0(lp[i].1) / remap0(lp[i].0);
             let before_delta = if i > 0 { lp[i - 1].2 } else { delta_light };
             if !lp[i].2 && !before_delta {
-                sum += ri;
+                sum += heuristic.term(ri);
             }
         }
         1.0 / (1.0 + sum)
@@ -251,10 +252,21 @@ impl Bdpt<'_> {
             Light::Point {
                 position,
                 intensity,
+                spot,
             } => {
+                // A spot light's intensity towards `pt` (nothing outside its cone).
+                let falloff =
+                    spot.map_or(1.0, |c| c.falloff((pt.p - position).normalize_or_zero()));
+                if falloff <= 0.0 {
+                    return None;
+                }
                 q.p = position;
                 q.pdf_fwd = p_choose;
-                q.beta = intensity / p_choose;
+                q.beta = if spot.is_some() {
+                    intensity * falloff / p_choose
+                } else {
+                    intensity / p_choose
+                };
                 q.delta_light = true;
             }
             Light::Directional {

@@ -8,7 +8,9 @@
 //! Rendering*, 4th ed., section 12.x and 16.3; Veach 1997, section 10.2):
 //!
 //! - point light (intensity `I`): origin the light (delta), direction uniform over the sphere,
-//!   `pdf_dir = 1 / (4 pi)`; what leaves is `I`.
+//!   `pdf_dir = 1 / (4 pi)`; what leaves is `I`. A spot light draws its direction uniformly in
+//!   its cone, `pdf_dir = 1 / (2 pi (1 - cos theta_cone))`, and what leaves is `I` times its
+//!   falloff ([`super::Spot`]).
 //! - directional light (irradiance `E`, direction `d`): direction `d` (delta); origin uniform on
 //!   a disc of radius `R` (the scene's bounding radius) perpendicular to `d`, `R` behind the
 //!   scene's centre, `pdf_pos = 1 / (pi R^2)`; what leaves is `E`.
@@ -17,7 +19,7 @@
 //!   outward normal, `pdf_dir = cos / pi`; what leaves is `L`.
 //!
 //! With these, `le |cos| / (pdf_pos pdf_dir)` of every sample is the light's flux `Phi` (for a
-//! point light `4 pi I`, directional `pi R^2 E`, area `pi A L`): the powers by which light
+//! point light `4 pi I`, spot `I` times its falloff's solid angle, directional `pi R^2 E`, area `pi A L`): the powers by which light
 //! sampling chooses lights (`super::LightSampler`), which the tests check.
 
 use super::{AreaShape, Light};
@@ -98,16 +100,27 @@ impl Light<'_> {
             Light::Point {
                 position,
                 intensity,
-            } => Some(EmittedRay {
-                origin: position,
-                direction: square_to_uniform_sphere(u_dir),
-                normal: None,
-                le: intensity,
-                pdf_pos: 1.0,
-                pdf_dir: 1.0 / (4.0 * PI),
-                delta_pos: true,
-                delta_dir: false,
-            }),
+                spot,
+            } => {
+                // A spot light draws uniformly in its cone (pbrt-v4 `SpotLight::SampleLe`).
+                let (direction, le, pdf_dir) = match spot {
+                    None => (square_to_uniform_sphere(u_dir), intensity, 1.0 / (4.0 * PI)),
+                    Some(cone) => {
+                        let (w, pdf) = cone.sample(u_dir);
+                        (w, intensity * cone.falloff(w), pdf)
+                    }
+                };
+                Some(EmittedRay {
+                    origin: position,
+                    direction,
+                    normal: None,
+                    le,
+                    pdf_pos: 1.0,
+                    pdf_dir,
+                    delta_pos: true,
+                    delta_dir: false,
+                })
+            }
             Light::Directional {
                 direction,
                 irradiance,
@@ -159,7 +172,10 @@ impl Light<'_> {
     #[must_use]
     pub fn pdf_le(&self, origin: DVec3, normal: Option<DVec3>, direction: DVec3) -> (f64, f64) {
         match *self {
-            Light::Point { .. } => (1.0, 1.0 / (4.0 * PI)),
+            Light::Point { spot: None, .. } => (1.0, 1.0 / (4.0 * PI)),
+            Light::Point {
+                spot: Some(cone), ..
+            } => (1.0, cone.pdf(direction)),
             Light::Directional { radius, .. } => (1.0 / (PI * radius * radius), 1.0),
             Light::Area { shape, .. } => {
                 let area = shape.area();

@@ -36,6 +36,7 @@ fn a_point_light_emits_uniformly_over_the_sphere() {
     let e = Light::Point {
         position: DVec3::new(0.5, 1.0, -2.0),
         intensity: Rgb::splat(3.0),
+        spot: None,
     };
     test_directions(
         (-1.0, 1.0),
@@ -243,5 +244,63 @@ fn the_flux_is_the_integral_of_emitted_radiance() {
     assert!(
         (r.weight().x - flux / l * 1.0).abs() < 1e-9,
         "sample_le's weight is pi A L"
+    );
+}
+
+/// A spot light emits only inside its cone, uniformly there; its rays' mean weight is its flux
+/// `I * solid_angle` (what `power` weighs it by), `pdf_le` gives back the sample's densities,
+/// and `sample_li` delivers `I falloff / r^2` inside the cone and nothing outside it.
+#[test]
+fn a_spot_light_emits_its_falloff_inside_its_cone() {
+    use crate::lights::{Spot, SpotProfile};
+    let cone = Spot {
+        axis: DVec3::new(0.0, -1.0, 0.5).normalize(),
+        cone: 35f64.to_radians(),
+        falloff: 15f64.to_radians(),
+        profile: SpotProfile::Smoothstep,
+    };
+    let position = DVec3::new(0.5, 3.0, -2.0);
+    let e = Light::Point {
+        position,
+        intensity: Rgb::new(2.0, 3.0, 4.0),
+        spot: Some(cone),
+    };
+    let mut rng = SplitMix64::new(11);
+    let n = 200_000;
+    let mut sum = 0.0;
+    let mut sq = 0.0;
+    for _ in 0..n {
+        let r = draw(&e, &mut rng).unwrap();
+        assert!(r.direction.dot(cone.axis) >= cone.cone.cos() - 1e-12);
+        assert_eq!(
+            e.pdf_le(r.origin, None, r.direction),
+            (r.pdf_pos, r.pdf_dir)
+        );
+        assert!(r.delta_pos && !r.delta_dir && r.origin == position);
+        let w = (r.weight().x + r.weight().y + r.weight().z) / 3.0;
+        sum += w;
+        sq += w * w;
+    }
+    let mean = sum / f64::from(n);
+    let se = ((sq / f64::from(n) - mean * mean) / f64::from(n)).sqrt();
+    let power = e.power();
+    assert!((power - 3.0 * cone.solid_angle()).abs() < 1e-12 * power);
+    assert!(
+        (mean - power).abs() < 5.0 * se,
+        "flux {mean} +- {se} vs {power}"
+    );
+    assert_eq!(e.pdf_le(position, None, -cone.axis), (1.0, 0.0));
+    // Towards a point on the axis: the full intensity over r^2; outside the cone: nothing.
+    let below = position + 2.0 * cone.axis;
+    let ls = e.sample_li(below, (0.5, 0.5)).unwrap();
+    assert!(
+        (ls.radiance - Rgb::new(2.0, 3.0, 4.0) / 4.0)
+            .abs()
+            .max_element()
+            < 1e-12
+    );
+    assert!(
+        e.sample_li(position - 2.0 * cone.axis, (0.5, 0.5))
+            .is_none()
     );
 }

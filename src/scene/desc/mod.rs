@@ -342,6 +342,34 @@ pub enum LightDesc {
         #[serde(default)]
         name: Option<String>,
     },
+    /// Spot light: a point light whose intensity falls off within a cone about `direction`
+    /// (or towards `look_at`): full intensity within `falloff_angle` of the axis, nothing beyond
+    /// `cone_angle`, the `profile` curve between (`docs/scene-format.md`).
+    Spot {
+        /// Position.
+        position: Triple,
+        /// The axis, the direction the light points in (give it or `look_at`).
+        #[serde(default, skip_serializing_if = "Option::is_none")]
+        direction: Option<Triple>,
+        /// A point on the axis (instead of `direction`).
+        #[serde(default, skip_serializing_if = "Option::is_none")]
+        look_at: Option<Triple>,
+        /// Radiant intensity per channel on the axis.
+        intensity: Triple,
+        /// Half-angle of the cone in degrees, in (0, 180): nothing is emitted outside it.
+        cone_angle: f64,
+        /// Half-angle in degrees within which the full intensity is emitted, in [0,
+        /// `cone_angle`]; defaults to `cone_angle` (a hard edge).
+        #[serde(default, skip_serializing_if = "Option::is_none")]
+        falloff_angle: Option<f64>,
+        /// The falloff curve: `smoothstep` (pbrt-v4, the default), `linear` (in the angle,
+        /// Mitsuba 3) or `gltf` (KHR_lights_punctual).
+        #[serde(default)]
+        profile: crate::lights::SpotProfile,
+        /// Display name.
+        #[serde(default)]
+        name: Option<String>,
+    },
     /// Directional light: constant irradiance arriving along `direction`.
     Directional {
         /// Direction the light travels (from the light into the scene).
@@ -359,5 +387,5 @@ mod settings;
 pub use antialias::{ADAPTIVE_FACTOR, AUTO_THRESHOLD, AdaptiveDesc, Antialiasing};
 pub use settings::{
     DEFAULT_MAX_RAYS, DEFAULT_RR_DEPTH, DEFAULT_TOLERANCE, FilterDesc, GAUSSIAN_RADIUS_SIGMAS,
-    IntegratorKind, OffsetDesc, OffsetStrategy, SamplerKind, Settings, ShadowMode,
+    IntegratorKind, MisHeuristic, OffsetDesc, OffsetStrategy, SamplerKind, Settings, ShadowMode,
 };

@@ -342,6 +342,10 @@ pub struct Settings {
     /// automatic weight, off for an explicit `min_weight` or a tolerance of 0).
     #[serde(skip_serializing_if = "Option::is_none")]
     pub roulette_below: Option<f64>,
+    /// Bidirectional path tracing: the MIS heuristic over its strategies (default balance).
+    /// Read by `bdpt` alone.
+    #[serde(skip_serializing_if = "MisHeuristic::is_balance")]
+    pub mis: MisHeuristic,
 }
 
 impl Settings {
@@ -356,6 +360,69 @@ impl Settings {
             }
             IntegratorKind::Whitted => SamplerKind::Stratified,
         })
+    }
+}
+
+/// The multiple-importance-sampling heuristic bidirectional path tracing weighs its strategies
+/// (s, t) by (`settings.mis`; Veach 1997, section 9.2.2): the path tracer always combines its
+/// light and BSDF samples by the power heuristic.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "lowercase", try_from = "String")]
+pub enum MisHeuristic {
+    /// `w_s = p_s / sum_i p_i` (pbrt-v3 and -v4's `BDPTIntegrator`).
+    #[default]
+    Balance,
+    /// `w_s = p_s^2 / sum_i p_i^2`, the exponent 2 Veach recommends (Mitsuba 3's `bdpt`).
+    Power,
+}
+
+impl MisHeuristic {
+    /// The heuristic's name in scene files and on the command line.
+    #[must_use]
+    pub fn name(self) -> &'static str {
+        match self {
+            MisHeuristic::Balance => "balance",
+            MisHeuristic::Power => "power",
+        }
+    }
+
+    /// From its name.
+    ///
+    /// # Errors
+    /// Anything but `"balance"` or `"power"`.
+    pub fn from_name(name: &str) -> Result<Self, String> {
+        match name {
+            "balance" => Ok(MisHeuristic::Balance),
+            "power" => Ok(MisHeuristic::Power),
+            _ => Err(format!(
+                "unknown MIS heuristic {name:?}, expected \"balance\" or \"power\""
+            )),
+        }
+    }
+
+    /// `ratio` (a strategy's density over the one that made the path) as it enters the
+    /// weight's denominator: itself under the balance heuristic, its square under the power
+    /// heuristic.
+    #[inline]
+    #[must_use]
+    pub fn term(self, ratio: f64) -> f64 {
+        match self {
+            MisHeuristic::Balance => ratio,
+            MisHeuristic::Power => ratio * ratio,
+        }
+    }
+
+    #[allow(clippy::trivially_copy_pass_by_ref)] // serde's skip_serializing_if passes a reference
+    fn is_balance(&self) -> bool {
+        *self == MisHeuristic::Balance
+    }
+}
+
+impl TryFrom<String> for MisHeuristic {
+    type Error = String;
+
+    fn try_from(s: String) -> Result<Self, String> {
+        Self::from_name(&s)
     }
 }
 
@@ -398,6 +465,7 @@ impl Default for Settings {
             adaptive: None,
             dielectric_roulette: None,
             roulette_below: None,
+            mis: MisHeuristic::Balance,
         }
     }
 }

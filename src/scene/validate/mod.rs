@@ -3,7 +3,7 @@
 use super::check::Check;
 use super::desc::{
     CameraDesc, ConductorDesc, LightDesc, MaterialDesc, ObjectDesc, SceneDesc, Settings,
-    TextureDesc,
+    TextureDesc, Triple,
 };
 use super::error::{bare_message, field_of_tagged, path_of, reword, with_missing_field};
 use super::mesh_object::MeshLoader;
@@ -427,9 +427,32 @@ fn light(ck: &Check, i: usize, l: &LightDesc) -> Result<Light, SceneError> {
             LightKind::Point {
                 position: ck.vec(&format!("{p}.position"), *position)?,
                 intensity: ck.color(&format!("{p}.intensity"), *intensity)?,
+                spot: None,
             },
             name,
         ),
+        LightDesc::Spot {
+            position,
+            intensity,
+            name,
+            direction,
+            look_at,
+            cone_angle,
+            falloff_angle,
+            profile,
+        } => {
+            let position = ck.vec(&format!("{p}.position"), *position)?;
+            let axis = spot_axis(ck, &p, position, (*direction, *look_at))?;
+            let cone = (*cone_angle, *falloff_angle, *profile);
+            (
+                LightKind::Point {
+                    position,
+                    intensity: ck.color(&format!("{p}.intensity"), *intensity)?,
+                    spot: Some(spot(ck, &p, axis, cone)?),
+                },
+                name,
+            )
+        }
         LightDesc::Directional {
             direction,
             irradiance,
@@ -445,6 +468,55 @@ fn light(ck: &Check, i: usize, l: &LightDesc) -> Result<Light, SceneError> {
     Ok(Light {
         name: name.clone().unwrap_or_else(|| format!("light#{i}")),
         kind,
+    })
+}
+
+/// A spot light's axis from `direction` or `look_at` (exactly one).
+fn spot_axis(
+    ck: &Check,
+    p: &str,
+    position: DVec3,
+    (direction, look_at): (Option<Triple>, Option<Triple>),
+) -> Result<DVec3, SceneError> {
+    match (direction, look_at) {
+        (Some(d), None) => ck.direction(&format!("{p}.direction"), d),
+        (None, Some(t)) => {
+            let target = ck.vec(&format!("{p}.look_at"), t)?;
+            match (target - position).try_normalize() {
+                Some(a) => Ok(a),
+                None => ck.fail(format!("{p}.look_at"), "must differ from position"),
+            }
+        }
+        (Some(_), Some(_)) => ck.fail(
+            format!("{p}.look_at"),
+            "give direction or look_at, not both",
+        ),
+        (None, None) => ck.fail(p.to_string(), "a spot light needs direction or look_at"),
+    }
+}
+
+/// A spot light's cone about `axis`: its angles in degrees checked and converted to radians.
+fn spot(
+    ck: &Check,
+    p: &str,
+    axis: DVec3,
+    (cone, falloff, profile): (f64, Option<f64>, crate::lights::SpotProfile),
+) -> Result<crate::lights::Spot, SceneError> {
+    if !(cone > 0.0 && cone < 180.0) {
+        return ck.fail(format!("{p}.cone_angle"), "must be in (0, 180) degrees");
+    }
+    let falloff = falloff.unwrap_or(cone);
+    if !(0.0..=cone).contains(&falloff) {
+        return ck.fail(
+            format!("{p}.falloff_angle"),
+            "must be in [0, cone_angle] degrees",
+        );
+    }
+    Ok(crate::lights::Spot {
+        axis,
+        cone: cone.to_radians(),
+        falloff: falloff.to_radians(),
+        profile,
     })
 }
 

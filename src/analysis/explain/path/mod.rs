@@ -163,9 +163,10 @@ pub(super) fn explain_path(tree: &RayTree, scene: &Scene) -> Explanation {
         sentences.push(Sentence {
             kind: SentenceKind::Sees,
             text: format!(
-                "the pixel is black: none of its {} sampled path{} reached light",
+                "the pixel is black: none of its {} sampled path{} reached light{}",
                 tree.samples.len(),
-                plural(tree.samples.len())
+                plural(tree.samples.len()),
+                super::outside_spots(tree, scene)
             ),
             nodes: tree.samples.iter().map(|s| s.root).collect(),
         });

@@ -121,9 +121,11 @@ fn light_irradiance(scene: &Scene, shadows: ShadowMode) -> Option<f64> {
             .iter()
             .map(|l| match l.kind {
                 LightKind::Directional { irradiance, .. } => max(irradiance),
+                // A spot light's falloff is at most 1: its axis intensity bounds it.
                 LightKind::Point {
                     position,
                     intensity,
+                    ..
                 } => {
                     let d = surface_distance(scene, position);
                     if d > 0.0 {

@@ -61,6 +61,7 @@ fn exhaustive_and_unbounded_cases_cut_nothing() {
     s.lights[0].kind = LightKind::Point {
         position: DVec3::new(5.0, -1.0, 0.0),
         intensity: Rgb::ONE,
+        spot: None,
     };
     assert_eq!(radiance_bound(&s, 4, ShadowMode::Opaque), f64::INFINITY);
     assert_eq!(effective_min_weight(&s), 0.0);
