@@ -468,3 +468,45 @@ fn bdpt_weights_the_caustic_to_the_light_strategy() {
     let mean = caustic.iter().sum::<f64>() / caustic.len() as f64;
     assert!(mean > 0.8, "mean MIS weight {mean} of {caustic:?}");
 }
+
+/// `trace` under light tracing keeps the light paths that land in the pixel within half of
+/// `--max-memory`: a 1x1 Cornell box at 64 spp (every light path that reaches the camera lands
+/// in the one pixel) is refused in 1 MiB with the count, exit 2 and nothing on stdout, and
+/// traced with the default budget.
+#[test]
+fn trace_refuses_a_pixel_whose_splats_exceed_the_memory_budget() {
+    let d = tempfile::tempdir().unwrap();
+    let cb = common::fixture("cornell-box.json");
+    let args = |mem: Option<&'static str>| {
+        let mut v = vec![
+            "trace",
+            cb.as_str(),
+            "--integrator",
+            "light",
+            "--size",
+            "1x1",
+            "--spp",
+            "64",
+            "--pixel",
+            "0,0",
+        ];
+        if let Some(m) = mem {
+            v.extend(["--max-memory", m]);
+        }
+        v.into_iter().map(str::to_string).collect::<Vec<_>>()
+    };
+    let run = |a: Vec<String>| {
+        let refs: Vec<&str> = a.iter().map(String::as_str).collect();
+        raytree(&refs, d.path())
+    };
+    let o = run(args(Some("1")));
+    let err = common::fails(&o);
+    assert!(
+        err.contains("light paths land in pixel 0,0") && err.contains("raise --max-memory"),
+        "{err}"
+    );
+    assert!(o.stdout.is_empty());
+    let o = run(args(None));
+    assert!(o.status.success(), "{}", common::stderr(&o));
+    assert!(String::from_utf8_lossy(&o.stdout).contains("splat"));
+}

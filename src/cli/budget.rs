@@ -23,8 +23,8 @@ fn node_bytes(scene: &Scene) -> u64 {
     let node = std::mem::size_of::<RayNode>() as u64;
     // The text form: a line of about 300 bytes a ray.
     let heap = match scene.settings.integrator {
-        raytree::scene::IntegratorKind::Path => 2 * u64::from(scene.settings.max_depth) + 96 + 512,
-        _ => 96 + 512,
+        raytree::scene::IntegratorKind::Whitted => 96 + 512,
+        _ => 2 * u64::from(scene.settings.max_depth) + 96 + 512,
     };
     // Twice: the filtered or explained copy a command may hold beside the tree.
     2 * (node + heap)
@@ -112,7 +112,7 @@ pub fn fit_tree(scene: &mut Scene, mib: u64) -> Result<Option<u64>> {
     let per_node = node_bytes(scene);
     // A sample's rays: at most `max_rays`, plus the last secondary ray's shadow rays.
     let extra = scene.lights.len() as u64 + 1;
-    let fit = budget_bytes(mib) / per_node / spp;
+    let fit = camera_bytes(scene, mib) / per_node / spp;
     if fit <= extra {
         bail!(
             "the tree of {spp} samples needs at least {} ({} rays per sample at {per_node} bytes), more than the memory budget of {mib} MiB; lower --spp or raise --max-memory",
@@ -126,6 +126,54 @@ pub fn fit_tree(scene: &mut Scene, mib: u64) -> Result<Option<u64>> {
         return Ok(Some(cap));
     }
     Ok(None)
+}
+
+/// Whether the scene's integrator splats light paths into pixels (light tracing, BDPT).
+fn splats(scene: &Scene) -> bool {
+    matches!(
+        scene.settings.integrator,
+        raytree::scene::IntegratorKind::Light | raytree::scene::IntegratorKind::Bdpt
+    )
+}
+
+/// The part of the budget a traced pixel's camera samples may use: all of it, or half under
+/// splatting integrators (the other half is for the light paths that land in the pixel,
+/// [`splat_paths`]).
+fn camera_bytes(scene: &Scene, mib: u64) -> u64 {
+    let all = budget_bytes(mib);
+    if splats(scene) { all / 2 } else { all }
+}
+
+/// Rays one recorded light path may hold: a light ray per vertex (at most `max_depth + 2`) and
+/// a connection to the camera from each.
+fn nodes_per_light_path(scene: &Scene) -> u64 {
+    2 * (u64::from(scene.settings.max_depth) + 3)
+}
+
+/// The most light paths a traced pixel may record within the budget's other half.
+#[must_use]
+pub fn splat_paths(scene: &Scene, mib: u64) -> u64 {
+    let all = budget_bytes(mib);
+    (all - camera_bytes(scene, mib)) / node_bytes(scene) / nodes_per_light_path(scene)
+}
+
+/// Trace pixel (x, y) within the memory budget (after [`fit_tree`]): under light tracing and
+/// BDPT, refuse a pixel that more light paths land in than the budget can record. `None` when
+/// the pixel is outside the image.
+pub fn trace(scene: &Scene, (x, y): (u32, u32), mib: u64) -> Result<Option<RayTree>> {
+    let limit = splat_paths(scene, mib);
+    raytree::render::trace_pixel_within(scene, x, y, limit).map_err(|e| {
+        let need = e.paths * nodes_per_light_path(scene) * node_bytes(scene);
+        anyhow::anyhow!(
+            "{} light paths land in pixel {x},{y}; recording them may need about {:.1} MiB ({} rays a path at {} bytes), more than the half of the memory budget of {mib} MiB kept for them (room for {} path{}); lower --spp or --size, or raise --max-memory",
+            e.paths,
+            need as f64 / f64::from(1u32 << 20),
+            nodes_per_light_path(scene),
+            node_bytes(scene),
+            e.limit,
+            if e.limit == 1 { "" } else { "s" }
+        )
+    })
 }
 
 /// Samples of `tree` cut by their ray budget.

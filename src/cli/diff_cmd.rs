@@ -59,9 +59,10 @@ fn parse_overrides(side: &str, s: &str) -> Result<Overrides> {
 }
 
 fn trace(scene: &mut Scene, o: &Overrides, x: u32, y: u32, side: &str) -> Result<RayTree> {
-    super::budget::fit_tree(scene, super::budget::mib(o.max_memory))?;
+    let mib = super::budget::mib(o.max_memory);
+    super::budget::fit_tree(scene, mib)?;
     let cam = &scene.camera;
-    match raytree::trace_pixel(scene, x, y) {
+    match super::budget::trace(scene, (x, y), mib)? {
         Some(t) => Ok(t),
         None => bail!(
             "--pixel {x},{y} is outside side {side}'s {}x{} image",

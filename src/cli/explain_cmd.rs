@@ -10,12 +10,10 @@ use raytree::analysis::explain::{explain, explanation_text};
 pub fn run(a: &ExplainArgs) -> Result<()> {
     let (x, y) = pair("pixel", &a.pixel, ',')?;
     let mut loaded = load(a.scene.as_deref(), &a.overrides)?;
-    super::budget::fit_tree(
-        &mut loaded.scene,
-        super::budget::mib(a.overrides.max_memory),
-    )?;
+    let mib = super::budget::mib(a.overrides.max_memory);
+    super::budget::fit_tree(&mut loaded.scene, mib)?;
     let cam = &loaded.scene.camera;
-    let Some(tree) = raytree::trace_pixel(&loaded.scene, x, y) else {
+    let Some(tree) = super::budget::trace(&loaded.scene, (x, y), mib)? else {
         bail!(
             "--pixel {x},{y} is outside the {}x{} image",
             cam.width,

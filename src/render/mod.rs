@@ -119,8 +119,33 @@ pub fn render_pixel_sampled<I: Integrator, S: PixelSampler, R: Recorder>(
 /// Re-trace pixel (x, y) and record its full tree. `None` if the pixel is outside the image.
 #[must_use]
 pub fn trace_pixel(scene: &Scene, x: u32, y: u32) -> Option<RayTree> {
+    trace_pixel_within(scene, x, y, u64::MAX).unwrap_or(None)
+}
+
+/// More light paths land in a traced pixel than its caller allowed to record
+/// ([`trace_pixel_within`]).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct TooManySplats {
+    /// The light paths that splat into the pixel.
+    pub paths: u64,
+    /// The most the caller allowed.
+    pub limit: u64,
+}
+
+/// [`trace_pixel`], recording at most `max_splat_paths` light paths that splat into the pixel
+/// (under light tracing and BDPT): beyond that, `Err` before any is recorded, so that a caller
+/// with a memory budget can refuse (`raytree trace --max-memory`).
+///
+/// # Errors
+/// [`TooManySplats`] when more light paths than `max_splat_paths` land in the pixel.
+pub fn trace_pixel_within(
+    scene: &Scene,
+    x: u32,
+    y: u32,
+    max_splat_paths: u64,
+) -> Result<Option<RayTree>, TooManySplats> {
     if x >= scene.camera.width || y >= scene.camera.height {
-        return None;
+        return Ok(None);
     }
     let mut rec = TreeRecorder::default();
     let mut samples = Vec::new();
@@ -137,7 +162,11 @@ pub fn trace_pixel(scene: &Scene, x: u32, y: u32) -> Option<RayTree> {
     // they took (an automatic roulette that is off stays absent).
     // Light tracing: the light paths that land here, recorded after the camera samples.
     let (splats, splat_divisor, radiance) = if integrator.splats() {
-        let (records, _) = splat::pixel_splats(&integrator, (x, y), &mut rec);
+        let (records, _) = splat::pixel_splats(&integrator, (x, y), &mut rec, max_splat_paths)
+            .map_err(|paths| TooManySplats {
+                paths,
+                limit: max_splat_paths,
+            })?;
         let spp = scene.settings.spp.max(1);
         let radiance = splat::with_splats(radiance, splat::splat_sum(&records), spp);
         (records, spp, radiance)
@@ -156,7 +185,7 @@ pub fn trace_pixel(scene: &Scene, x: u32, y: u32) -> Option<RayTree> {
     } else {
         TREE_SCHEMA_SPLATS
     };
-    Some(RayTree {
+    Ok(Some(RayTree {
         schema: schema.to_string(),
         pixel: [x, y],
         settings,
@@ -166,7 +195,7 @@ pub fn trace_pixel(scene: &Scene, x: u32, y: u32) -> Option<RayTree> {
         edge,
         splats,
         splat_divisor,
-    })
+    }))
 }
 
 /// Render the whole image in parallel (rows over rayon's pool; for scenes with meshes, bands of

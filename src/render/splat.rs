@@ -102,12 +102,14 @@ pub(crate) fn light_rounds<I: Integrator, T: Send>(
 /// The splats of pixel `(x, y)`, recorded into `rec`, in the order [`light_pass`] adds them:
 /// the whole pass is traced unrecorded to find the light paths that land there, then each of
 /// those is traced again into `rec` (the same random numbers, so the same contributions).
-/// Returns the splat records and the rays of both passes.
+/// Returns the splat records and the rays of both passes, or, when more than `max_paths` light
+/// paths land there, `Err` with their number (nothing recorded).
 pub fn pixel_splats<I: Integrator, R: Recorder>(
     integrator: &I,
     (x, y): (u32, u32),
     rec: &mut R,
-) -> (Vec<SplatRecord>, RayCounts) {
+    max_paths: u64,
+) -> Result<(Vec<SplatRecord>, RayCounts), u64> {
     let scene = integrator.scene();
     let (w, h) = (scene.camera.width, scene.camera.height);
     let spp = scene.settings.spp.max(1);
@@ -124,6 +126,10 @@ pub fn pixel_splats<I: Integrator, R: Recorder>(
             (paths, c)
         })
         .collect();
+    let landing: u64 = found.iter().map(|(p, _)| p.len() as u64).sum();
+    if landing > max_paths {
+        return Err(landing);
+    }
     let mut counts = RayCounts::default();
     let mut records = Vec::new();
     let mut sampler = light_sampler(integrator);
@@ -158,7 +164,7 @@ pub fn pixel_splats<I: Integrator, R: Recorder>(
     for (_, c) in found {
         counts += c;
     }
-    (records, counts)
+    Ok((records, counts))
 }
 
 /// `camera + sum / spp`: a pixel's value from its camera samples' mean and its splat sum.
