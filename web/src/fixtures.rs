@@ -25,6 +25,7 @@ pub const FIXTURES: &[(&str, &str)] = &[
         "soft-shadows",
         include_str!("../../fixtures/soft-shadows.json"),
     ),
+    ("spot", include_str!("../../fixtures/spot.json")),
     ("tir-block", include_str!("../../fixtures/tir-block.json")),
     (
         "translucent-shadow",
