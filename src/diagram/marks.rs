@@ -28,6 +28,7 @@ pub(super) fn light_marks(
             name,
             point,
             directional,
+            cone,
             dist,
         }) = light_at(scene, s, r, frame)
         else {
@@ -57,6 +58,7 @@ pub(super) fn light_marks(
             area,
             point,
             directional,
+            cone,
             plane_distance: dist,
             fade: f,
         });
@@ -75,6 +77,8 @@ struct LightAt {
     point: DVec2,
     /// A directional light's canvas direction of travel.
     directional: Option<DVec2>,
+    /// A spot light's cone edges in the plane ([`cone_edges`]).
+    cone: Option<[DVec2; 2]>,
     /// Distance from the plane.
     dist: f64,
 }
@@ -95,6 +99,7 @@ fn light_at(scene: &Scene, s: &Seg3, r: &RaySegment, frame: &plane::PlaneFrame) 
             name: hit.object_name.clone(),
             point: r.to,
             directional: None,
+            cone: None,
             dist: frame.distance(hit.point),
         });
     };
@@ -108,12 +113,15 @@ fn light_at(scene: &Scene, s: &Seg3, r: &RaySegment, frame: &plane::PlaneFrame) 
             name: info.light_name.clone(),
             point: r.to,
             directional: None,
+            cone: None,
             dist: frame.distance(a.point),
         });
     }
     let light = scene.lights.get(info.light)?;
+    let mut cone = None;
     let (point, directional, dist) = match light.kind {
-        LightKind::Point { position, .. } => {
+        LightKind::Point { position, spot, .. } => {
+            cone = spot.and_then(|c| cone_edges(frame, &c));
             let p = frame.to_canvas(position);
             // A light outside the frame is marked where its shadow ray leaves it.
             let p = if (p - r.to).length() > 1.0 && r.end == RayEnd::Light {
@@ -136,8 +144,29 @@ fn light_at(scene: &Scene, s: &Seg3, r: &RaySegment, frame: &plane::PlaneFrame) 
         name: light.name.clone(),
         point,
         directional,
+        cone,
         dist,
     })
+}
+
+/// The two lines in which the diagram plane through a spot light cuts its cone, as unit canvas
+/// directions; `None` when the plane misses the cone (only the apex in common). With the axis `a` written in the plane's axes, `d(phi) = cos phi u +
+/// sin phi v` lies on the cone where `a_u cos phi + a_v sin phi = cos theta_cone`, that is
+/// `phi = phi_0 +- acos(cos theta_cone / |a_in_plane|)`.
+fn cone_edges(frame: &plane::PlaneFrame, spot: &crate::lights::Spot) -> Option<[DVec2; 2]> {
+    let (au, av) = (spot.axis.dot(frame.u), spot.axis.dot(frame.v));
+    let r = au.hypot(av);
+    let c = spot.cone.cos();
+    if r <= 1e-9 || r < c.abs() {
+        return None;
+    }
+    let phi0 = av.atan2(au);
+    let half = (c / r).clamp(-1.0, 1.0).acos();
+    let edge = |phi: f64| {
+        let d = phi.cos() * frame.u + phi.sin() * frame.v;
+        frame.dir_to_canvas(d).try_normalize()
+    };
+    Some([edge(phi0 - half)?, edge(phi0 + half)?])
 }
 
 pub(super) fn camera_mark(
@@ -200,5 +229,43 @@ pub(super) fn camera_mark(
         image_plane: cut(&image),
         pixel: p,
         pixel_span: cut(&pixel),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::lights::{Spot, SpotProfile};
+
+    /// The plane z = 0 (u = x, v = y, canvas y down): a spot pointing down -y with a 30-degree
+    /// cone has its edges 30 degrees either side of straight down; tilted 20 degrees out of the
+    /// plane the edges close in, exactly where the cone meets the plane; a plane across the
+    /// axis (the spot pointing along the normal) cuts no edge.
+    #[test]
+    fn the_cone_edges_are_where_the_plane_cuts_the_cone() {
+        let frame = plane::PlaneFrame::new(DVec3::ZERO, DVec3::Z, DVec3::Y, DVec3::X);
+        let spot = |axis: DVec3| Spot {
+            axis: axis.normalize(),
+            cone: 30f64.to_radians(),
+            falloff: 0.0,
+            profile: SpotProfile::Smoothstep,
+        };
+        let s = spot(DVec3::NEG_Y);
+        let [a, b] = cone_edges(&frame, &s).unwrap();
+        let down = DVec2::new(0.0, 1.0);
+        for e in [a, b] {
+            assert!(
+                (e.dot(down) - 30f64.to_radians().cos()).abs() < 1e-12,
+                "{e}"
+            );
+        }
+        assert!((a.x + b.x).abs() < 1e-12 && a.x != 0.0);
+        let tilt = 20f64.to_radians();
+        let s = spot(DVec3::new(0.0, -tilt.cos(), tilt.sin()));
+        for e in cone_edges(&frame, &s).unwrap() {
+            let w = DVec3::new(e.x, -e.y, 0.0);
+            assert!((w.dot(s.axis) - s.cone.cos()).abs() < 1e-12);
+        }
+        assert!(cone_edges(&frame, &spot(DVec3::Z)).is_none());
     }
 }

@@ -210,6 +210,9 @@ pub struct LightMark {
     pub point: Point,
     /// For directional lights: unit canvas direction of travel.
     pub directional: Option<Point>,
+    /// For a spot light whose cone the plane cuts: the unit canvas directions of the cone's two
+    /// edges in the plane (drawn dashed from the light, as the lecture sketches a spot).
+    pub cone: Option<[Point; 2]>,
     /// Distance from the plane in world units.
     pub plane_distance: f64,
     /// Opacity factor from the distance.

@@ -169,6 +169,15 @@ pub fn display_list(d: &Diagram, style: &Style) -> Vec<Prim> {
                 }
             }
             None => {
+                // A spot light: its cone's edges in the plane, dashed.
+                for e in l.cone.iter().flatten() {
+                    out.push(stroke(
+                        vec![l.point + *e * 0.9 * fs, l.point + *e * 10.0 * fs],
+                        c,
+                        1.4 * ws,
+                        Some([0.5 * fs, 0.35 * fs]),
+                    ));
+                }
                 for k in 0..8 {
                     let a = f64::from(k) * std::f64::consts::FRAC_PI_4;
                     let v = DVec2::new(a.cos(), a.sin());
