@@ -4,6 +4,9 @@
 //! light tracing and BDPT agree with the path tracer per 8x8 block on `fixtures/spot.json`
 //! (Welch t-tests over independent seeds, as `tests/bidirectional.rs`).
 
+mod common;
+
+use common::stats::agreement;
 use raytree::lights::{Spot, SpotProfile};
 use raytree::math::Rgb;
 use raytree::scene::IntegratorKind;
@@ -112,33 +115,6 @@ fn a_spot_light_on_a_floor_is_its_closed_form() {
     }
 }
 
-fn lum(c: Rgb) -> f64 {
-    (c.x + c.y + c.z) / 3.0
-}
-
-/// The mean luminance of each 8x8 block of `scene` rendered by `kind` at `seed`.
-fn blocks(scene: &Scene, kind: IntegratorKind, seed: u64) -> Vec<f64> {
-    let mut scene = scene.clone();
-    scene.settings.integrator = kind;
-    scene.settings.seed = seed;
-    let (image, _) = render(&scene, &|_| {});
-    let (w, h) = (image.width as usize, image.height as usize);
-    let mut out = vec![0.0; (w / 8) * (h / 8)];
-    for y in 0..h / 8 * 8 {
-        for x in 0..w / 8 * 8 {
-            out[(y / 8) * (w / 8) + x / 8] += lum(image.get(x as u32, y as u32)) / 64.0;
-        }
-    }
-    out
-}
-
-fn mean_var(v: &[f64]) -> (f64, f64) {
-    let n = v.len() as f64;
-    let m = v.iter().sum::<f64>() / n;
-    let var = v.iter().map(|x| (x - m) * (x - m)).sum::<f64>() / (n - 1.0);
-    (m, var)
-}
-
 /// `fixtures/spot.json` (three spot lights, one per profile, over diffuse walls, a clay ball
 /// and a glass ball) without its glass, which light tracing cannot see through: light tracing
 /// and BDPT agree with path tracing in every 8x8 block (largest Welch |t| below 5 over 8 seeds).
@@ -153,25 +129,8 @@ fn light_tracing_and_bdpt_agree_with_path_tracing_under_spot_lights() {
     scene.camera = scene.camera.with_size(32, 24);
     scene.settings.spp = 16;
     scene.settings.max_depth = 3;
-    let runs = |kind| -> Vec<Vec<f64>> { (1..=8).map(|s| blocks(&scene, kind, s)).collect() };
-    let path = runs(IntegratorKind::Path);
     for kind in [IntegratorKind::Light, IntegratorKind::Bdpt] {
-        let other = runs(kind);
-        let mut worst: f64 = 0.0;
-        let mut total = 0.0;
-        for b in 0..path[0].len() {
-            let a: Vec<f64> = other.iter().map(|r| r[b]).collect();
-            let p: Vec<f64> = path.iter().map(|r| r[b]).collect();
-            let ((ma, va), (mp, vp)) = (mean_var(&a), mean_var(&p));
-            total += mp;
-            let se = (va / 8.0 + vp / 8.0).sqrt();
-            if se > 0.0 {
-                worst = worst.max((ma - mp).abs() / se);
-            } else {
-                assert_eq!(ma, mp, "block {b}");
-            }
-        }
-        let mean = total / path[0].len() as f64;
+        let (worst, mean) = agreement(&scene, kind, 8);
         assert!(
             mean > 0.01 && worst < 5.0,
             "{}: largest block |t| {worst}, mean {mean}",

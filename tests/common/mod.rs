@@ -2,6 +2,8 @@
 //! every helper).
 #![allow(dead_code)]
 
+pub mod stats;
+
 use std::path::{Path, PathBuf};
 use std::process::{Command, Output};
 
