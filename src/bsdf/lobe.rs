@@ -7,6 +7,7 @@
 //! `1 / eta^2` radiance scaling), as the Whitted tracer does: it cancels for a closed object with
 //! camera and lights outside, and it makes `R + T <= 1` hold per sample.
 
+use super::coated::Coating;
 use super::conductor::ComplexIor;
 use super::microfacet::{Microfacet, SMOOTH_ALPHA};
 use super::{BsdfSample, LobeKind};
@@ -38,6 +39,16 @@ pub enum Lobe {
         /// `n_inside / n_outside`.
         eta: f64,
     },
+    /// A thin dielectric sheet (delta; Mitsuba 3 `thindielectric`): its two faces reflect
+    /// `R' = 2R / (1 + R)` of the light in all (the inter-reflections inside summed, `R` the
+    /// single face's exact Fresnel at the incident angle) and the rest `1 - R'` passes
+    /// straight through, undeviated (the two refractions cancel).
+    ThinDielectric {
+        /// Overall weight (the material's transmissivity).
+        weight: Rgb,
+        /// The sheet's index over the medium around it.
+        eta: f64,
+    },
     /// GGX rough mirror (Fresnel 1 times `weight`; Walter et al. 2007 eq. 20 with `F = 1`).
     RoughMirror {
         /// Reflectance.
@@ -61,6 +72,20 @@ pub enum Lobe {
         /// Complex index of refraction per channel.
         ior: ComplexIor,
         /// Microfacet distribution.
+        dist: Microfacet,
+    },
+    /// A dielectric coating over a Lambertian base (Mitsuba 3 `plastic` / `roughplastic`,
+    /// [`super::coated`]): the coating reflects `specular F` (a delta when smooth, a microfacet
+    /// lobe of `dist` when rough), the base is `diffuse t(cos_i) t(cos_o) / (eta^2 (1 -
+    /// F_dr,int) pi)`. Two-sided, like [`Lobe::Lambert`].
+    Plastic {
+        /// The base's albedo `rho`.
+        diffuse: Rgb,
+        /// The coating's tint `s` (Mitsuba's `specular_reflectance`).
+        specular: Rgb,
+        /// The coating: index, internal reflectance, rough transmittance.
+        coating: Coating,
+        /// The coating's microfacets (read only when the coating is rough).
         dist: Microfacet,
     },
     /// GGX rough dielectric (Walter et al. 2007 eq. 20-21, exact Fresnel).
@@ -93,6 +118,16 @@ pub fn fr_dielectric(cos_i: f64, eta: f64) -> f64 {
     0.5 * (rs + rp)
 }
 
+/// A thin sheet's total reflectance `R' = 2R / (1 + R)` at incident cosine `cos_i` (> 0), `R`
+/// the exact Fresnel of one face of index `eta`: the series `R + T^2 R (1 + R^2 + R^4 + ...)`
+/// with `T = 1 - R` (Mitsuba 3 `thindielectric`; the same `R` at both faces, whose angles are
+/// equal inside the sheet).
+#[must_use]
+pub fn thin_reflectance(cos_i: f64, eta: f64) -> f64 {
+    let r = fr_dielectric(cos_i, eta);
+    2.0 * r / (1.0 + r)
+}
+
 /// `wo` and `wi` on the same side of the surface.
 fn same_side(wo: DVec3, wi: DVec3) -> bool {
     wo.z * wi.z > 0.0
@@ -118,7 +153,10 @@ impl Lobe {
     pub fn is_delta(&self) -> bool {
         matches!(
             self,
-            Self::Mirror { .. } | Self::Dielectric { .. } | Self::Conductor { .. }
+            Self::Mirror { .. }
+                | Self::Dielectric { .. }
+                | Self::ThinDielectric { .. }
+                | Self::Conductor { .. }
         )
     }
 
@@ -129,10 +167,24 @@ impl Lobe {
             Self::Lambert { albedo: w }
             | Self::Mirror { weight: w }
             | Self::Dielectric { weight: w, .. }
+            | Self::ThinDielectric { weight: w, .. }
             | Self::RoughMirror { weight: w, .. }
             | Self::Conductor { weight: w, .. }
             | Self::RoughConductor { weight: w, .. }
             | Self::RoughDielectric { weight: w, .. } => w,
+            Self::Plastic {
+                diffuse, specular, ..
+            } => diffuse + specular,
+        }
+    }
+
+    /// Whether the lobe scatters diffusely: a Lambert lobe, or a plastic with a base.
+    #[must_use]
+    pub fn is_diffuse(&self) -> bool {
+        match self {
+            Self::Lambert { .. } => true,
+            Self::Plastic { diffuse, .. } => *diffuse != Rgb::ZERO,
+            _ => false,
         }
     }
 
@@ -153,6 +205,7 @@ impl Lobe {
             Self::RoughDielectric { weight, eta, dist } => {
                 weight * rough_dielectric_f(dist, eta, wo, wi)
             }
+            Self::Plastic { .. } if same_side(wo, wi) => plastic_f(self, wo, wi),
             _ => Rgb::ZERO,
         }
     }
@@ -175,6 +228,7 @@ impl Lobe {
                 }
             }
             Self::RoughDielectric { eta, dist, .. } => rough_dielectric_pdf(dist, eta, wo, wi),
+            Self::Plastic { .. } if same_side(wo, wi) => plastic_pdf(self, wo, wi),
             _ => 0.0,
         }
     }
@@ -205,12 +259,22 @@ impl Lobe {
                     delta(t.direction, w, 1.0 - f, LobeKind::SpecularTransmission)
                 }
             }
+            Self::ThinDielectric { weight, eta } => {
+                let r = thin_reflectance(wo.z.abs(), eta);
+                if uc < r {
+                    delta(reflect_z(wo), weight * r, r, LobeKind::SpecularReflection)
+                } else {
+                    let w = weight * (1.0 - r);
+                    delta(-wo, w, 1.0 - r, LobeKind::SpecularTransmission)
+                }
+            }
             Self::Conductor { weight, ior } => conductor_sample(weight, ior, wo),
             Self::RoughMirror { dist, .. } | Self::RoughConductor { dist, .. } => {
                 let wm = dist.sample_visible(wo, u);
                 let wi = -wo + 2.0 * wo.dot(wm) * wm;
                 same_side(wo, wi).then_some(Draw::Direction(wi, LobeKind::GlossyReflection))
             }
+            Self::Plastic { .. } => plastic_sample(self, wo, uc, u),
             Self::RoughDielectric { eta, dist, .. } => {
                 let wm = dist.sample_visible(wo, u);
                 let r = fr_dielectric(wo.dot(wm), eta);
@@ -242,6 +306,97 @@ fn rough_conductor_f(weight: Rgb, ior: ComplexIor, dist: Microfacet, wo: DVec3, 
         return Rgb::ZERO;
     }
     weight * ior.fresnel(wo.dot(wm)) * (dist.d(wm) * dist.g(wo, wi) / c)
+}
+
+/// `wo` and `wi` mirrored to the upper side when `wo` is below it (a two-sided lobe).
+fn upper(wo: DVec3, wi: DVec3) -> (DVec3, DVec3) {
+    if wo.z < 0.0 { (-wo, -wi) } else { (wo, wi) }
+}
+
+/// The plastic lobe's `f` for `wo`, `wi` on one side (see [`Lobe::Plastic`]).
+#[inline(never)]
+fn plastic_f(lobe: &Lobe, wo: DVec3, wi: DVec3) -> Rgb {
+    let Lobe::Plastic {
+        diffuse,
+        specular,
+        coating,
+        dist,
+    } = *lobe
+    else {
+        return Rgb::ZERO;
+    };
+    let (o, i) = upper(wo, wi);
+    let base = diffuse * (coating.base_factor(i.z, o.z) * FRAC_1_PI);
+    if coating.rough.is_none() {
+        return base;
+    }
+    let wm = (o + i).normalize_or_zero();
+    let c = 4.0 * o.z * i.z;
+    if c <= 0.0 || wm.z <= 0.0 {
+        return base;
+    }
+    let f = fr_dielectric(o.dot(wm), coating.eta);
+    base + specular * (f * dist.d(wm) * dist.g(o, i) / c)
+}
+
+/// The plastic lobe's sampling density: the base's cosine-weighted hemisphere and, when rough,
+/// the coating's visible normals, mixed by the coating's probability at `wo`.
+#[inline(never)]
+fn plastic_pdf(lobe: &Lobe, wo: DVec3, wi: DVec3) -> f64 {
+    let Lobe::Plastic {
+        diffuse,
+        specular,
+        coating,
+        dist,
+    } = *lobe
+    else {
+        return 0.0;
+    };
+    let (o, i) = upper(wo, wi);
+    let ps = coating.coat_probability(o.z, specular, diffuse);
+    let mut pdf = (1.0 - ps) * i.z * FRAC_1_PI;
+    if coating.rough.is_some() {
+        let wm = (o + i).normalize_or_zero();
+        let d = o.dot(wm);
+        if d > 0.0 && wm.z > 0.0 {
+            pdf += ps * dist.d_visible(o, wm) / (4.0 * d);
+        }
+    }
+    pdf
+}
+
+/// Draws the plastic lobe: the coating (a mirror event when smooth, a visible normal when
+/// rough) with its probability at `wo`, else the base.
+#[inline(never)]
+fn plastic_sample(lobe: &Lobe, wo: DVec3, uc: f64, u: DVec2) -> Option<Draw> {
+    let Lobe::Plastic {
+        diffuse,
+        specular,
+        coating,
+        dist,
+    } = *lobe
+    else {
+        return None;
+    };
+    let flip = |w: DVec3| if wo.z < 0.0 { -w } else { w };
+    let cos_o = wo.z.abs();
+    let ps = coating.coat_probability(cos_o, specular, diffuse);
+    if uc < ps {
+        if coating.rough.is_none() {
+            let f = fr_dielectric(cos_o, coating.eta);
+            return delta(
+                reflect_z(wo),
+                specular * f,
+                ps,
+                LobeKind::SpecularReflection,
+            );
+        }
+        let wm = dist.sample_visible(wo, u);
+        let wi = -wo + 2.0 * wo.dot(wm) * wm;
+        return same_side(wo, wi).then_some(Draw::Direction(wi, LobeKind::GlossyReflection));
+    }
+    let wi = flip(crate::sampling::warp::square_to_cosine_hemisphere(u));
+    Some(Draw::Direction(wi, LobeKind::Diffuse))
 }
 
 /// The smooth conductor's mirror event, of weight `weight F(cos)` per channel.

@@ -83,9 +83,25 @@ pub struct Material {
     /// `reflectivity * F_conductor(cos)` per channel (`reflectivity` is the tint, at most the
     /// reflectance, so every bound on it still holds).
     pub conductor: Option<crate::bsdf::ComplexIor>,
+    /// A dielectric coating over the diffuse base (plastic): `reflectivity` is then the
+    /// coating's tint and the base is seen through it ([`crate::bsdf::Lobe::Plastic`]).
+    pub coating: Option<crate::bsdf::Coating>,
+    /// A thin dielectric sheet of this index over the medium around it: the transmissive lobe
+    /// is [`crate::bsdf::Lobe::ThinDielectric`] (the material's own `ior` is then `None`: the
+    /// sheet bends no ray).
+    pub thin: Option<f64>,
 }
 
 impl Material {
+    /// The factor a coating puts on the diffuse base's `albedo / pi` for light from cosine
+    /// `cos_i` seen at cosine `cos_o` ([`crate::bsdf::Coating::base_factor`]); 1 without one.
+    #[must_use]
+    #[inline]
+    pub fn base_factor(&self, cos_i: f64, cos_o: f64) -> f64 {
+        self.coating
+            .map_or(1.0, |c| c.base_factor(cos_i.abs(), cos_o.abs()))
+    }
+
     /// Whether the material transmits light.
     #[must_use]
     pub fn is_transmissive(&self) -> bool {
@@ -114,12 +130,21 @@ impl Material {
         crate::bsdf::Microfacet::with(self.distribution, self.roughness, self.roughness_v)
     }
 
-    /// The lobe of the `reflectivity` term: a mirror of constant weight, or a conductor with
-    /// Fresnel; GGX/Beckmann-rough where `rough`.
+    /// The lobe of the `reflectivity` term: a mirror of constant weight, a conductor with
+    /// Fresnel, or a coating's reflection alone (its dielectric Fresnel, no base); GGX/Beckmann
+    /// rough where `rough`.
     #[must_use]
     pub fn reflection_lobe(&self, rough: bool) -> crate::bsdf::Lobe {
         use crate::bsdf::Lobe;
         let weight = self.reflectivity;
+        if let Some(coating) = self.coating {
+            return Lobe::Plastic {
+                diffuse: Rgb::ZERO,
+                specular: weight,
+                coating,
+                dist: self.microfacet(),
+            };
+        }
         match (self.conductor, rough) {
             (None, false) => Lobe::Mirror { weight },
             (None, true) => Lobe::RoughMirror {

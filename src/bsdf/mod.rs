@@ -8,6 +8,7 @@
 //! lobes (GGX or Beckmann, isotropic or anisotropic). See `docs/monte-carlo.md` and
 //! `docs/materials.md`.
 
+mod coated;
 mod conductor;
 mod frame;
 mod lobe;
@@ -18,13 +19,16 @@ mod tests;
 #[cfg(test)]
 mod tests_chi2;
 #[cfg(test)]
+mod tests_coated;
+#[cfg(test)]
 mod tests_conductor;
 #[cfg(test)]
 mod tests_reset;
 
+pub use coated::{Coating, Transmittance, diffuse_fresnel};
 pub use conductor::{ComplexIor, METALS, fr_complex};
 pub use frame::Frame;
-pub use lobe::{Lobe, fr_dielectric};
+pub use lobe::{Lobe, fr_dielectric, thin_reflectance};
 pub use microfacet::{Distribution, Microfacet, SMOOTH_ALPHA, roughness_to_alpha};
 
 use crate::math::Rgb;
@@ -228,6 +232,18 @@ impl Bsdf {
         let rough = roughness.max(roughness_v) >= SMOOTH_ALPHA;
         let dist = Microfacet::with(m.distribution, roughness, roughness_v);
         let mut total = 0.0;
+        if let Some(coating) = m.coating {
+            // A coated material is one lobe: the coating over its diffuse base.
+            let lobe = Lobe::Plastic {
+                diffuse: m.diffuse.at(p),
+                specular: m.reflectivity,
+                coating,
+                dist,
+            };
+            self.push(lobe, &mut total);
+            self.normalise(total);
+            return;
+        }
         if !m.diffuse.is_black() {
             let albedo = m.diffuse.at(p);
             self.push(Lobe::Lambert { albedo }, &mut total);
@@ -243,7 +259,9 @@ impl Bsdf {
         }
         if m.is_transmissive() {
             let weight = m.transmissivity;
-            let lobe = if rough && (eta - 1.0).abs() > 1e-9 {
+            let lobe = if let Some(eta) = m.thin {
+                Lobe::ThinDielectric { weight, eta }
+            } else if rough && (eta - 1.0).abs() > 1e-9 {
                 Lobe::RoughDielectric { weight, eta, dist }
             } else {
                 Lobe::Dielectric { weight, eta }

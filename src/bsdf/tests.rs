@@ -204,6 +204,43 @@ fn smooth_dielectric_splits_like_the_whitted_tracer() {
 }
 
 #[test]
+fn thin_sheet_reflects_its_summed_fresnel_and_passes_the_rest_straight_on() {
+    // R' = 2R / (1 + R): the series R + T^2 R + T^2 R^3 + ... of the two faces.
+    let r0 = 0.04;
+    assert!((thin_reflectance(1.0, 1.5) - 2.0 * r0 / (1.0 + r0)).abs() < 1e-15);
+    for theta in [0.0f64, 30.0, 60.0, 85.0] {
+        let c = theta.to_radians().cos();
+        let r = fr_dielectric(c, 1.5);
+        let t = 1.0 - r;
+        let series: f64 = r + (0..200).map(|k| t * t * r.powi(2 * k + 1)).sum::<f64>();
+        assert!((thin_reflectance(c, 1.5) - series).abs() < 1e-12, "{theta}");
+    }
+    // A sheet of index 1 is invisible.
+    assert!(thin_reflectance(0.3, 1.0).abs() < 1e-15);
+    let w = Rgb::new(0.9, 0.8, 0.7);
+    let b = local(&[Lobe::ThinDielectric {
+        weight: w,
+        eta: 1.5,
+    }]);
+    assert!(b.is_delta());
+    for wo in [dir(50.0), dir(130.0)] {
+        let rp = thin_reflectance(wo.z.abs(), 1.5);
+        let r = b.sample_local(wo, 0.0, DVec2::ZERO).unwrap();
+        assert_eq!(r.kind, LobeKind::SpecularReflection);
+        assert!((r.pdf - rp).abs() < 1e-15 && r.wi.z * wo.z > 0.0);
+        assert!((r.weight(r.wi.z) - w).abs().max_element() < 1e-12);
+        let t = b.sample_local(wo, 0.999, DVec2::ZERO).unwrap();
+        assert_eq!(t.kind, LobeKind::SpecularTransmission);
+        assert!((t.pdf - (1.0 - rp)).abs() < 1e-15);
+        // Undeviated: the two refractions cancel.
+        assert!((t.wi + wo).length() < 1e-15);
+        assert!((t.weight(t.wi.z) - w).abs().max_element() < 1e-12);
+        assert_eq!(b.eval_local(wo, t.wi), Rgb::ZERO);
+        assert_eq!(b.pdf_local(wo, t.wi), 0.0);
+    }
+}
+
+#[test]
 fn from_material_reads_the_material_as_whitted_does() {
     let scene = crate::scene::Scene::from_json(include_str!("../../fixtures/classic.json"));
     let scene = scene.expect("classic fixture");

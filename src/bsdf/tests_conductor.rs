@@ -244,6 +244,8 @@ fn a_material_builds_the_conductor_lobes() {
         tangent: DVec3::X,
         distribution: Distribution::Ggx,
         conductor: ComplexIor::metal("Cu"),
+        coating: None,
+        thin: None,
     };
     let frame = Frame::from_normal(DVec3::Z);
     let b = Bsdf::from_material(&m, DVec3::ZERO, frame, m.roughness, 1.0);

@@ -214,7 +214,7 @@ impl EffectPlan {
     }
 }
 
-/// The lines of the conductor, Beckmann and anisotropic lobes, present only where some used
+/// The lines of the conductor, coating, thin sheet, Beckmann and anisotropic lobes, present only where some used
 /// material has them (explanations: they change a lobe's formulas, not which rays are traced).
 fn material_lines(scene: &Scene, names: path::Names<'_>) -> Vec<EffectLine> {
     let mats: Vec<&crate::scene::Material> = scene.used_materials().collect();
@@ -234,6 +234,22 @@ fn material_lines(scene: &Scene, names: path::Names<'_>) -> Vec<EffectLine> {
         "the mirror lobe's reflectance is the exact unpolarised Fresnel of a complex index eta + i k \
          per RGB channel (pbrt-v4 FrComplex) times conductor.scale; smooth: a mirror ray of \
          weight F(cos) per channel, rough: F at each sampled microfacet",
+    );
+    push(
+        "dielectric coating",
+        &|m| m.coating.is_some(),
+        "a plastic: a dielectric coating over the diffuse base (Mitsuba 3 plastic/roughplastic, \
+         Weidlich & Wilkie 2007): the coating reflects coating.scale times its exact Fresnel \
+         (a mirror ray when smooth, sampled microfacets when rough) and the base is seen \
+         through its transmittance t(cos_i) t(cos_o) / (eta^2 (1 - F_dr,int))",
+    );
+    push(
+        "thin dielectric",
+        &|m| m.thin.is_some() && nonzero(m.transmissivity),
+        "a thin sheet (Mitsuba 3 thindielectric): it reflects 2R/(1+R) of the light, R the exact \
+         Fresnel of one face at the incident angle, and passes the rest straight through, \
+         unrefracted (a reflected and a transmitted ray under Whitted, one chosen by that \
+         probability under path tracing)",
     );
     push(
         "Beckmann microfacets",

@@ -4,7 +4,7 @@
 //! description and, where the mapping is approximate, the sentence a [`super::Note`] carries;
 //! replace a function when the material model learns the real thing.
 
-use crate::scene::desc::{ConductorDesc, MaterialDesc, TextureDesc, Triple};
+use crate::scene::desc::{CoatingDesc, ConductorDesc, MaterialDesc, TextureDesc, ThinDesc, Triple};
 
 /// A mapped material and what its mapping approximated.
 pub type Mapped = (MaterialDesc, Option<String>);
@@ -112,52 +112,46 @@ pub fn mirror(r: Triple, a: f64) -> Mapped {
     )
 }
 
-/// A thin dielectric sheet of index `eta` (Mitsuba `thindielectric`): the sheet's total
-/// reflectance at normal incidence, `R' = 2 R / (1 + R)` with `R` the single interface's
-/// (Mitsuba 3 `thindielectric`, summing the inter-reflections), as a constant mirror, and the
-/// rest passed straight through (`ior` 1).
+/// A thin dielectric sheet of index `eta` (Mitsuba and pbrt `thindielectric`): raytree's
+/// thin sheet, exactly (reflectance `2R / (1 + R)` of the angle's Fresnel, the rest straight
+/// through; [`crate::bsdf::Lobe::ThinDielectric`]).
 #[must_use]
 pub fn thin_dielectric(eta: f64) -> Mapped {
-    let r = dielectric_f0(eta);
-    let r = 2.0 * r / (1.0 + r);
     (
         MaterialDesc {
-            reflectivity: [r; 3],
-            transmissivity: [1.0 - r; 3],
-            ior: Some(1.0),
+            transmissivity: [1.0; 3],
+            thin: Some(ThinDesc { ior: eta }),
             ..MaterialDesc::default()
         },
-        Some(format!(
-            "thin dielectric (eta {eta}) approximated by a constant reflectivity {r:.4} (its \
-             normal-incidence value 2R/(1+R)) and transmissivity {:.4} without refraction",
-            1.0 - r
-        )),
+        None,
     )
 }
 
-/// A diffuse base under a dielectric coating of index `eta` (pbrt `coateddiffuse`, Mitsuba
-/// `plastic` / `roughplastic`): the coating as a constant mirror of its normal-incidence
-/// reflectance `F0`, the base's albedo scaled by `1 - F0`. Neither pbrt's stochastic layered
-/// model nor Mitsuba's internal-reflection term is reproduced.
+/// A diffuse base under a dielectric coating of index `eta`, tinted `specular` (Mitsuba
+/// `plastic` / `roughplastic`, pbrt `coateddiffuse`): raytree's coated material
+/// ([`crate::bsdf::Coating`], the model of Mitsuba's plastic), exact for Mitsuba apart from
+/// its `F_dr` fits (docs/materials.md). `note` says what the caller's format differs in.
 #[must_use]
-pub fn coated_diffuse(base: Triple, eta: f64, a: f64, specular: f64) -> Mapped {
-    let f0 = dielectric_f0(eta) * specular;
+pub fn coated_diffuse(
+    base: Triple,
+    eta: f64,
+    a: f64,
+    specular: Triple,
+    note: Option<String>,
+) -> Mapped {
     let (roughness, clamp) = alpha(a);
-    let note = format!(
-        "coated diffuse (eta {eta}) approximated by a constant coat reflectivity {f0:.4} (the \
-         coating's normal-incidence Fresnel) over the diffuse base times {:.4}; the coating's \
-         angular Fresnel and internal reflections are not modelled{}",
-        1.0 - f0,
-        clamp.map_or(String::new(), |c| format!("; {c}"))
-    );
+    let notes: Vec<String> = note.into_iter().chain(clamp).collect();
     (
         MaterialDesc {
-            diffuse: Some(TextureDesc::Solid(base.map(|c| c * (1.0 - f0)))),
-            reflectivity: [f0; 3],
+            diffuse: Some(TextureDesc::Solid(base)),
             roughness,
+            coating: Some(CoatingDesc {
+                ior: eta,
+                scale: (specular != [1.0; 3]).then_some(specular),
+            }),
             ..MaterialDesc::default()
         },
-        Some(note),
+        (!notes.is_empty()).then(|| notes.join("; ")),
     )
 }
 
@@ -291,16 +285,21 @@ mod tests {
 
     #[test]
     fn coatings_and_thin_sheets_conserve_energy() {
-        let (m, _) = coated_diffuse([0.5; 3], 1.5, 0.0, 1.0);
-        assert!((m.reflectivity[0] - 0.04).abs() < 1e-15);
-        let Some(TextureDesc::Solid(d)) = m.diffuse else {
-            panic!()
-        };
-        assert!((d[0] - 0.48).abs() < 1e-15);
-        let (t, _) = thin_dielectric(1.5);
-        // 2R/(1+R) with R = 0.04.
-        assert!((t.reflectivity[0] - 0.08 / 1.04).abs() < 1e-15);
-        assert!((t.reflectivity[0] + t.transmissivity[0] - 1.0).abs() < 1e-15);
+        let (m, n) = coated_diffuse([0.5; 3], 1.5, 0.0, [1.0; 3], None);
+        assert_eq!(n, None);
+        assert_eq!(m.reflectivity, [0.0; 3]);
+        let c = m.coating.expect("a coating");
+        assert_eq!((c.ior, c.scale), (1.5, None));
+        assert!(matches!(
+            m.diffuse,
+            Some(TextureDesc::Solid([0.5, 0.5, 0.5]))
+        ));
+        let (m, n) = coated_diffuse([0.5; 3], 1.5, 2.0, [0.5; 3], Some("x".into()));
+        assert_eq!(m.coating.unwrap().scale, Some([0.5; 3]));
+        assert!(n.unwrap().starts_with("x; roughness alpha 2 clamped"));
+        let (t, n) = thin_dielectric(1.5);
+        assert_eq!((t.transmissivity, t.ior, n), ([1.0; 3], None, None));
+        assert_eq!(t.thin.unwrap().ior, 1.5);
         assert_eq!(pbrt_alpha(0.25, true), 0.5);
         assert_eq!(pbrt_alpha(0.25, false), 0.25);
         assert_eq!(dielectric(1.5, 3.0).0.roughness, 1.0);

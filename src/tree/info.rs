@@ -174,6 +174,9 @@ pub enum GlossyLobe {
     /// The rough conductor of `reflectivity` with a `conductor` (conductor Fresnel per
     /// microfacet and channel).
     RoughConductor,
+    /// The rough dielectric coating of a plastic, its reflection alone (`reflectivity` times
+    /// the coating's Fresnel per microfacet; the base is lit by the light loop).
+    RoughCoating,
 }
 
 impl GlossyLobe {
@@ -184,6 +187,7 @@ impl GlossyLobe {
             Self::RoughMirror => "rough mirror",
             Self::RoughDielectric => "rough dielectric",
             Self::RoughConductor => "rough conductor",
+            Self::RoughCoating => "rough coating",
         }
     }
 }

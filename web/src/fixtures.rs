@@ -20,6 +20,7 @@ pub const FIXTURES: &[(&str, &str)] = &[
     ("metals", include_str!("../../fixtures/metals.json")),
     ("mirrors", include_str!("../../fixtures/mirrors.json")),
     ("nested", include_str!("../../fixtures/nested.json")),
+    ("plastic", include_str!("../../fixtures/plastic.json")),
     ("slab", include_str!("../../fixtures/slab.json")),
     (
         "soft-shadows",

@@ -389,7 +389,13 @@ impl<'r> State<'r> {
                 Err(_) => p.float(name, default),
             }
         };
-        let eta = ior("int_ior", 1.5046)? / ior("ext_ior", 1.000_277)?;
+        // Mitsuba's default interior: BK7 glass, polypropylene (1.49) under plastics.
+        let int_default = if ty.ends_with("plastic") {
+            1.49
+        } else {
+            1.5046
+        };
+        let eta = ior("int_ior", int_default)? / ior("ext_ior", 1.000_277)?;
         let rough = ty.starts_with("rough");
         // alpha_v and the distribution of a rough BSDF, set by `alpha`.
         let alpha_v = std::cell::Cell::new(None);
@@ -436,8 +442,12 @@ impl<'r> State<'r> {
                 let a = alpha(&mut a_notes)?;
                 let base = color("diffuse_reflectance", [0.5; 3])?;
                 let spec = color("specular_reflectance", [1.0; 3])?;
-                let _ = p.bool("nonlinear", false)?;
-                mm::coated_diffuse(base, eta, a, spec[1])
+                let note = p.bool("nonlinear", false)?.then(|| {
+                    "nonlinear = true (internal scattering tints the base) is not modelled: \
+                     the base keeps its colour, as with Mitsuba's default"
+                        .to_string()
+                });
+                mm::coated_diffuse(base, eta, a, spec, note)
             }
             _ => (
                 mm::diffuse([0.5; 3]),

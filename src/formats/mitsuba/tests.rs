@@ -164,7 +164,14 @@ fn bsdfs_map_with_notes_and_one_sidedness() {
     assert!(!c.notes.iter().any(|n| n.message.contains("Beckmann")));
     assert!((m(2).ior.unwrap() - 1.5046 / 1.000_277).abs() < 1e-12);
     assert_eq!(m(2).roughness, 0.2);
-    assert!(m(3).reflectivity[0] > 0.03 && m(3).reflectivity[0] < 0.05);
+    // Plastic: raytree's coating over the base, polypropylene by default, untinted.
+    let coat = m(3).coating.as_ref().unwrap();
+    assert!((coat.ior - 1.49 / 1.000_277).abs() < 1e-12);
+    assert_eq!((m(3).reflectivity, coat.scale), ([0.0; 3], None));
+    assert!(matches!(
+        m(3).diffuse,
+        Some(TextureDesc::Solid([0.5, 0.0, 0.0]))
+    ));
     // Mitsuba's BSDFs are one-sided unless wrapped in twosided: noted, except for twosided.
     let one_sided: Vec<usize> = c
         .notes

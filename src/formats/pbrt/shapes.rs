@@ -86,7 +86,11 @@ impl State<'_> {
                 let r = color(&mut notes, "reflectance", Kind::Albedo, [0.5; 3])?;
                 let a = rough(&mut notes)?;
                 let _ = c.float("thickness", 0.01)?;
-                mm::coated_diffuse(r, eta(&mut notes)?, a, 1.0)
+                let note = "pbrt-v4's coateddiffuse (a stochastically evaluated layer with \
+                            thickness, albedo and g) mapped to raytree's coating over a \
+                            diffuse base, Mitsuba's plastic model: the layer's medium is not \
+                            modelled";
+                mm::coated_diffuse(r, eta(&mut notes)?, a, [1.0; 3], Some(note.into()))
             }
             "interface" => (
                 MaterialDesc { transmissivity: [1.0; 3], ior: Some(1.0), ..MaterialDesc::default() },

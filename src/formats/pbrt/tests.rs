@@ -140,7 +140,17 @@ fn materials_map_with_notes() {
             && n.message
                 .contains("spectrum \"metal-Au-eta\" taken as raytree's RGB projection")
     }));
-    assert!(c.notes.iter().any(|n| n.message.contains("coated diffuse")));
+    assert!(c.notes.iter().any(|n| n.message.contains("coateddiffuse")));
+    let coated = c
+        .desc
+        .materials
+        .values()
+        .find(|m| m.coating.is_some())
+        .unwrap();
+    assert!(matches!(
+        coated.diffuse,
+        Some(TextureDesc::Solid([0.5, 0.5, 0.5]))
+    ));
     assert!(!c.notes.iter().any(|n| n.message.contains("mirror")));
 }
 

@@ -4,7 +4,7 @@
 //! `max_depth` or the ray budget.
 
 use super::{LightTracer, path_info};
-use crate::bsdf::{Bsdf, BsdfSample, Lobe, LobeKind};
+use crate::bsdf::{Bsdf, BsdfSample, LobeKind};
 use crate::integrator::offset::scaled_epsilon;
 use crate::integrator::path::{event, transmits};
 use crate::integrator::shading::shadow_end;
@@ -420,10 +420,10 @@ pub(crate) fn adjoint_weight(si: &SurfaceInteraction, bs: &BsdfSample) -> Rgb {
 }
 
 /// The event of a connection through `bsdf`'s non-delta lobes: diffuse reflection when it has
-/// a Lambert lobe and the camera is on the light's side, otherwise glossy reflection or
+/// a diffuse lobe (Lambert or a plastic's base) and the camera is on the light's side, otherwise glossy reflection or
 /// transmission.
 pub(crate) fn connection_event(bsdf: &Bsdf, reflects: bool) -> &'static str {
-    let lambert = bsdf.lobes().any(|(l, _)| matches!(l, Lobe::Lambert { .. }));
+    let lambert = bsdf.lobes().any(|(l, _)| l.is_diffuse());
     match (reflects, lambert) {
         (true, true) => "<RD>",
         (true, false) => "<RG>",

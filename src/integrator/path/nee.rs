@@ -10,7 +10,7 @@
 //! ray is weighted by the power heuristic the other way round ([`PathTracer::emission_weight`]).
 
 use super::{PathStrategy, PathTracer, Prev};
-use crate::bsdf::{Bsdf, Lobe, LobeKind};
+use crate::bsdf::{Bsdf, LobeKind};
 use crate::integrator::direct::{DirectKernel, LightEval, LightPick};
 use crate::integrator::{RayCounts, Recorder};
 use crate::interaction::SurfaceInteraction;
@@ -203,10 +203,10 @@ fn reflects(si: &SurfaceInteraction, side: glam::DVec3) -> bool {
     (side == si.n) == (si.wo.dot(si.n) > 0.0)
 }
 
-/// The event of a light sample's scattering: `<RD>` when the BSDF has a Lambert lobe and the
-/// light is on the viewer's side, `<RG>`/`<TG>` for a glossy lobe on either side.
+/// The event of a light sample's scattering: `<RD>` when the BSDF has a diffuse lobe (Lambert
+/// or a plastic's base) and the light is on the viewer's side, `<RG>`/`<TG>` for a glossy lobe on either side.
 fn lobe_event(bsdf: &Bsdf, reflect: bool) -> &'static str {
-    let diffuse = bsdf.lobes().any(|(l, _)| matches!(l, Lobe::Lambert { .. }));
+    let diffuse = bsdf.lobes().any(|(l, _)| l.is_diffuse());
     event(match (reflect, diffuse) {
         (true, true) => LobeKind::Diffuse,
         (true, false) => LobeKind::GlossyReflection,

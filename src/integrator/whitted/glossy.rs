@@ -49,10 +49,10 @@ fn rough_lobes(si: &SurfaceInteraction) -> [Option<(GlossyLobe, Lobe)>; 2] {
     let m = si.material;
     let dist = m.microfacet();
     let mirror = (m.reflectivity != Rgb::ZERO).then(|| {
-        let kind = if m.conductor.is_some() {
-            GlossyLobe::RoughConductor
-        } else {
-            GlossyLobe::RoughMirror
+        let kind = match (m.conductor, m.coating) {
+            (Some(_), _) => GlossyLobe::RoughConductor,
+            (None, Some(_)) => GlossyLobe::RoughCoating,
+            (None, None) => GlossyLobe::RoughMirror,
         };
         (kind, m.reflection_lobe(true))
     });

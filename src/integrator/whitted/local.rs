@@ -174,9 +174,10 @@ impl Whitted<'_> {
         total
     }
 
-    /// The BRDF (Lambert `albedo / pi` plus the Blinn-Phong highlight when the plan has one)
-    /// and the weight `brdf * max(cos, 0)` of a light at cosine `cos` (both zero behind).
-    /// `specular` is the plan's (constant in the direct-only path's loops).
+    /// The BRDF (Lambert `albedo / pi`, seen through the coating's transmittance when the
+    /// material has one, plus the Blinn-Phong highlight when the plan has one) and the weight
+    /// `brdf * max(cos, 0)` of a light at cosine `cos` (both zero behind). `specular` is the
+    /// plan's (constant in the direct-only path's loops).
     #[inline(always)]
     pub(super) fn light_weight(
         specular: bool,
@@ -192,7 +193,12 @@ impl Whitted<'_> {
             } else {
                 Rgb::ZERO
             };
-            albedo * std::f64::consts::FRAC_1_PI + highlight
+            let diffuse = albedo * std::f64::consts::FRAC_1_PI;
+            let diffuse = match m.coating {
+                None => diffuse,
+                Some(c) => diffuse * c.base_factor(cos, wo.dot(ns).abs()),
+            };
+            diffuse + highlight
         } else {
             Rgb::ZERO
         };

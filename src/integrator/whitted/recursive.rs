@@ -143,7 +143,12 @@ impl Whitted<'_> {
         let mut refraction = None;
         // Dielectric split (only where the material transmits).
         if self.core.plan.refraction && m.is_transmissive() && !rough_dielectric {
-            let (event, dir) = self.core.interface(&si, ns, cos_i);
+            let (mut event, dir) = self.core.interface(&si, ns, cos_i);
+            if let Some(eta) = m.thin {
+                // A thin sheet: the index-matched interface passes the ray straight on, with
+                // the sheet's total Fresnel instead (recorded as the event's fractions).
+                event.fresnel = thin_fresnel(event.fresnel.model, cos_i, eta);
+            }
             let f = event.fresnel;
             reflect_w += m.transmissivity * f.r;
             if let Some(dir) = dir {
@@ -302,12 +307,27 @@ impl Whitted<'_> {
     }
 }
 
+/// A thin sheet's reflected and transmitted fractions at cosine `cos_i`: `R' = 2R / (1 + R)`
+/// of the exact `R` whatever `settings.fresnel` (as Mitsuba's `thindielectric`), recorded with
+/// `rs = rp = R'` (the sheet's unpolarised total).
+fn thin_fresnel(model: crate::math::FresnelModel, cos_i: f64, eta: f64) -> crate::math::Fresnel {
+    let r = crate::bsdf::thin_reflectance(cos_i.abs(), eta);
+    crate::math::Fresnel {
+        model,
+        rs: r,
+        rp: r,
+        r,
+        t: 1.0 - r,
+    }
+}
+
 /// The smooth mirror ray's weight: `reflectivity`, times the conductor Fresnel per channel for
-/// a conductor (so the reflected node's recorded `weight` is `scale * F(cos_i)`; no node field
+/// a conductor or the coating's dielectric Fresnel for a coated material (so the reflected node's recorded `weight` is `scale * F(cos_i)`; no node field
 /// is added, which would grow every recorded node and the memory-derived ray budgets).
 fn mirror_weight(m: &crate::scene::Material, cos_i: f64) -> Rgb {
-    match m.conductor {
-        None => m.reflectivity,
-        Some(ior) => m.reflectivity * ior.fresnel(cos_i),
+    match (m.conductor, m.coating) {
+        (Some(ior), _) => m.reflectivity * ior.fresnel(cos_i),
+        (None, Some(c)) => m.reflectivity * crate::bsdf::fr_dielectric(cos_i.abs(), c.eta),
+        (None, None) => m.reflectivity,
     }
 }

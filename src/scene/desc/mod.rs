@@ -138,6 +138,39 @@ pub struct MaterialDesc {
     /// absent).
     #[serde(skip_serializing_if = "Option::is_none")]
     pub conductor: Option<ConductorDesc>,
+    /// A dielectric coating over the diffuse base (plastic, Mitsuba 3 `plastic` /
+    /// `roughplastic`): its Fresnel reflection (rough with `roughness`) over the base seen
+    /// through it. `reflectivity` must then be absent (tint the coating with `coating.scale`)
+    /// and so must `transmissivity`.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub coating: Option<CoatingDesc>,
+    /// A thin dielectric sheet (a window pane, a soap film): `transmissivity` is then the
+    /// sheet's weight, light is reflected by the sheet's total Fresnel `2R / (1 + R)` and the
+    /// rest passes straight through. `ior` and `absorption` must then be absent.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub thin: Option<ThinDesc>,
+}
+
+/// A thin dielectric sheet: its index.
+#[derive(Clone, Debug, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct ThinDesc {
+    /// Index of refraction of the sheet over the medium around it (> 0; Mitsuba's default
+    /// 1.5046, BK7).
+    pub ior: f64,
+}
+
+/// A dielectric coating: its index and tint.
+#[derive(Clone, Debug, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct CoatingDesc {
+    /// Index of refraction of the coating over the outside medium (> 0; Mitsuba's default
+    /// 1.49, polypropylene).
+    pub ior: f64,
+    /// Tint on the coating's reflection (Mitsuba's `specular_reflectance`), default
+    /// `[1, 1, 1]`.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub scale: Option<Triple>,
 }
 
 fn is_ggx(d: &crate::bsdf::Distribution) -> bool {

@@ -2,13 +2,13 @@
 
 use super::check::Check;
 use super::desc::{
-    CameraDesc, ConductorDesc, LightDesc, MaterialDesc, ObjectDesc, SceneDesc, Settings,
-    TextureDesc, Triple,
+    CameraDesc, CoatingDesc, ConductorDesc, LightDesc, MaterialDesc, ObjectDesc, SceneDesc,
+    Settings, TextureDesc, Triple,
 };
 use super::error::{bare_message, field_of_tagged, path_of, reword, with_missing_field};
 use super::mesh_object::MeshLoader;
 use super::{Accel, Camera, Light, LightKind, Material, Object, Scene, SceneError, Texture};
-use crate::bsdf::ComplexIor;
+use crate::bsdf::{Coating, ComplexIor};
 use crate::geometry::Shape;
 use glam::DVec3;
 use std::collections::HashMap;
@@ -269,6 +269,14 @@ fn material(ck: &Check, name: &str, m: &MaterialDesc) -> Result<Material, SceneE
         Some(n) => Some(ck.positive(&format!("{p}.ior"), n)?),
         None => None,
     };
+    let (coating, reflectivity) = match &m.coating {
+        None => (None, reflectivity),
+        Some(c) => coating(ck, &p, m, c, (roughness, roughness_v))?,
+    };
+    let thin = match &m.thin {
+        None => None,
+        Some(t) => Some(thin(ck, &p, m, t.ior)?),
+    };
     Ok(Material {
         name: name.to_string(),
         diffuse,
@@ -284,7 +292,88 @@ fn material(ck: &Check, name: &str, m: &MaterialDesc) -> Result<Material, SceneE
         tangent,
         distribution: m.distribution,
         conductor,
+        coating,
+        thin,
     })
+}
+
+/// A thin sheet's index (at `p.thin.ior`); the fields a sheet cannot have are errors.
+fn thin(ck: &Check, p: &str, m: &MaterialDesc, ior: f64) -> Result<f64, SceneError> {
+    let clash = [
+        (
+            m.transmissivity == [0.0; 3],
+            "transmissivity",
+            "a thin sheet transmits: give its weight as transmissivity",
+        ),
+        (
+            m.ior.is_some(),
+            "ior",
+            "a thin sheet bends no ray: give its index as thin.ior, not ior",
+        ),
+        (
+            m.absorption != [0.0; 3],
+            "absorption",
+            "a thin sheet has no volume to absorb in",
+        ),
+        (
+            m.roughness != 0.0 || m.roughness_v.is_some(),
+            "roughness",
+            "a thin sheet is smooth",
+        ),
+        (
+            m.coating.is_some(),
+            "coating",
+            "a material is either coated or a thin sheet",
+        ),
+    ];
+    if let Some((_, key, why)) = clash.into_iter().find(|c| c.0) {
+        return ck.fail(format!("{p}.{key}"), why);
+    }
+    ck.positive(&format!("{p}.thin.ior"), ior)
+}
+
+/// A coating (at `p.coating`) and its tint, the material's `reflectivity`; the fields a
+/// coated material cannot have are errors.
+fn coating(
+    ck: &Check,
+    p: &str,
+    m: &MaterialDesc,
+    c: &CoatingDesc,
+    (alpha_u, alpha_v): (f64, f64),
+) -> Result<(Option<Coating>, DVec3), SceneError> {
+    let clash = [
+        (
+            m.reflectivity != [0.0; 3],
+            "reflectivity",
+            "the coating's reflectance is its Fresnel: leave reflectivity out and tint it with coating.scale",
+        ),
+        (
+            m.conductor.is_some(),
+            "conductor",
+            "a material is either coated or a conductor",
+        ),
+        (
+            m.transmissivity != [0.0; 3],
+            "transmissivity",
+            "a coated material is opaque: its light goes to the diffuse base",
+        ),
+        (
+            alpha_u != alpha_v,
+            "roughness_v",
+            "a coating is isotropic: give one roughness",
+        ),
+    ];
+    if let Some((_, key, why)) = clash.into_iter().find(|c| c.0) {
+        return ck.fail(format!("{p}.{key}"), why);
+    }
+    let eta = ck.positive(&format!("{p}.coating.ior"), c.ior)?;
+    let scale = match c.scale {
+        Some(s) => ck.color(&format!("{p}.coating.scale"), s)?,
+        None => DVec3::ONE,
+    };
+    let rough = (alpha_u >= crate::bsdf::SMOOTH_ALPHA)
+        .then(|| crate::bsdf::Microfacet::with(m.distribution, alpha_u, alpha_v));
+    Ok((Some(Coating::new(eta, rough)), scale))
 }
 
 /// A conductor's complex index and tint (the material's `reflectivity`).

@@ -180,3 +180,126 @@ fn bad_conductors_and_microfacets_are_named() {
         assert!(e.line.is_some(), "{m}: {e}");
     }
 }
+
+#[test]
+fn coatings_load_and_their_clashes_are_named() {
+    let s = Scene::from_json(&with_material(
+        r#"{"diffuse": [0.5, 0.1, 0.1], "coating": {"ior": 1.5, "scale": [0.5, 0.5, 0.5]}, "roughness": 0.2}"#,
+    ))
+    .unwrap();
+    let m = &s.materials[0];
+    let c = m.coating.expect("a coating");
+    assert_eq!(c.eta, 1.5);
+    assert!(c.rough.is_some() && m.is_rough());
+    // The tint is the coating's reflectivity; the coating's own reflectance is its Fresnel.
+    assert_eq!(m.reflectivity, DVec3::splat(0.5));
+    let s = Scene::from_json(&with_material(
+        r#"{"diffuse": [0.5, 0.5, 0.5], "coating": {"ior": 1.49}}"#,
+    ))
+    .unwrap();
+    let c = s.materials[0].coating.unwrap();
+    assert!(c.rough.is_none());
+    assert_eq!(s.materials[0].reflectivity, DVec3::ONE);
+    let cases = [
+        (
+            r#"{"coating": {"ior": 0}}"#,
+            "materials.m.coating.ior",
+            "positive",
+        ),
+        (
+            r#"{"coating": {"ior": 1.5}, "reflectivity": [1, 1, 1]}"#,
+            "materials.m.reflectivity",
+            "coating.scale",
+        ),
+        (
+            r#"{"coating": {"ior": 1.5}, "transmissivity": [1, 1, 1]}"#,
+            "materials.m.transmissivity",
+            "opaque",
+        ),
+        (
+            r#"{"coating": {"ior": 1.5}, "conductor": {"metal": "Cu"}}"#,
+            "materials.m.conductor",
+            "either",
+        ),
+        (
+            r#"{"coating": {"ior": 1.5}, "roughness": 0.2, "roughness_v": 0.3}"#,
+            "materials.m.roughness_v",
+            "isotropic",
+        ),
+        (
+            r#"{"coating": {"ior": 1.5, "scale": [-1, 1, 1]}}"#,
+            "materials.m.coating.scale",
+            "negative",
+        ),
+        (
+            r#"{"coating": {"ior": 1.5, "eta": 1}}"#,
+            "materials.m.coating.eta",
+            "unknown field",
+        ),
+    ];
+    for (m, path, words) in cases {
+        let e = err(&with_material(m));
+        assert_eq!(e.path, path, "{m}: {e}");
+        assert!(e.message.contains(words), "{m}: {e}");
+        assert!(e.line.is_some(), "{m}: {e}");
+    }
+}
+
+#[test]
+fn thin_sheets_load_and_their_clashes_are_named() {
+    let s = Scene::from_json(&with_material(
+        r#"{"transmissivity": [1, 1, 1], "thin": {"ior": 1.5}}"#,
+    ))
+    .unwrap();
+    let m = &s.materials[0];
+    assert_eq!((m.thin, m.ior), (Some(1.5), None));
+    let b = crate::bsdf::Bsdf::from_material(
+        m,
+        DVec3::ZERO,
+        crate::bsdf::Frame::from_normal(DVec3::Z),
+        0.0,
+        1.0,
+    );
+    assert!(matches!(
+        b.lobes().next(),
+        Some((crate::bsdf::Lobe::ThinDielectric { eta, .. }, _)) if *eta == 1.5
+    ));
+    let cases = [
+        (
+            r#"{"thin": {"ior": 1.5}}"#,
+            "materials.m.transmissivity",
+            "transmits",
+        ),
+        (
+            r#"{"transmissivity": [1, 1, 1], "ior": 1.5, "thin": {"ior": 1.5}}"#,
+            "materials.m.ior",
+            "thin.ior",
+        ),
+        (
+            r#"{"transmissivity": [1, 1, 1], "absorption": [1, 1, 1], "thin": {"ior": 1.5}}"#,
+            "materials.m.absorption",
+            "volume",
+        ),
+        (
+            r#"{"transmissivity": [1, 1, 1], "roughness": 0.1, "thin": {"ior": 1.5}}"#,
+            "materials.m.roughness",
+            "smooth",
+        ),
+        (
+            r#"{"transmissivity": [1, 1, 1], "thin": {"ior": -1}}"#,
+            "materials.m.thin.ior",
+            "positive",
+        ),
+        (
+            r#"{"transmissivity": [1, 1, 1], "thin": {"eta": 1.5}}"#,
+            "materials.m.thin.eta",
+            "unknown field",
+        ),
+    ];
+    for (m, path, words) in cases {
+        let e = err(&with_material(m));
+        assert_eq!(e.path, path, "{m}: {e}");
+        assert!(e.message.contains(words), "{m}: {e}");
+        assert!(e.line.is_some(), "{m}: {e}");
+    }
+}
