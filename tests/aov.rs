@@ -173,3 +173,57 @@ fn versus_finds_the_caustic_whitted_misses_under_the_ball() {
         "empty",
     );
 }
+
+#[test]
+fn versus_pairs_any_two_integrators_and_tests_their_difference_against_the_noise() {
+    let d = dir_with_scene();
+    let run = |pair: &str, region: &str, out: &str| {
+        let o = raytree(
+            &[
+                "versus", "s.json", "--pair", pair, "--spp", "4", "--region", region, "-o", out,
+                "--json",
+            ],
+            d.path(),
+        );
+        assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+        let j: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
+        j
+    };
+    // Whitted has no caustic: under the ball it is darker than path tracing beyond the noise.
+    let j = run("path,whitted", "84,100,120,124", "pw");
+    assert_eq!(j["pair"], serde_json::json!(["path", "whitted"]), "{j}");
+    assert_eq!(j["within_noise"], false, "{j}");
+    let m = j["difference"]["mean"].as_array().unwrap();
+    assert!(m.iter().all(|x| x.as_f64().unwrap() < 0.0), "{j}");
+    for f in [
+        "path.png",
+        "whitted.png",
+        "side-by-side.png",
+        "difference.png",
+        "breakdown.json",
+    ] {
+        assert!(d.path().join("pw").join(f).is_file(), "{f}");
+    }
+    // Path tracing and BDPT estimate the same image: their difference is within a few
+    // half-widths of the 95 % interval (fixed seeds).
+    let j = run("path,bdpt", "0,0,240,180", "pb");
+    let (m, hw) = (&j["difference"]["mean"], &j["difference"]["half_width"]);
+    for c in 0..3 {
+        let (m, hw) = (m[c].as_f64().unwrap(), hw[c].as_f64().unwrap());
+        assert!(hw > 0.0 && m.abs() < 2.0 * hw, "{j}");
+    }
+    assert!(j["b"]["rays"].as_u64().unwrap() > 0 && j["a"]["seconds"].as_f64().is_some());
+    assert!(d.path().join("pb").join("bdpt.png").is_file());
+    let e = dir_with_scene();
+    for (pair, words) in [
+        ("path,path", "must differ"),
+        ("path", "expected two"),
+        ("path,photon", "photon"),
+    ] {
+        fails_with(
+            e.path(),
+            &["versus", "s.json", "--pair", pair, "-o", "bad"],
+            words,
+        );
+    }
+}

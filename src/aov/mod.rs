@@ -17,6 +17,7 @@
 mod classes;
 mod mc;
 mod nodes;
+mod pair;
 mod recorder;
 mod sink;
 mod spec;
@@ -27,6 +28,7 @@ mod versus;
 pub use classes::{CLASSES, Class, standard_classes};
 pub use mc::{McPixel, McView, ramp, spread};
 pub use nodes::{classify, pixel_from_nodes};
+pub use pair::{Pair, Side, pair, signed_rgb8};
 pub use recorder::{AovRecorder, MAX_AOVS};
 pub use spec::{Aov, AovSpecError, parse_aovs};
 pub use versus::{ClassShare, Versus, versus};

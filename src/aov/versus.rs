@@ -124,29 +124,7 @@ impl Versus {
     /// full colour at the 99th percentile of the magnitude, which is returned with it.
     #[must_use]
     pub fn difference_rgb8(&self) -> (Vec<[u8; 3]>, f64) {
-        let d: Vec<f64> = self
-            .whitted
-            .pixels
-            .iter()
-            .zip(&self.path.beauty.pixels)
-            .map(|(a, b)| luminance(*b) - luminance(*a))
-            .collect();
-        let mut mags: Vec<f64> = d.iter().map(|x| x.abs()).collect();
-        let scale = if mags.is_empty() {
-            1.0
-        } else {
-            let k = (mags.len() - 1) * 99 / 100;
-            let m = *mags.select_nth_unstable_by(k, f64::total_cmp).1;
-            if m > 0.0 { m } else { 1.0 }
-        };
-        let pixels = d
-            .iter()
-            .map(|x| {
-                let t = ((x.abs() / scale).min(1.0) * 255.0).round() as u8;
-                if *x >= 0.0 { [t, 0, 0] } else { [0, t / 3, t] }
-            })
-            .collect();
-        (pixels, scale)
+        super::pair::signed_rgb8(&self.whitted, &self.path.beauty)
     }
 }
 

@@ -497,10 +497,15 @@ pub struct DiffArgs {
 pub struct VersusArgs {
     /// Scene JSON (default: the built-in classic scene).
     pub scene: Option<PathBuf>,
-    /// Output directory (whitted.png, path.png, side-by-side.png, difference.png,
-    /// breakdown.json).
+    /// Output directory (A.png and B.png, e.g. whitted.png and path.png, side-by-side.png,
+    /// difference.png, breakdown.json).
     #[arg(short, long, default_value = "versus")]
     pub output: PathBuf,
+    /// The two integrators, A,B (whitted, path, light, bdpt). whitted,path breaks the
+    /// difference down by light transport class; any other pair tests B - A against the noise
+    /// (mean per channel with its 95 % interval over 8x8 blocks).
+    #[arg(long, value_name = "A,B", default_value = "whitted,path")]
+    pub pair: String,
     /// Break the difference down over this pixel rectangle only, X0,Y0,X1,Y1 (X1 and Y1
     /// excluded); default the whole image.
     #[arg(long, value_name = "X0,Y0,X1,Y1")]
