@@ -87,6 +87,8 @@ impl<'r> State<'r> {
                 "sensor" => {}
                 "integrator" => self.integrator(c)?,
                 "shape" => self.shape(c)?,
+                // A named area emitter is a definition: it lights the shapes that <ref> it.
+                "emitter" if c.attr("type") == Some("area") && c.attr("id").is_some() => {}
                 "emitter" => {
                     self.emitter(c, None)?;
                 }
@@ -140,8 +142,20 @@ impl<'r> State<'r> {
         if ty == "thinlens" && (aperture <= 0.0 || focus <= 0.0) {
             return Err(el.err("thinlens needs aperture_radius > 0 and focus_distance > 0"));
         }
-        for k in ["near_clip", "far_clip"] {
-            let _ = p.float(k, 0.0)?;
+        // Mitsuba's defaults (1e-2, 1e4) clip nothing in most scenes; others are noted.
+        for (k, default) in [("near_clip", 1e-2), ("far_clip", 1e4)] {
+            let v = p.float(k, default)?;
+            if v != default {
+                self.b.note(
+                    &el.file,
+                    el.line,
+                    format!(
+                        "{}: {k} {v}: raytree does not clip camera rays (surfaces nearer or \
+                         farther are seen)",
+                        el.label()
+                    ),
+                );
+            }
         }
         self.unused(el, &p);
         let (w, h, spp) = self.film_and_sampler(el)?;
@@ -589,7 +603,12 @@ impl<'r> State<'r> {
             .ok_or_else(|| el.err("projective to_world"))?;
         let out = match (ty, shape) {
             ("area", Some(_)) => Some(rgb),
-            ("area", None) => return Err(el.err("an area emitter must be inside a <shape>")),
+            ("area", None) => {
+                return Err(el.err(
+                    "an area emitter must be inside a <shape> (or named by an id and \
+                     referenced from one)",
+                ));
+            }
             (_, Some(_)) => return Err(el.err("only area emitters can be attached to a shape")),
             ("point", None) => {
                 let pos = p.point("position")?.unwrap_or(DVec3::ZERO);

@@ -357,3 +357,68 @@ fn spot_emitters_keep_their_cone() {
         "{e}"
     );
 }
+
+/// mitsuba-data's Cornell box as shipped: a mesh named in an included file (in a subfolder) is
+/// found in the top file's directory, as Mitsuba's resolver finds it; a named top-level area
+/// emitter lights the shape that refers to it; clip planes other than Mitsuba's defaults are
+/// noted.
+#[test]
+fn included_files_resolve_from_the_scene_directory_and_area_emitters_by_ref() {
+    let obj = b"v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n".to_vec();
+    let fs: HashMap<String, Vec<u8>> = [
+        ("meshes/lamp.obj".to_string(), obj.clone()),
+        (
+            "fragments/shapes.xml".to_string(),
+            br#"<scene version="3.0.0"><shape type="obj"><string name="filename" value="meshes/lamp.obj"/><ref id="light"/></shape></scene>"#
+                .to_vec(),
+        ),
+    ]
+    .into();
+    let body = r#"<emitter type="area" id="light"><rgb name="radiance" value="5, 4, 3"/></emitter>
+      <include filename="fragments/shapes.xml"/>"#;
+    let c = run_with(&scene(body), &fs, &[]).unwrap();
+    assert_eq!(c.desc.objects.len(), 1);
+    let m = &c.desc.materials[c.desc.objects[0].material()];
+    assert_eq!(m.emission, [5.0, 4.0, 3.0]);
+    // The mesh beside the included file is still found there.
+    let mut fs2 = fs.clone();
+    let moved = fs2.remove("meshes/lamp.obj").unwrap();
+    fs2.insert("fragments/meshes/lamp.obj".into(), moved);
+    assert_eq!(
+        run_with(&scene(body), &fs2, &[])
+            .unwrap()
+            .desc
+            .objects
+            .len(),
+        1
+    );
+    // Nowhere: the message names every place looked in.
+    fs2.remove("fragments/meshes/lamp.obj");
+    let e = run_with(&scene(body), &fs2, &[]).unwrap_err();
+    assert!(
+        e.message.contains("fragments/meshes/lamp.obj") && e.message.contains("scene's directory"),
+        "{e}"
+    );
+    // An unnamed top-level area emitter belongs to no shape.
+    let e = fail(r#"<emitter type="area"><rgb name="radiance" value="1"/></emitter>"#);
+    assert!(e.message.contains("inside a <shape>"), "{e}");
+    // Clip planes: Mitsuba's defaults silently, others noted.
+    let sensor = |extra: &str| {
+        format!(
+            "<scene version=\"3.0.0\"><sensor type=\"perspective\">{extra}<film type=\"hdrfilm\"><integer name=\"width\" value=\"8\"/><integer name=\"height\" value=\"8\"/></film></sensor></scene>"
+        )
+    };
+    let quiet = run_with(
+        &sensor(r#"<float name="near_clip" value="0.01"/>"#),
+        &fs,
+        &[],
+    )
+    .unwrap();
+    assert!(!quiet.notes.iter().any(|n| n.message.contains("clip")));
+    let noted = run_with(&sensor(r#"<float name="far_clip" value="5"/>"#), &fs, &[]).unwrap();
+    assert!(
+        noted.notes.iter().any(|n| n.message.contains("far_clip 5")),
+        "{:?}",
+        noted.notes
+    );
+}

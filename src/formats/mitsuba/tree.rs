@@ -74,6 +74,9 @@ pub struct Reader<'r> {
     pub search: Vec<String>,
     /// `<alias id as>` pairs in file order, with the element for messages.
     aliases: Vec<El>,
+    /// The top file, as its caller named it (relative names in included files are looked up
+    /// in its directory, as Mitsuba's resolver does).
+    top: String,
 }
 
 impl<'r> Reader<'r> {
@@ -89,12 +92,14 @@ impl<'r> Reader<'r> {
             version: (3, 0),
             search: Vec::new(),
             aliases: Vec::new(),
+            top: String::new(),
         }
     }
 
     /// The file `name` that `el` (in `el.file`) refers to, and its bytes: looked up as Mitsuba's
-    /// file resolver does, in the `<path>` directories (the latest first), then beside the
-    /// file; an absolute name as it is. Counts against the file limit.
+    /// file resolver does, in the `<path>` directories (the latest first), then in the top
+    /// file's directory (where Mitsuba finds what an included file names), then beside the
+    /// file `el` is in; an absolute name as it is. Counts against the file limit.
     ///
     /// # Errors
     /// Too many files, or none of the candidates can be read (the message names them).
@@ -112,6 +117,10 @@ impl<'r> Reader<'r> {
                 .map(|dir| format!("{}/{name}", dir.trim_end_matches('/')))
                 .collect()
         };
+        let main = relative_to(&self.top, name);
+        if !self.top.is_empty() && main != default && !candidates.contains(&main) {
+            candidates.push(main);
+        }
         candidates.push(default.clone());
         for c in &candidates[..candidates.len() - 1] {
             if let Ok(b) = self.res.read(c) {
@@ -121,7 +130,8 @@ impl<'r> Reader<'r> {
         match self.res.read(&default) {
             Ok(b) => Ok((default, b)),
             Err(e) if candidates.len() > 1 => Err(el.err(format!(
-                "{default:?}: {e} (also looked in the <path> directories: {})",
+                "{default:?}: {e} (also looked in the <path> directories and the scene's \
+                 directory: {})",
                 candidates[..candidates.len() - 1].join(", ")
             ))),
             Err(e) => Err(el.err(format!("{default:?}: {e}"))),
@@ -130,6 +140,7 @@ impl<'r> Reader<'r> {
 
     /// Read `file`, which must hold `<scene version=...>`.
     pub fn read_root(&mut self, file: &str, bytes: &[u8]) -> Result<El, FormatError> {
+        self.top = file.to_string();
         let root = self.read_file(file, bytes, 0, true)?;
         let mut ids = HashMap::new();
         index(&root, &mut ids, true)?;
@@ -254,9 +265,11 @@ impl<'r> Reader<'r> {
                             child.err(format!("include cycle ({} -> {path})", open.join(" -> ")))
                         })
                     };
-                    // Without <path> directories the file is known before it is read.
+                    // Without <path> directories the file is known before it is read when
+                    // it is open: the top file's directory comes first (and is the file's
+                    // own in the top file).
                     if self.search.is_empty()
-                        && let Some(e) = cycle(&self.open, &relative_to(file, name))
+                        && let Some(e) = cycle(&self.open, &relative_to(&self.top, name))
                     {
                         return Err(e);
                     }
