@@ -68,6 +68,9 @@ pub struct Coating {
     pub internal: f64,
     /// The rough interface's transmittance table (`None`: smooth).
     pub rough: Option<&'static Transmittance>,
+    /// Whether the inter-reflections between base and coating are tinted by the base
+    /// (Mitsuba's `nonlinear`): see [`Coating::effective`].
+    pub nonlinear: bool,
 }
 
 impl Coating {
@@ -78,6 +81,7 @@ impl Coating {
             eta,
             internal: diffuse_fresnel(1.0 / eta),
             rough: None,
+            nonlinear: false,
         }
     }
 
@@ -93,6 +97,7 @@ impl Coating {
                     eta,
                     internal: t.internal,
                     rough: Some(t),
+                    nonlinear: false,
                 }
             }
         }
@@ -117,6 +122,21 @@ impl Coating {
             return 0.0;
         }
         self.transmittance(cos_i) * self.transmittance(cos_o) * self.base_scale()
+    }
+
+    /// The albedo the base factor multiplies: `rho` itself, or, when `nonlinear`, `rho (1 -
+    /// F_dr,int) / (1 - rho F_dr,int)` per channel, so that the light going back and forth
+    /// between base and coating is absorbed by the base at every bounce (`sum_k (rho
+    /// F_dr,int)^k` instead of `sum_k F_dr,int^k`; the two agree for a white base).
+    #[must_use]
+    #[inline]
+    pub fn effective(&self, rho: Rgb) -> Rgb {
+        if !self.nonlinear {
+            return rho;
+        }
+        let fi = self.internal;
+        let one = |r: f64| r * (1.0 - fi) / (1.0 - r * fi).max(1e-12);
+        Rgb::new(one(rho.x), one(rho.y), one(rho.z))
     }
 
     /// `1 / (eta^2 (1 - F_dr,int))`.

@@ -79,7 +79,8 @@ pub enum Lobe {
     /// lobe of `dist` when rough), the base is `diffuse t(cos_i) t(cos_o) / (eta^2 (1 -
     /// F_dr,int) pi)`. Two-sided, like [`Lobe::Lambert`].
     Plastic {
-        /// The base's albedo `rho`.
+        /// The base's albedo `rho` ([`Coating::effective`] of it when the coating is
+        /// nonlinear).
         diffuse: Rgb,
         /// The coating's tint `s` (Mitsuba's `specular_reflectance`).
         specular: Rgb,

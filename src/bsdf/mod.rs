@@ -235,7 +235,7 @@ impl Bsdf {
         if let Some(coating) = m.coating {
             // A coated material is one lobe: the coating over its diffuse base.
             let lobe = Lobe::Plastic {
-                diffuse: m.diffuse.at(p),
+                diffuse: coating.effective(m.diffuse.at(p)),
                 specular: m.reflectivity,
                 coating,
                 dist,

@@ -130,13 +130,15 @@ pub fn thin_dielectric(eta: f64) -> Mapped {
 /// A diffuse base under a dielectric coating of index `eta`, tinted `specular` (Mitsuba
 /// `plastic` / `roughplastic`, pbrt `coateddiffuse`): raytree's coated material
 /// ([`crate::bsdf::Coating`], the model of Mitsuba's plastic), exact for Mitsuba apart from
-/// its `F_dr` fits (docs/materials.md). `note` says what the caller's format differs in.
+/// its `F_dr` fits (docs/materials.md); `nonlinear` tints the inter-reflections by the base.
+/// `note` says what the caller's format differs in.
 #[must_use]
 pub fn coated_diffuse(
     base: Triple,
     eta: f64,
     a: f64,
     specular: Triple,
+    nonlinear: bool,
     note: Option<String>,
 ) -> Mapped {
     let (roughness, clamp) = alpha(a);
@@ -148,6 +150,7 @@ pub fn coated_diffuse(
             coating: Some(CoatingDesc {
                 ior: eta,
                 scale: (specular != [1.0; 3]).then_some(specular),
+                nonlinear,
             }),
             ..MaterialDesc::default()
         },
@@ -285,7 +288,7 @@ mod tests {
 
     #[test]
     fn coatings_and_thin_sheets_conserve_energy() {
-        let (m, n) = coated_diffuse([0.5; 3], 1.5, 0.0, [1.0; 3], None);
+        let (m, n) = coated_diffuse([0.5; 3], 1.5, 0.0, [1.0; 3], false, None);
         assert_eq!(n, None);
         assert_eq!(m.reflectivity, [0.0; 3]);
         let c = m.coating.expect("a coating");
@@ -294,8 +297,9 @@ mod tests {
             m.diffuse,
             Some(TextureDesc::Solid([0.5, 0.5, 0.5]))
         ));
-        let (m, n) = coated_diffuse([0.5; 3], 1.5, 2.0, [0.5; 3], Some("x".into()));
-        assert_eq!(m.coating.unwrap().scale, Some([0.5; 3]));
+        let (m, n) = coated_diffuse([0.5; 3], 1.5, 2.0, [0.5; 3], true, Some("x".into()));
+        let c = m.coating.unwrap();
+        assert_eq!((c.scale, c.nonlinear), (Some([0.5; 3]), true));
         assert!(n.unwrap().starts_with("x; roughness alpha 2 clamped"));
         let (t, n) = thin_dielectric(1.5);
         assert_eq!((t.transmissivity, t.ior, n), ([1.0; 3], None, None));

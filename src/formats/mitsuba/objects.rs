@@ -456,12 +456,8 @@ impl<'r> State<'r> {
                 let a = alpha(&mut a_notes)?;
                 let base = color("diffuse_reflectance", [0.5; 3])?;
                 let spec = color("specular_reflectance", [1.0; 3])?;
-                let note = p.bool("nonlinear", false)?.then(|| {
-                    "nonlinear = true (internal scattering tints the base) is not modelled: \
-                     the base keeps its colour, as with Mitsuba's default"
-                        .to_string()
-                });
-                mm::coated_diffuse(base, eta, a, spec, note)
+                let nonlinear = p.bool("nonlinear", false)?;
+                mm::coated_diffuse(base, eta, a, spec, nonlinear, None)
             }
             _ => (
                 mm::diffuse([0.5; 3]),

@@ -86,11 +86,13 @@ impl State<'_> {
                 let r = color(&mut notes, "reflectance", Kind::Albedo, [0.5; 3])?;
                 let a = rough(&mut notes)?;
                 let _ = c.float("thickness", 0.01)?;
-                let note = "pbrt-v4's coateddiffuse (a stochastically evaluated layer with \
-                            thickness, albedo and g) mapped to raytree's coating over a \
-                            diffuse base, Mitsuba's plastic model: the layer's medium is not \
-                            modelled";
-                mm::coated_diffuse(r, eta(&mut notes)?, a, [1.0; 3], Some(note.into()))
+                let note = "pbrt-v4's coateddiffuse (a random walk through a dielectric \
+                            layer over the base) mapped to raytree's coating with \
+                            inter-reflections tinted by the base (Mitsuba's nonlinear plastic, \
+                            the walk's expectation without its maxdepth cut): the layer's \
+                            medium (thickness, albedo, g) is not modelled";
+                let eta = eta(&mut notes)?;
+                mm::coated_diffuse(r, eta, a, [1.0; 3], true, Some(note.into()))
             }
             "interface" => (
                 MaterialDesc { transmissivity: [1.0; 3], ior: Some(1.0), ..MaterialDesc::default() },

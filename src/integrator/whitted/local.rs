@@ -196,7 +196,10 @@ impl Whitted<'_> {
             let diffuse = albedo * std::f64::consts::FRAC_1_PI;
             let diffuse = match m.coating {
                 None => diffuse,
-                Some(c) => diffuse * c.base_factor(cos, wo.dot(ns).abs()),
+                Some(c) => {
+                    c.effective(albedo)
+                        * (std::f64::consts::FRAC_1_PI * c.base_factor(cos, wo.dot(ns).abs()))
+                }
             };
             diffuse + highlight
         } else {

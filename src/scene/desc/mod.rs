@@ -171,6 +171,10 @@ pub struct CoatingDesc {
     /// `[1, 1, 1]`.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub scale: Option<Triple>,
+    /// Tint the inter-reflections between base and coating by the base (Mitsuba's
+    /// `nonlinear`, pbrt's layered walk): a coloured base looks deeper. Default false.
+    #[serde(default, skip_serializing_if = "std::ops::Not::not")]
+    pub nonlinear: bool,
 }
 
 fn is_ggx(d: &crate::bsdf::Distribution) -> bool {

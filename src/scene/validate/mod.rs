@@ -373,7 +373,11 @@ fn coating(
     };
     let rough = (alpha_u >= crate::bsdf::SMOOTH_ALPHA)
         .then(|| crate::bsdf::Microfacet::with(m.distribution, alpha_u, alpha_v));
-    Ok((Some(Coating::new(eta, rough)), scale))
+    let coating = Coating {
+        nonlinear: c.nonlinear,
+        ..Coating::new(eta, rough)
+    };
+    Ok((Some(coating), scale))
 }
 
 /// A conductor's complex index and tint (the material's `reflectivity`).

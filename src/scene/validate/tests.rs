@@ -198,7 +198,12 @@ fn coatings_load_and_their_clashes_are_named() {
     ))
     .unwrap();
     let c = s.materials[0].coating.unwrap();
-    assert!(c.rough.is_none());
+    assert!(c.rough.is_none() && !c.nonlinear);
+    let s = Scene::from_json(&with_material(
+        r#"{"diffuse": [0.5, 0.5, 0.5], "coating": {"ior": 1.49, "nonlinear": true}}"#,
+    ))
+    .unwrap();
+    assert!(s.materials[0].coating.unwrap().nonlinear);
     assert_eq!(s.materials[0].reflectivity, DVec3::ONE);
     let cases = [
         (
