@@ -175,11 +175,16 @@ impl Terms {
         } else {
             0.0
         };
+        // A coating shows the base through `t_i t_o / (eta^2 (1 - F_dr,int))` with `t <= 1`
+        // (and a nonlinear coating's effective albedo is at most `rho`): at most
+        // `base_scale`, which exceeds 1 slightly (1.10 at eta 1.5; the factor itself reaches
+        // 1.016 at normal incidence).
+        let coat = m.coating.map_or(1.0, |c| c.base_scale().max(1.0));
         Self {
             albedo: match m.diffuse {
                 Texture::Solid(c) => pos(c),
                 Texture::Checker { even, odd, .. } => pos(even).max(pos(odd)),
-            },
+            } * coat,
             specular: pos(m.specular),
             glossy,
             emission: pos(m.emission),

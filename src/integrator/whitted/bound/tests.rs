@@ -341,6 +341,29 @@ fn the_carried_bound_follows_each_material() {
     assert_eq!(carried_bound(&s, 5, ShadowMode::Translucent), f64::INFINITY);
 }
 
+/// A coated base can return slightly more than `albedo / pi` (the coating's base factor
+/// reaches 1.016 at normal incidence for eta 1.5): the bound takes `base_scale` on the albedo,
+/// and the Whitted light term of a coated surface lit head-on stays below it.
+#[test]
+fn a_coated_base_raises_the_local_bound_by_its_base_scale() {
+    let mut s = scene("");
+    let m = s.materials.iter().position(|m| m.name == "m").unwrap();
+    let plain = super::carried::carried_bound(&s, 0, ShadowMode::Opaque);
+    let coating = crate::bsdf::Coating::smooth(1.5);
+    s.materials[m].coating = Some(coating);
+    s.materials[m].reflectivity = Rgb::ZERO;
+    let coated = super::carried::carried_bound(&s, 0, ShadowMode::Opaque);
+    assert!(
+        (coated - plain * coating.base_scale()).abs() < 1e-12,
+        "{coated} {plain}"
+    );
+    let head_on = coating.base_factor(1.0, 1.0);
+    assert!(
+        head_on > 1.0 && head_on <= coating.base_scale(),
+        "{head_on}"
+    );
+}
+
 /// The automatic roulette weight: 0.01 over the carried bound, off where the tree is asked to
 /// be exhaustive or the integrator samples anyway.
 #[test]
