@@ -75,7 +75,7 @@ pub enum Lobe {
         dist: Microfacet,
     },
     /// A dielectric coating over a Lambertian base (Mitsuba 3 `plastic` / `roughplastic`,
-    /// [`super::coated`]): the coating reflects `specular F` (a delta when smooth, a microfacet
+    /// [`super::Coating`]): the coating reflects `specular F` (a delta when smooth, a microfacet
     /// lobe of `dist` when rough), the base is `diffuse t(cos_i) t(cos_o) / (eta^2 (1 -
     /// F_dr,int) pi)`. Two-sided, like [`Lobe::Lambert`].
     Plastic {
