@@ -297,6 +297,14 @@ fn material(ck: &Check, name: &str, m: &MaterialDesc) -> Result<Material, SceneE
     })
 }
 
+/// The first `(condition, key, why)` whose condition holds, as an error at `p.key`.
+fn refuse_first(ck: &Check, p: &str, clash: &[(bool, &str, &str)]) -> Result<(), SceneError> {
+    match clash.iter().find(|c| c.0) {
+        Some((_, key, why)) => ck.fail(format!("{p}.{key}"), *why),
+        None => Ok(()),
+    }
+}
+
 /// A thin sheet's index (at `p.thin.ior`); the fields a sheet cannot have are errors.
 fn thin(ck: &Check, p: &str, m: &MaterialDesc, ior: f64) -> Result<f64, SceneError> {
     let clash = [
@@ -326,9 +334,7 @@ fn thin(ck: &Check, p: &str, m: &MaterialDesc, ior: f64) -> Result<f64, SceneErr
             "a material is either coated or a thin sheet",
         ),
     ];
-    if let Some((_, key, why)) = clash.into_iter().find(|c| c.0) {
-        return ck.fail(format!("{p}.{key}"), why);
-    }
+    refuse_first(ck, p, &clash)?;
     ck.positive(&format!("{p}.thin.ior"), ior)
 }
 
@@ -363,9 +369,7 @@ fn coating(
             "a coating is isotropic: give one roughness",
         ),
     ];
-    if let Some((_, key, why)) = clash.into_iter().find(|c| c.0) {
-        return ck.fail(format!("{p}.{key}"), why);
-    }
+    refuse_first(ck, p, &clash)?;
     let eta = ck.positive(&format!("{p}.coating.ior"), c.ior)?;
     let scale = match c.scale {
         Some(s) => ck.color(&format!("{p}.coating.scale"), s)?,
