@@ -40,7 +40,7 @@ pub enum Command {
     /// Trace one pixel under two sets of overrides (or two scenes) and print where the trees differ.
     Diff(DiffArgs),
     /// Whitted vs path tracing side by side, the difference image, and what Whitted misses by
-    /// light path class.
+    /// light path class; or any two integrators (--pair) and whether they differ beyond the noise.
     Versus(VersusArgs),
     /// Convert a pbrt-v4 or Mitsuba 3 scene (or raytree JSON) to raytree JSON, listing what was
     /// approximated.
