@@ -539,3 +539,81 @@ fn pin_and_compare_names_the_roulette_depth() {
         ": path, depth 16, spp 2, roulette from bounce 2, offset"
     ));
 }
+
+const GLOSSY: &str = include_str!("../fixtures/glossy.json");
+
+/// Issue 32 item 1: the settings in force are the scene's and the command line's, beyond the
+/// sliders' ranges too (depth 0..=32, spp and samples 1..=64 clamped them at the first frame,
+/// and a typed 64 became 32); what the command line refuses is refused and said.
+#[test]
+fn settings_beyond_the_sliders_are_kept_and_refusals_are_said() {
+    let settings = |h: &Harness<'static, InspectorApp>| h.state().session.doc.scene.settings;
+    // The path tracer's depth, samples and roulette depth (`view caustic.json --spp 128`).
+    let mut h = read_only_inspector(
+        CAUSTIC,
+        Box::new(|s: &mut raytree::Scene| {
+            s.camera = s.camera.with_size(8, 6);
+            s.settings.max_depth = 64;
+            s.settings.spp = 128;
+            s.settings.rr_depth = 100;
+            Ok(())
+        }),
+    );
+    h.state_mut()
+        .session
+        .apply(raytree::gui::Command::SelectPixel([4, 3]));
+    settle(&mut h);
+    let s = settings(&h);
+    assert_eq!((s.max_depth, s.spp, s.rr_depth), (64, 128, 100), "kept");
+    let tree = h.state().session.doc.tree.clone().expect("a traced pixel");
+    assert_eq!(
+        (tree.settings.max_depth, tree.settings.spp),
+        (64, 128),
+        "the tree records what was traced"
+    );
+
+    // Whitted's area-light and glossy samples (a lamp and rough balls).
+    let mut h = read_only_inspector(
+        GLOSSY,
+        Box::new(|s: &mut raytree::Scene| {
+            s.camera = s.camera.with_size(4, 2);
+            s.settings.max_depth = 2;
+            s.settings.light_samples = Some(100);
+            s.settings.glossy_samples = 100;
+            Ok(())
+        }),
+    );
+    assert!(has(&h, "light samples"), "the area-light slider is shown");
+    assert!(has(&h, "glossy samples"), "the glossy slider is shown");
+    let s = settings(&h);
+    assert_eq!(
+        (s.light_samples, s.glossy_samples),
+        (Some(100), 100),
+        "kept"
+    );
+
+    // Typed values beyond the slider's end are taken...
+    h.get_by_role_and_label(Role::Slider, "max depth")
+        .set_value_accesskit(48.0);
+    settle(&mut h);
+    assert_eq!(settings(&h).max_depth, 48);
+    // ...and those the command line refuses (`--max-depth 2000`: at most 1024) are said,
+    // leaving the settings in force as they were.
+    h.get_by_role_and_label(Role::Slider, "max depth")
+        .set_value_accesskit(2000.0);
+    settle(&mut h);
+    assert_eq!(settings(&h).max_depth, 48, "refused, not clamped");
+    assert!(
+        has(
+            &h,
+            "not applied: settings.max_depth: must be at most 1024, got 2000"
+        ),
+        "the refusal is shown"
+    );
+    // The next accepted change clears the refusal.
+    h.get_by_role_and_label(Role::Slider, "max depth")
+        .set_value_accesskit(2.0);
+    settle(&mut h);
+    assert_eq!(settings(&h).max_depth, 2);
+    assert!(!has(&h, "not applied:"));
+}

@@ -67,20 +67,22 @@ pub fn settings_ui(ui: &mut egui::Ui, doc: &Document, cmds: &mut Vec<Command>) {
     if s.integrator != IntegratorKind::Whitted {
         ui.add(
             Slider::new(&mut s.rr_depth, 0..=64)
-                .clamping(egui::SliderClamping::Edits)
+                .clamping(egui::SliderClamping::Never)
                 .text("roulette from bounce"),
         );
     }
-    // `Edits`: a scene's own value beyond the slider (max_depth 1024, spp 256) stays as it is;
-    // egui's default clamped it at the first frame, re-rendering at 32 or 64.
+    // `Never`: the slider's range is where dragging ends, not a limit. A scene's own value
+    // beyond it (max_depth 64, spp 256) stays as it is (egui's default clamped it at the first
+    // frame), and a value typed beyond it is taken (`Edits` turned a typed 64 into 32); the
+    // session validates it as the command line does and says when it refuses one.
     ui.add(
         Slider::new(&mut s.max_depth, 0..=32)
-            .clamping(egui::SliderClamping::Edits)
+            .clamping(egui::SliderClamping::Never)
             .text("max depth"),
     );
     ui.add(
         Slider::new(&mut s.spp, 1..=64)
-            .clamping(egui::SliderClamping::Edits)
+            .clamping(egui::SliderClamping::Never)
             .logarithmic(true)
             .text("samples / pixel"),
     );
@@ -170,6 +172,7 @@ fn stochastic_ui(ui: &mut egui::Ui, doc: &Document, s: &mut crate::scene::Settin
             ui.add_enabled(
                 on,
                 Slider::new(&mut n, 1..=64)
+                    .clamping(egui::SliderClamping::Never)
                     .logarithmic(true)
                     .text("light samples"),
             );
@@ -179,6 +182,7 @@ fn stochastic_ui(ui: &mut egui::Ui, doc: &Document, s: &mut crate::scene::Settin
     if scene.used_materials().any(|m| m.roughness > 0.0) {
         ui.add(
             Slider::new(&mut s.glossy_samples, 1..=64)
+                .clamping(egui::SliderClamping::Never)
                 .logarithmic(true)
                 .text("glossy samples"),
         );

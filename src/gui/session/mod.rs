@@ -13,6 +13,10 @@ use crate::trace_pixel;
 use std::path::{Path, PathBuf};
 use std::sync::Arc;
 
+/// How a settings change the session refused begins: "not applied: settings.spp: must be in
+/// 1..=65536, got 0" (the next accepted change clears it).
+pub const REFUSED: &str = "not applied: ";
+
 /// The inspector without its widgets.
 pub struct Session {
     /// What the panels show.
@@ -256,9 +260,19 @@ impl Session {
             }
             Command::SelectNode(id) => self.doc.node = id,
             Command::SetSettings(settings) => {
+                // The command line's own validation: a refused value is said, and the
+                // settings in force stay as they were (issue 32, item 1).
                 if let Err((path, msg)) = crate::scene::check_settings(&settings) {
-                    self.doc.error = Some(format!("{path}: {msg}"));
+                    self.doc.error = Some(format!("{REFUSED}{path}: {msg}"));
                     return;
+                }
+                if self
+                    .doc
+                    .error
+                    .as_deref()
+                    .is_some_and(|e| e.starts_with(REFUSED))
+                {
+                    self.doc.error = None;
                 }
                 let mut scene = (*self.doc.scene).clone();
                 scene.settings = settings;
