@@ -720,27 +720,28 @@ impl<'r> State<'r> {
             "L"
         };
         let (rgb, note) = c.color(key, Kind::Light)?.unwrap_or(([1.0; 3], None));
-        let rgb = rgb.map(|x| x * scale);
+        // pbrt-v4 divides `scale` by the spectrum's luminance (`SpectrumToPhotometric`, which
+        // its film multiplies back: a no-op in RGB) and, given a target `power` (point, spot)
+        // or `illuminance` (distant, infinite), multiplies by it over the light's k_e.
+        let target = c.float(light_target(kind), -1.0)?;
+        let gain = |k_e: f64| scale * if target > 0.0 { target / k_e } else { 1.0 };
         let from = c.point("from", DVec3::ZERO)?;
         let to = c.point("to", DVec3::Z)?;
-        let power = c.float("power", -1.0)?;
         let file_name = c.string("filename")?;
         if let Some(n) = note {
             self.b.note(file, t.line, format!("{what}: {n}"));
         }
-        if power > 0.0 {
-            self.b.note(
-                file,
-                t.line,
-                format!("{what}: \"power\" ignored; the light's I or L and scale are used"),
-            );
-        }
         match kind {
-            "point" => self.b.point_light(m.transform_point3(from), rgb),
+            "point" => {
+                let k = gain(4.0 * std::f64::consts::PI);
+                self.b
+                    .point_light(m.transform_point3(from), rgb.map(|x| x * k));
+            }
             "spot" => {
                 let c = ctx(file, &what, p, &self.textures);
                 let cone = c.float("coneangle", 30.0)?;
                 let delta = c.float("conedelta", 5.0)?;
+                let rgb = rgb.map(|x| x * gain(spot_k_e(cone, delta)));
                 // pbrt-v4 `SpotLight`: cosFalloffStart = cos(coneangle - conedelta), so the
                 // falloff starts |coneangle - conedelta| from the axis; its smoothstep needs
                 // that inside the cone.
@@ -772,9 +773,11 @@ impl<'r> State<'r> {
                 if d.try_normalize().is_none() {
                     return Err(err_at(file, t, format!("{what}: from and to coincide")));
                 }
-                self.b.directional_light(d, rgb);
+                self.b.directional_light(d, rgb.map(|x| x * gain(1.0)));
             }
             "infinite" => {
+                // A constant environment of radiance L gives a surface facing up E = pi L.
+                let rgb = rgb.map(|x| x * gain(std::f64::consts::PI));
                 if let Some(f) = file_name {
                     self.b.note(file, t.line, format!("{what}: environment map {f:?} not read; its L times scale ({rgb:?}) is used as the constant background radiance"));
                 }
@@ -980,4 +983,24 @@ pub fn string_arg(
             format!("{name}: expected a quoted string, the file ends"),
         )),
     }
+}
+
+/// The parameter that sets a pbrt-v4 light's brightness in photometric terms: `power` (lm) for
+/// lights at a point, `illuminance` (lx) for distant and infinite ones (pbrt-v4's
+/// `lights.cpp`, each light's `Create`).
+fn light_target(kind: &str) -> &'static str {
+    match kind {
+        "distant" | "infinite" => "illuminance",
+        _ => "power",
+    }
+}
+
+/// pbrt-v4's `k_e` of a spot light (`SpotLight::Create`): its solid angle with the falloff
+/// ramp counted half, 2 pi ((1 - cos start) + (cos start - cos end) / 2), for `coneangle` and
+/// `conedelta` in degrees. pbrt's own expression, not the exact flux of its smoothstep, so
+/// that a `power` gives the intensity pbrt gives.
+fn spot_k_e(cone: f64, delta: f64) -> f64 {
+    let end = cone.to_radians().cos();
+    let start = (cone - delta).to_radians().cos();
+    2.0 * std::f64::consts::PI * ((1.0 - start) + (start - end) / 2.0)
 }

@@ -459,3 +459,46 @@ fn spot_lights_keep_their_cone() {
     ));
     assert!(e.to_string().contains("from and to coincide"), "{e}");
 }
+
+/// pbrt-v4's photometric targets: `power` on point and spot lights (the intensity is
+/// scale * power / k_e, k_e = 4 pi for a point and pbrt's ramp-halved cone solid angle for a
+/// spot), `illuminance` on distant (k_e = 1) and infinite lights (k_e = pi); the RGB is not
+/// normalised (pbrt-v4 normalises the illuminant only). Nothing is noted as ignored.
+#[test]
+fn power_and_illuminance_set_the_intensity_as_pbrt_does() {
+    use std::f64::consts::PI;
+    let c = run(
+        "LightSource \"point\" \"rgb I\" [1 0.5 2] \"float power\" 100 \"float scale\" 2\n\
+         LightSource \"spot\" \"rgb I\" [1 1 1] \"float power\" 10 \"float coneangle\" 40 \
+         \"float conedelta\" 10\n\
+         LightSource \"distant\" \"rgb L\" [1 1 1] \"float illuminance\" 3\n\
+         LightSource \"infinite\" \"rgb L\" [0.5 0.5 0.5] \"float illuminance\" 2\n\
+         LightSource \"point\" \"rgb I\" [3 3 3]\n",
+    );
+    let close = |a: [f64; 3], b: [f64; 3]| (0..3).all(|i| (a[i] - b[i]).abs() < 1e-12 * b[i]);
+    let LightDesc::Point { intensity, .. } = c.desc.lights[0] else {
+        panic!("{:?}", c.desc.lights[0])
+    };
+    let k = 2.0 * 100.0 / (4.0 * PI);
+    assert!(close(intensity, [k, 0.5 * k, 2.0 * k]), "{intensity:?}");
+    let LightDesc::Spot { intensity, .. } = c.desc.lights[1] else {
+        panic!("{:?}", c.desc.lights[1])
+    };
+    let (end, start) = (40f64.to_radians().cos(), 30f64.to_radians().cos());
+    let k_e = 2.0 * PI * ((1.0 - start) + (start - end) / 2.0);
+    assert!(close(intensity, [10.0 / k_e; 3]), "{intensity:?}");
+    let LightDesc::Directional { irradiance, .. } = c.desc.lights[2] else {
+        panic!("{:?}", c.desc.lights[2])
+    };
+    assert!(close(irradiance, [3.0; 3]), "{irradiance:?}");
+    assert!(close(c.desc.background, [1.0 / PI; 3]));
+    let LightDesc::Point { intensity, .. } = c.desc.lights[3] else {
+        panic!("{:?}", c.desc.lights[3])
+    };
+    assert_eq!(intensity, [3.0; 3], "no target: I times scale");
+    assert!(
+        c.notes.iter().all(|n| !n.message.contains("ignored")),
+        "{:?}",
+        c.notes
+    );
+}
