@@ -119,7 +119,7 @@ fn mitsuba_defines_come_from_the_command_line() {
 /// Each bad scene: exit 2, the file and line in the message, no output file.
 #[test]
 fn bad_scenes_fail_with_their_position_and_write_nothing() {
-    let cases: [(&str, &str, &str); 6] = [
+    let cases: [(&str, &str, &str); 7] = [
         (
             "bad.pbrt",
             "WorldBegin\n  Sphere \"x\"\n",
@@ -149,6 +149,11 @@ fn bad_scenes_fail_with_their_position_and_write_nothing() {
             "bad.xml",
             "<scene version=\"3.0.0\">\n<sensor type=\"perspective\">\n</scene>",
             "bad.xml:3:",
+        ),
+        (
+            "bad.xml",
+            "<scene version=\"3.0.0\">\n<path value=\"nowhere\"/>\n</scene>",
+            "bad.xml:2:1: <path>: \"nowhere\" is not a directory",
         ),
     ];
     for (name, text, want) in cases {

@@ -41,20 +41,7 @@ pub fn convert(
     inputs: &mut Vec<PathBuf>,
 ) -> Result<Foreign> {
     let name = path.to_string_lossy().into_owned();
-    let mut resolver = |file: &str| -> Result<Vec<u8>, String> {
-        let p = PathBuf::from(file);
-        let lower = file.to_ascii_lowercase();
-        let limit = if [".ply", ".obj", ".bin", ".glb"]
-            .iter()
-            .any(|e| lower.ends_with(e))
-        {
-            MAX_OBJ_BYTES
-        } else {
-            MAX_SCENE_BYTES
-        };
-        inputs.push(p.clone());
-        read_limited(&p, limit).map_err(|e| format!("cannot read {}: {e}", p.display()))
-    };
+    let mut resolver = Disk { inputs };
     let c = raytree::formats::convert(format, &name, bytes, defines, &mut resolver)
         .map_err(|e| anyhow!("{}", escape_controls(&e.to_string())))?;
     Ok(Foreign {
@@ -87,4 +74,31 @@ pub fn note_lines(notes: &[Note]) -> Vec<String> {
         .iter()
         .map(|n| format!("note: {}", escape_controls(&n.to_string())))
         .collect()
+}
+
+/// The scene's files on disk, each appended to `inputs` as it is read; directories (a Mitsuba
+/// `<path>`) are checked.
+struct Disk<'a> {
+    inputs: &'a mut Vec<PathBuf>,
+}
+
+impl raytree::formats::Resolver for Disk<'_> {
+    fn read(&mut self, file: &str) -> Result<Vec<u8>, String> {
+        let p = PathBuf::from(file);
+        let lower = file.to_ascii_lowercase();
+        let limit = if [".ply", ".obj", ".bin", ".glb"]
+            .iter()
+            .any(|e| lower.ends_with(e))
+        {
+            MAX_OBJ_BYTES
+        } else {
+            MAX_SCENE_BYTES
+        };
+        self.inputs.push(p.clone());
+        read_limited(&p, limit).map_err(|e| format!("cannot read {}: {e}", p.display()))
+    }
+
+    fn is_dir(&mut self, path: &str) -> Option<bool> {
+        Some(Path::new(path).is_dir())
+    }
 }

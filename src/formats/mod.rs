@@ -28,6 +28,13 @@ pub trait Resolver {
     /// # Errors
     /// A message naming the failure (missing file, not a regular file, too large).
     fn read(&mut self, path: &str) -> Result<Vec<u8>, String>;
+
+    /// Whether `path` is a directory, where the caller can tell (`None`: it cannot, as a
+    /// resolver of files alone; a Mitsuba `<path>` is then taken unchecked).
+    fn is_dir(&mut self, path: &str) -> Option<bool> {
+        let _ = path;
+        None
+    }
 }
 
 impl<F: FnMut(&str) -> Result<Vec<u8>, String>> Resolver for F {

@@ -284,7 +284,12 @@ impl<'r> Reader<'r> {
                     let dir = child
                         .attr("value")
                         .ok_or_else(|| child.err("needs a value"))?;
-                    self.search.insert(0, relative_to(file, dir));
+                    let at = relative_to(file, dir);
+                    // Mitsuba refuses a search path that does not exist.
+                    if self.res.is_dir(&at) == Some(false) {
+                        return Err(child.err(format!("{at:?} is not a directory")));
+                    }
+                    self.search.insert(0, at);
                 }
                 "alias" => self.aliases.push(child),
                 _ => el.children.push(child),
