@@ -207,3 +207,64 @@ fn explain_names_the_strategy_of_a_caustic() {
         tree.radiance
     );
 }
+
+/// `diff` understands strategies: a BDPT pixel under the balance and the power heuristic is
+/// split by strategy in both trees, each side's parts add up to its pixel, the weights differ
+/// while the strategies made are the same, and the command prints the table.
+#[test]
+fn diff_splits_a_bidirectional_pixel_by_strategy() {
+    let mut a = cornell(24, 4);
+    let mut b = a.clone();
+    a.settings.mis = raytree::scene::MisHeuristic::Balance;
+    b.settings.mis = raytree::scene::MisHeuristic::Power;
+    let (ta, tb) = (
+        raytree::trace_pixel(&a, 12, 14).unwrap(),
+        raytree::trace_pixel(&b, 12, 14).unwrap(),
+    );
+    let d = raytree::analysis::diff::diff(&ta, &tb);
+    assert!(d.strategies.len() >= 3, "{:?}", d.strategies);
+    for (side, tree) in [(0, &ta), (1, &tb)] {
+        let sum: Rgb = d
+            .strategies
+            .iter()
+            .map(|c| if side == 0 { c.a } else { c.b })
+            .sum();
+        let r = tree.radiance;
+        assert!(
+            (sum - r).abs().max_element() <= 1e-12 * r.max_element().max(1e-300),
+            "side {side}: parts {sum} != pixel {r}"
+        );
+    }
+    assert!(
+        d.strategies
+            .iter()
+            .any(|c| matches!(c.mis_weight, [Some(x), Some(y)] if (x - y).abs() > 1e-6)),
+        "{:?}",
+        d.strategies
+    );
+    assert!(d.first_decision.is_none(), "{:?}", d.first_decision);
+    let text = raytree::analysis::diff::diff_text(&d, &ta, &tb);
+    assert!(text.contains("by strategy ("), "{text}");
+    assert!(text.contains("    s=1 t=2: "), "{text}");
+
+    let dir = tempfile::tempdir().unwrap();
+    let cornell = common::fixture("cornell-box.json");
+    let args = [
+        "diff",
+        &cornell,
+        "--pixel",
+        "128,140",
+        "--spp",
+        "2",
+        "--integrator",
+        "bdpt",
+        "--a",
+        "--mis balance",
+        "--b",
+        "--mis power",
+    ];
+    let out = raytree(&args, dir.path());
+    let text = String::from_utf8_lossy(&out.stdout);
+    assert!(out.status.success(), "{out:?}");
+    assert!(text.contains("by strategy ("), "{text}");
+}

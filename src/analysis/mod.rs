@@ -16,4 +16,5 @@ pub mod invariants;
 pub mod outliers;
 pub mod samples;
 pub mod strategies;
+pub mod strategy_parts;
 pub mod teach;

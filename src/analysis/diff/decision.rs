@@ -23,7 +23,8 @@ pub struct DecisionChange {
     pub kind: RayKind,
     /// Their depth.
     pub depth: u32,
-    /// Which decision: `sampled lobe`, `path roulette`, `dielectric roulette`, `rays spawned`.
+    /// Which decision: `sampled lobe`, `path roulette`, `dielectric roulette`, `rays spawned`,
+    /// `strategies` (the connections' `(s, t)` under light tracing and BDPT).
     pub decision: String,
     /// The decision in A, in words.
     pub in_a: String,
@@ -77,6 +78,19 @@ fn decisions(t: &RayTree, n: &RayNode) -> Vec<(&'static str, String, String)> {
         kids.join(", ")
     };
     out.push(("rays spawned", kids.join(","), spawned));
+    // Light tracing and BDPT: the strategies (s, t) its connections made.
+    let made: Vec<String> = n
+        .children
+        .iter()
+        .filter_map(|c| t.node(*c).path.as_ref()?.strategy)
+        .map(|[s, t]| format!("s={s} t={t}"))
+        .collect();
+    let words = if made.is_empty() {
+        "no connection".to_string()
+    } else {
+        format!("connected by {}", made.join(", "))
+    };
+    out.push(("strategies", made.join(","), words));
     out
 }
 
@@ -140,6 +154,33 @@ pub struct PixelDifference {
     pub paired: bool,
     /// Samples in A and in B.
     pub samples: [usize; 2],
+    /// Light tracing and BDPT: the light paths that splatted into the pixel in A and in B.
+    /// Their part (the splats' sum over `splat_divisor`) is in `mean`, and its variance in
+    /// `std_error` as that of independent light paths, each adding its splats here or nothing
+    /// ([`splat_part`]); they are not paired.
+    pub splat_paths: [usize; 2],
+}
+
+/// The splats' part of `t`'s pixel and its variance: with `N` light paths in the pass, path
+/// `k` adds `c_k / d` (its splats here, over the divisor `d`), 0 for nearly all; the sum's
+/// variance is `sum_k Var(c_k) / d^2`, about `sum_k c_k^2 / d^2` (the paths that missed add
+/// 0, and the squared mean per path is negligible against its second moment). Also the number
+/// of paths that landed.
+fn splat_part(t: &RayTree) -> (Rgb, Rgb, usize) {
+    let d = f64::from(t.splat_divisor.max(1));
+    let mut per_path: Vec<(u64, Rgb)> = Vec::new();
+    for s in &t.splats {
+        match per_path.iter_mut().find(|p| p.0 == s.path) {
+            Some(p) => p.1 += s.contribution,
+            None => per_path.push((s.path, s.contribution)),
+        }
+    }
+    let sum = per_path.iter().fold(Rgb::ZERO, |acc, p| acc + p.1 / d);
+    let var = per_path.iter().fold(Rgb::ZERO, |acc, p| {
+        let c = p.1 / d;
+        acc + c * c
+    });
+    (sum, var, per_path.len())
 }
 
 /// Mean and unbiased variance of `x`, each sum scaled as it is added (so finite samples near
@@ -158,32 +199,34 @@ fn mean_var(x: &[Rgb]) -> (Rgb, Option<Rgb>) {
     (mean, Some(var))
 }
 
-/// `b - a` over the samples of both trees, with its standard error (see [`PixelDifference`]).
+/// `b - a` over the samples of both trees, and the light paths that splatted into them, with
+/// its standard error (see [`PixelDifference`]).
 #[must_use]
 pub fn pixel_difference(a: &RayTree, b: &RayTree) -> PixelDifference {
     let ra: Vec<Rgb> = a.samples.iter().map(|s| s.radiance).collect();
     let rb: Vec<Rgb> = b.samples.iter().map(|s| s.radiance).collect();
     let samples = [ra.len(), rb.len()];
-    if ra.len() == rb.len() && !ra.is_empty() {
+    let ((sa, va_splat, na), (sb, vb_splat, nb)) = (splat_part(a), splat_part(b));
+    let splat_paths = [na, nb];
+    // The camera samples' variance of the mean (paired or not), then the splats'.
+    let (camera, var, paired) = if ra.len() == rb.len() && !ra.is_empty() {
         let d: Vec<Rgb> = rb.iter().zip(&ra).map(|(y, x)| *y - *x).collect();
         let (mean, var) = mean_var(&d);
-        return PixelDifference {
-            mean,
-            std_error: var.map(|v| (v / d.len() as f64).map(f64::sqrt)),
-            paired: true,
-            samples,
+        (mean, var.map(|v| v / d.len() as f64), true)
+    } else {
+        let ((ma, va), (mb, vb)) = (mean_var(&ra), mean_var(&rb));
+        let var = match (va, vb) {
+            (Some(va), Some(vb)) => Some(va / ra.len() as f64 + vb / rb.len() as f64),
+            _ => None,
         };
-    }
-    let ((ma, va), (mb, vb)) = (mean_var(&ra), mean_var(&rb));
-    let std_error = match (va, vb) {
-        (Some(va), Some(vb)) => Some((va / ra.len() as f64 + vb / rb.len() as f64).map(f64::sqrt)),
-        _ => None,
+        (mb - ma, var, false)
     };
     PixelDifference {
-        mean: mb - ma,
-        std_error,
-        paired: false,
+        mean: camera + (sb - sa),
+        std_error: var.map(|v| (v + va_splat + vb_splat).map(f64::sqrt)),
+        paired,
         samples,
+        splat_paths,
     }
 }
 
@@ -247,5 +290,38 @@ mod tests {
         big.samples[0].radiance = Rgb::splat(-1.19e308);
         let o = pixel_difference(&a, &big);
         assert!(o.mean.is_finite(), "{:?}", o.mean);
+    }
+
+    /// Under light tracing the pixel is the sample mean plus the splats over the divisor: the
+    /// difference is that of the pixels, and the splats' spread widens its error.
+    #[test]
+    fn the_pixel_difference_counts_the_splats() {
+        let mut s = Scene::from_json(include_str!("../../../fixtures/caustic.json")).unwrap();
+        s.camera = s.camera.with_size(48, 36);
+        s.settings.integrator = IntegratorKind::Light;
+        s.settings.spp = 4;
+        let a = trace_pixel(&s, 20, 26).unwrap();
+        s.settings.seed = 7;
+        let b = trace_pixel(&s, 20, 26).unwrap();
+        assert!(!a.splats.is_empty() && !b.splats.is_empty());
+        let p = pixel_difference(&a, &b);
+        let want = b.radiance - a.radiance;
+        assert!(
+            (p.mean - want).abs().max_element() < 1e-12,
+            "{} {want}",
+            p.mean
+        );
+        assert!(p.splat_paths[0] > 0 && p.splat_paths[1] > 0, "{p:?}");
+        let (_, var, n) = splat_part(&a);
+        assert_eq!(n, p.splat_paths[0]);
+        assert!(var.max_element() > 0.0);
+        let camera_only = {
+            let (mut x, mut y) = (a.clone(), b.clone());
+            x.splats.clear();
+            y.splats.clear();
+            pixel_difference(&x, &y).std_error.unwrap()
+        };
+        assert!(p.std_error.unwrap().min_element() >= camera_only.min_element());
+        assert!((p.std_error.unwrap() - camera_only).max_element() > 0.0);
     }
 }

@@ -76,6 +76,64 @@ pub struct TreeDiff {
     pub samples_matched: usize,
     /// `b - a` of the sample means with its standard error ([`pixel_difference`]).
     pub pixel: PixelDifference,
+    /// Light tracing and BDPT: the pixel split by strategy in both trees ([`strategy_changes`];
+    /// empty when neither tree has strategies).
+    pub strategies: Vec<StrategyChange>,
+}
+
+/// One strategy's part of the pixel in both trees ([`crate::analysis::strategy_parts`]).
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct StrategyChange {
+    /// `[s, t]`; `None` for what camera rays saw without a strategy.
+    pub strategy: Option<[u32; 2]>,
+    /// Its part of A's pixel value.
+    pub a: Rgb,
+    /// Its part of B's pixel value.
+    pub b: Rgb,
+    /// Its luminance-weighted mean MIS weight in A and B (`None` where it brought nothing).
+    pub mis_weight: [Option<f64>; 2],
+    /// Its recorded contributions in A and B.
+    pub contributions: [usize; 2],
+}
+
+/// The strategies of `a` and `b` side by side, the largest part (of either tree) first.
+#[must_use]
+pub fn strategy_changes(a: &RayTree, b: &RayTree) -> Vec<StrategyChange> {
+    use crate::analysis::strategy_parts::strategy_parts;
+    let (pa, pb) = (strategy_parts(a), strategy_parts(b));
+    let mut out: Vec<StrategyChange> = Vec::new();
+    for (side, parts) in [(0, &pa), (1, &pb)] {
+        for p in parts {
+            let i = match out.iter().position(|c| c.strategy == p.strategy) {
+                Some(i) => i,
+                None => {
+                    out.push(StrategyChange {
+                        strategy: p.strategy,
+                        a: Rgb::ZERO,
+                        b: Rgb::ZERO,
+                        mis_weight: [None; 2],
+                        contributions: [0; 2],
+                    });
+                    out.len() - 1
+                }
+            };
+            let c = &mut out[i];
+            if side == 0 {
+                c.a = p.value;
+            } else {
+                c.b = p.value;
+            }
+            c.mis_weight[side] = Some(p.mis_weight);
+            c.contributions[side] = p.contributions;
+        }
+    }
+    let size = |c: &StrategyChange| {
+        crate::bsdf::luminance(c.a)
+            .abs()
+            .max(crate::bsdf::luminance(c.b).abs())
+    };
+    out.sort_by(|x, y| size(y).total_cmp(&size(x)));
+    out
 }
 
 impl TreeDiff {
@@ -266,6 +324,7 @@ pub fn diff(a: &RayTree, b: &RayTree) -> TreeDiff {
         samples_with_decisions_changed: decisions.len(),
         samples_matched: n,
         pixel: pixel_difference(a, b),
+        strategies: strategy_changes(a, b),
         settings,
         first_divergence: changed.first().cloned(),
         changed,

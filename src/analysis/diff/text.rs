@@ -174,6 +174,55 @@ fn summary(d: &TreeDiff, a: &RayTree, b: &RayTree) -> String {
         rgb(d.difference)
     );
     s += &pixel_text(d);
+    s += &strategy_text(d);
+    s
+}
+
+/// Light tracing and BDPT: each strategy's part of the pixel in both trees (the parts of
+/// either pixel under 0.1% of its luminance counted on one line).
+fn strategy_text(d: &TreeDiff) -> String {
+    use crate::bsdf::luminance;
+    if d.strategies.is_empty() {
+        return String::new();
+    }
+    let total = |f: fn(&super::StrategyChange) -> Rgb| {
+        d.strategies.iter().map(|c| luminance(f(c))).sum::<f64>()
+    };
+    let (ta, tb) = (total(|c| c.a), total(|c| c.b));
+    let share = |v: Rgb, t: f64| if t > 0.0 { luminance(v) / t } else { 0.0 };
+    let mis = |m: Option<f64>| m.map_or("-".to_string(), |w| crate::text::num(w, 3));
+    let mut s = String::from(
+        "by strategy (its part of the pixel in a -> b, the share of each pixel's luminance, MIS weight a -> b):\n",
+    );
+    let mut small = 0;
+    for c in &d.strategies {
+        if share(c.a, ta).max(share(c.b, tb)) < 0.001 {
+            small += 1;
+            continue;
+        }
+        let name = c
+            .strategy
+            .map_or("no strategy".to_string(), |[s, t]| format!("s={s} t={t}"));
+        let _ = writeln!(
+            s,
+            "    {name}: {} -> {} ({:.1}% -> {:.1}%), luminance b - a {}; MIS weight {} -> {}; {} -> {} contributions",
+            rgb(c.a),
+            rgb(c.b),
+            100.0 * share(c.a, ta),
+            100.0 * share(c.b, tb),
+            crate::text::num(luminance(c.b) - luminance(c.a), 6),
+            mis(c.mis_weight[0]),
+            mis(c.mis_weight[1]),
+            c.contributions[0],
+            c.contributions[1]
+        );
+    }
+    if small > 0 {
+        let _ = writeln!(
+            s,
+            "    and {small} more strategies under 0.1% of both pixels"
+        );
+    }
     s
 }
 
@@ -186,11 +235,15 @@ fn pixel_text(d: &TreeDiff) -> String {
             "b - a from {na} and {nb} sample(s): no standard error from fewer than 2 samples a side (exact only if both settings are deterministic)\n"
         );
     };
-    let how = if p.paired {
+    let mut how = if p.paired {
         format!("paired by sample, {na} samples")
     } else {
         format!("{na} and {nb} samples")
     };
+    if p.splat_paths != [0, 0] {
+        let [la, lb] = p.splat_paths;
+        how += &format!(", and {la} and {lb} light paths that splatted here (not paired)");
+    }
     let m = p.mean.to_array();
     let e = se.to_array();
     let beyond: Vec<&str> = ["R", "G", "B"]
@@ -207,7 +260,12 @@ fn pixel_text(d: &TreeDiff) -> String {
         format!("beyond 2 standard errors in {}", beyond.join(", "))
     };
     format!(
-        "b - a of the sample means {} +/- {} (standard error, {how}): {verdict}\n",
+        "b - a of the {} {} +/- {} (standard error, {how}): {verdict}\n",
+        if p.splat_paths == [0, 0] {
+            "sample means"
+        } else {
+            "pixels"
+        },
         rgb(p.mean),
         rgb(se)
     )

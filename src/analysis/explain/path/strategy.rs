@@ -4,24 +4,8 @@
 //! sentence, which these trees do not fit (they have connections, not shadow rays).
 
 use crate::analysis::explain::{Sentence, SentenceKind, ids, luminance, num};
-use crate::math::Rgb;
-use crate::tree::{NodeId, RayTree};
-
-/// One strategy's part of the pixel.
-struct Group {
-    /// `[s, t]`; `None` for what camera rays saw directly without a strategy (under light
-    /// tracing: emitters and the background).
-    strategy: Option<[u32; 2]>,
-    value: Rgb,
-    /// Luminance-weighted sum of the MIS weights.
-    weighted_mis: f64,
-    /// Luminance of `value` at full weight (for the mean MIS weight).
-    lum: f64,
-    contributions: usize,
-    nodes: Vec<NodeId>,
-    /// The light path expression of its largest contribution.
-    example: (f64, String),
-}
+use crate::analysis::strategy_parts::{StrategyPart, strategy_parts};
+use crate::tree::RayTree;
 
 /// What strategy `(s, t)` is, in words.
 fn strategy_words(strategy: Option<[u32; 2]>) -> &'static str {
@@ -34,78 +18,20 @@ fn strategy_words(strategy: Option<[u32; 2]>) -> &'static str {
     }
 }
 
-/// Whether `tree` holds bidirectional strategies (a `light` or `bdpt` tree).
-pub(super) fn has_strategies(tree: &RayTree) -> bool {
-    !tree.splats.is_empty()
-        || tree
-            .nodes
-            .iter()
-            .any(|n| n.path.as_ref().is_some_and(|p| p.strategy.is_some()))
-}
+pub(super) use crate::analysis::strategy_parts::has_strategies;
 
 /// The strategies that brought the pixel's light, largest first; nothing for a black pixel.
 pub(super) fn bidirectional(tree: &RayTree, sentences: &mut Vec<Sentence>) {
-    let mut groups: Vec<Group> = Vec::new();
-    let counted = tree.pixel_nodes();
-    for n in &tree.nodes {
-        let Some(p) = &n.path else { continue };
-        if p.contribution == Rgb::ZERO || !p.contribution.is_finite() || !counted[n.id.index()] {
-            continue;
-        }
-        let lum = luminance(p.contribution);
-        let g = match groups.iter().position(|g| g.strategy == p.strategy) {
-            Some(i) => &mut groups[i],
-            None => {
-                groups.push(Group {
-                    strategy: p.strategy,
-                    value: Rgb::ZERO,
-                    weighted_mis: 0.0,
-                    lum: 0.0,
-                    contributions: 0,
-                    nodes: Vec::new(),
-                    example: (f64::NEG_INFINITY, String::new()),
-                });
-                groups.last_mut().expect("just pushed")
-            }
-        };
-        g.value += p.contribution;
-        g.weighted_mis += lum * p.mis_weight.unwrap_or(1.0);
-        g.lum += lum;
-        g.contributions += 1;
-        g.nodes.push(n.id);
-        if lum > g.example.0 {
-            g.example = (lum, p.lpe.clone());
-        }
-    }
+    let groups = strategy_parts(tree);
     let total: f64 = groups.iter().map(|g| luminance(g.value)).sum();
     if !(total > 0.0 && total.is_finite()) {
         return;
     }
-    groups.sort_by(|a, b| luminance(b.value).total_cmp(&luminance(a.value)));
     let samples = tree.samples.len();
     let parts: Vec<String> = groups
         .iter()
         .filter(|g| luminance(g.value) / total >= 0.001)
-        .map(|g| {
-            let name = g
-                .strategy
-                .map_or("no strategy".to_string(), |[s, t]| format!("s={s} t={t}"));
-            let mis = if g.lum > 0.0 { g.weighted_mis / g.lum } else { 0.0 };
-            let example = if g.example.1.is_empty() {
-                String::new()
-            } else {
-                format!(", e.g. {}", g.example.1)
-            };
-            format!(
-                "{:.1}% from {name} ({}{example}; {} contribution{} over {samples} sample{}, MIS weight {})",
-                100.0 * luminance(g.value) / total,
-                strategy_words(g.strategy),
-                g.contributions,
-                super::plural(g.contributions),
-                super::plural(samples),
-                num(mis)
-            )
-        })
+        .map(|g| part_text(g, total, samples))
         .collect();
     let small = groups.len() - parts.len();
     let rest = if small > 0 {
@@ -121,4 +47,24 @@ pub(super) fn bidirectional(tree: &RayTree, sentences: &mut Vec<Sentence>) {
             .flat_map(|g| g.nodes.clone())
             .collect::<Vec<_>>()),
     });
+}
+
+/// `97.0% from s=2 t=1 (light tracing: ..., e.g. C<RD>SSL; 3 contributions over 64 samples,
+/// MIS weight 0.98)`.
+fn part_text(g: &StrategyPart, total: f64, samples: usize) -> String {
+    let example = if g.example.is_empty() {
+        String::new()
+    } else {
+        format!(", e.g. {}", g.example)
+    };
+    format!(
+        "{:.1}% from {} ({}{example}; {} contribution{} over {samples} sample{}, MIS weight {})",
+        100.0 * luminance(g.value) / total,
+        g.name(),
+        strategy_words(g.strategy),
+        g.contributions,
+        super::plural(g.contributions),
+        super::plural(samples),
+        num(g.mis_weight)
+    )
 }
