@@ -402,7 +402,7 @@ fn painted(h: &Harness<'static, InspectorApp>) -> Vec<Painted> {
 #[test]
 fn the_whitted_vs_path_class_table_is_aligned() {
     let mut h = caustic(4);
-    h.get_by_label("Whitted vs path").click();
+    h.get_by_label("Compare integrators").click();
     h.run();
     h.get_by_label("compare Whitted and path").click();
     while h.state().versus().0.is_none() {

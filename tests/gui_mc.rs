@@ -158,7 +158,7 @@ fn the_denoise_toggle_shows_the_denoised_image_and_keeps_the_raw_samples() {
 fn whitted_vs_path_in_the_inspector_names_what_whitted_misses() {
     let mut h = caustic(16, Some((96, 72)));
     assert_eq!(h.state().versus(), (None, false));
-    h.get_by_label("Whitted vs path").click();
+    h.get_by_label("Compare integrators").click();
     h.run();
     h.get_by_label("compare Whitted and path").click();
     let mut frames = 0;
@@ -248,4 +248,98 @@ fn the_denoise_toggle_works_on_an_adaptive_scene() {
     let (raw, stats) = raytree::render::render(&scene, &|_| {});
     assert!(stats.refined_pixels > 0);
     assert!(h.state().session.doc.image.pixels == raw.pixels);
+}
+
+/// Issue 30: the comparison takes any two integrators. Path and BDPT of the classic scene are
+/// compared against the noise, with the words and figures of `raytree versus --pair path,bdpt`
+/// (the library's `pair`), and the images captioned by their integrators.
+#[test]
+fn the_comparison_puts_path_and_bdpt_side_by_side() {
+    let classic = include_str!("../fixtures/classic.json");
+    let mut h = gui_support::read_only_inspector(
+        classic,
+        Box::new(|s: &mut raytree::Scene| {
+            s.camera = s.camera.with_size(32, 18);
+            s.settings.spp = 4;
+            Ok(())
+        }),
+    );
+    h.get_by_label("Compare integrators").click();
+    h.run();
+    let _ = h.get_by_label("compare Whitted and path");
+    for (side, kind) in [("B", "bdpt"), ("A", "path")] {
+        h.get_by_label(side).click();
+        h.run();
+        h.get_by_label(kind).click();
+        h.run();
+    }
+    h.get_by_label("compare path and bdpt").click();
+    let mut frames = 0;
+    while h.state().versus().0.is_none() && frames < 1000 {
+        h.step();
+        std::thread::sleep(std::time::Duration::from_millis(10));
+        frames += 1;
+    }
+    h.run();
+    let summary = h.state().versus().0.expect("a comparison").to_owned();
+    use raytree::scene::IntegratorKind::{Bdpt, Path};
+    let scene = h.state().session.doc.scene.clone();
+    let want = raytree::aov::pair(&scene, [Path, Bdpt], None, &mut |s| {
+        raytree::render::render(s, &|_| {})
+    });
+    assert_eq!(summary, want.summary());
+    assert!(
+        summary.starts_with("path vs bdpt over pixels 0,0..32,18"),
+        "{summary}"
+    );
+    let _ = h.get_by_label("bdpt - path");
+    let _ = h.get_by_label("difference: red where bdpt is brighter, blue where path is");
+    let _ = h.get_by_label("compare again");
+}
+
+/// Issue 30: Veach's figure in the inspector. The Strategies section splits the scene's BDPT
+/// render by strategy on its own thread and captions each part with its share, the shares of
+/// `raytree strategies` (the library's `split`), by bounces then strategy.
+#[test]
+fn the_strategies_section_shows_each_strategys_share() {
+    let cornell = include_str!("../fixtures/cornell-box.json");
+    let mut h = gui_support::read_only_inspector(
+        cornell,
+        Box::new(|s: &mut raytree::Scene| {
+            s.camera = s.camera.with_size(16, 16);
+            s.settings.spp = 2;
+            Ok(())
+        }),
+    );
+    h.get_by_label("Strategies (bdpt)").click();
+    h.run();
+    h.get_by_label("split by strategy").click();
+    let mut frames = 0;
+    while h.state().strategies().0.is_empty() && frames < 2000 {
+        h.step();
+        std::thread::sleep(std::time::Duration::from_millis(10));
+        frames += 1;
+    }
+    h.run();
+    let (captions, running) = h.state().strategies();
+    assert!(!running);
+    let scene = h.state().session.doc.scene.clone();
+    let s = raytree::analysis::strategies::split(&scene, 3, &|_| {});
+    let mut want: Vec<String> = s
+        .shares()
+        .into_iter()
+        .map(|(p, x)| format!("{}: {:.1}%", p.label(), 100.0 * x))
+        .collect();
+    want.sort();
+    let mut got = captions.clone();
+    got.sort();
+    assert_eq!(got, want);
+    assert!(captions[0].starts_with("s=0 t=2: "), "{captions:?}");
+    assert!(captions.iter().any(|c| c.starts_with("s=1 t=2: ")));
+    for c in &captions {
+        let _ = h.get_by_label(c);
+    }
+    h.get_by_label("unweighted (MIS off)").click();
+    h.run();
+    let _ = h.get_by_label("split again");
 }

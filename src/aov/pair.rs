@@ -128,7 +128,7 @@ impl Pair {
             let mut why = vec!["a bias in one of them"];
             if has(IntegratorKind::Light) {
                 why.push(
-                    "light light tracing cannot carry (it does not see what the camera sees \
+                    "light that light tracing cannot carry (it does not see what the camera sees \
                      only through specular surfaces: emitters, glass, mirrors)",
                 );
             }

@@ -32,6 +32,7 @@ pub struct InspectorApp {
     compare: CompareView,
     samples: crate::gui::panels::samples::SamplesView,
     versus: crate::gui::panels::versus::VersusPanel,
+    strategies: crate::gui::panels::strategies::StrategiesPanel,
 }
 
 impl InspectorApp {
@@ -53,6 +54,7 @@ impl InspectorApp {
             compare: CompareView::default(),
             samples: Default::default(),
             versus: Default::default(),
+            strategies: Default::default(),
         }
     }
 
@@ -62,7 +64,13 @@ impl InspectorApp {
         self.denoise_state.as_ref()
     }
 
-    /// The Whitted-vs-path section's last breakdown, and whether a comparison is running.
+    /// The Strategies section's captions (`s=1 t=2: 41.3%`), and whether a split is running.
+    #[must_use]
+    pub fn strategies(&self) -> (Vec<String>, bool) {
+        (self.strategies.captions(), self.strategies.running())
+    }
+
+    /// The comparison section's last summary, and whether a comparison is running.
     #[must_use]
     pub fn versus(&self) -> (Option<&str>, bool) {
         (self.versus.summary(), self.versus.running())
@@ -179,6 +187,7 @@ impl InspectorApp {
         let explain = &mut self.explain;
         let samples = &mut self.samples;
         let versus = &mut self.versus;
+        let strategies = &mut self.strategies;
         egui::Panel::right("tree")
             .resizable(true)
             .default_size(470.0)
@@ -217,9 +226,12 @@ impl InspectorApp {
                             .show(ui, |ui| {
                                 details::breakdown_ui(ui, doc, tree_view, &mut cmds);
                             });
-                        egui::CollapsingHeader::new("Whitted vs path")
+                        egui::CollapsingHeader::new("Compare integrators")
                             .default_open(false)
                             .show(ui, |ui| versus.ui(ui, doc));
+                        egui::CollapsingHeader::new("Strategies (bdpt)")
+                            .default_open(false)
+                            .show(ui, |ui| strategies.ui(ui, doc));
                     });
             });
         let cache = &mut self.diagram;

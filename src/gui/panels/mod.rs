@@ -12,5 +12,6 @@ pub mod progressive;
 pub mod samples;
 pub(super) mod settings;
 pub mod step;
+pub mod strategies;
 pub(super) mod tree;
 pub mod versus;

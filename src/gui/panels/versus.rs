@@ -1,11 +1,14 @@
-//! Whitted vs path tracing in the inspector (issue 16): the scene rendered by both integrators
-//! on a thread of its own ([`crate::aov::versus`], as `raytree versus`), shown side by side
-//! with the signed difference, and the difference broken down by light transport class ("what
-//! Whitted misses here: 79% caustics, 21% indirect").
+//! Two integrators side by side in the inspector (issues 16 and 30): the scene rendered by
+//! both on a thread of its own, shown side by side with the signed difference. Whitted and
+//! path ([`crate::aov::versus`], as `raytree versus`) break the difference down by light
+//! transport class ("what Whitted misses here: 79% caustics, 21% indirect"); any other pair
+//! (path and bdpt, light and path...) is tested against the noise ([`crate::aov::pair`], as
+//! `raytree versus --pair`).
 
 use crate::Scene;
-use crate::aov::{ClassShare, Versus, versus};
+use crate::aov::{ClassShare, pair, versus};
 use crate::gui::model::document::Document;
+use crate::scene::IntegratorKind;
 use egui::{ColorImage, TextureHandle, TextureOptions};
 use std::path::PathBuf;
 use std::sync::Arc;
@@ -18,23 +21,85 @@ struct Made {
     scene: Arc<Scene>,
 }
 
+/// A finished comparison as the panel shows it, made on the job's thread.
+struct Outcome {
+    summary: String,
+    /// The summary's class table as rows (class, expression, luminance, Whitted renders it),
+    /// shown in a grid rather than as spaced text (issue 32: it was misaligned); Whitted and
+    /// path only.
+    classes: Vec<ClassShare>,
+    width: u32,
+    /// sRGB of side A, side B and the signed difference B - A.
+    images: [Vec<u8>; 3],
+}
+
 /// The comparison the panel shows.
 struct Done {
     made: Made,
+    kinds: [IntegratorKind; 2],
     summary: String,
-    /// The summary's class table as rows (class, expression, luminance, Whitted renders it),
-    /// shown in a grid rather than as spaced text (issue 32: it was misaligned).
     classes: Vec<ClassShare>,
     textures: [TextureHandle; 3],
     /// The render generation its staleness was last checked at, and whether it was stale then.
     checked: Option<(u64, bool)>,
 }
 
-/// The "Whitted vs path" section: its running job and its last result.
-#[derive(Default)]
+/// The "Compare integrators" section: the pair chosen, its running job and its last result.
 pub struct VersusPanel {
-    pending: Option<(Made, Receiver<Result<Versus, String>>)>,
+    kinds: [IntegratorKind; 2],
+    pending: Option<(Made, [IntegratorKind; 2], Receiver<Result<Outcome, String>>)>,
     done: Option<Done>,
+}
+
+impl Default for VersusPanel {
+    fn default() -> Self {
+        Self {
+            kinds: [IntegratorKind::Whitted, IntegratorKind::Path],
+            pending: None,
+            done: None,
+        }
+    }
+}
+
+/// An integrator's name in the panel (`Whitted`, as the lecture writes it; the others as the
+/// command line does).
+fn label(k: IntegratorKind) -> &'static str {
+    match k {
+        IntegratorKind::Whitted => "Whitted",
+        k => k.name(),
+    }
+}
+
+/// Render `scene` with both `kinds` and compare them: by light transport class for Whitted and
+/// path, against the noise for any other pair.
+fn compare(scene: &Scene, kinds: [IntegratorKind; 2]) -> Result<Outcome, String> {
+    let flat = |px: Vec<[u8; 3]>| px.into_iter().flatten().collect::<Vec<u8>>();
+    if kinds == [IntegratorKind::Whitted, IntegratorKind::Path] {
+        let v = versus(scene, None, &|_| {}).map_err(|e| e.to_string())?;
+        return Ok(Outcome {
+            summary: v.summary(),
+            classes: v.classes.clone(),
+            width: v.whitted.width,
+            images: [
+                v.whitted.to_srgb8(),
+                v.path.beauty.to_srgb8(),
+                flat(v.difference_rgb8().0),
+            ],
+        });
+    }
+    let p = pair(scene, kinds, None, &mut |s| {
+        crate::render::render(s, &|_| {})
+    });
+    Ok(Outcome {
+        summary: p.summary(),
+        classes: Vec::new(),
+        width: p.a.image.width,
+        images: [
+            p.a.image.to_srgb8(),
+            p.b.image.to_srgb8(),
+            flat(p.difference_rgb8().0),
+        ],
+    })
 }
 
 /// Whether a comparison made from `a` still shows `b`: the same scene in every respect but the
@@ -105,32 +170,27 @@ impl VersusPanel {
     }
 
     fn poll(&mut self, ctx: &egui::Context) {
-        let Some((made, rx)) = &self.pending else {
+        let Some((made, kinds, rx)) = &self.pending else {
             return;
         };
         let Ok(result) = rx.try_recv() else {
             return;
         };
-        let made = made.clone();
+        let (made, kinds) = (made.clone(), *kinds);
         self.pending = None;
         self.done = Some(match result {
-            Ok(v) => {
-                let w = v.whitted.width;
-                let diff: Vec<u8> = v.difference_rgb8().0.into_iter().flatten().collect();
-                Done {
-                    made,
-                    checked: None,
-                    summary: v.summary(),
-                    classes: v.classes.clone(),
-                    textures: [
-                        texture(ctx, "versus-whitted", w, &v.whitted.to_srgb8()),
-                        texture(ctx, "versus-path", w, &v.path.beauty.to_srgb8()),
-                        texture(ctx, "versus-difference", w, &diff),
-                    ],
-                }
-            }
+            Ok(o) => Done {
+                made,
+                kinds,
+                checked: None,
+                summary: o.summary,
+                classes: o.classes,
+                textures: [0, 1, 2]
+                    .map(|i| texture(ctx, &format!("versus-{i}"), o.width, &o.images[i])),
+            },
             Err(e) => Done {
                 made,
+                kinds,
                 checked: None,
                 summary: format!("the comparison failed: {e}"),
                 classes: Vec::new(),
@@ -139,45 +199,76 @@ impl VersusPanel {
         });
     }
 
-    /// The section: a button that (re)starts the comparison for the scene as set, then the
-    /// three images (Whitted, path, path - Whitted) and the breakdown.
+    /// The two integrators to compare, as two menus.
+    fn pair_ui(&mut self, ui: &mut egui::Ui) {
+        ui.horizontal(|ui| {
+            for (i, side) in ["A", "B"].into_iter().enumerate() {
+                egui::ComboBox::from_label(side)
+                    .selected_text(label(self.kinds[i]))
+                    .show_ui(ui, |ui| {
+                        for k in IntegratorKind::ALL {
+                            ui.selectable_value(&mut self.kinds[i], k, label(k));
+                        }
+                    });
+            }
+        });
+    }
+
+    /// Start the comparison of the pair chosen for the scene as set.
+    fn start(&mut self, ctx: &egui::Context, doc: &Document) {
+        let scene = Arc::clone(&doc.scene);
+        let kinds = self.kinds;
+        let (tx, rx) = channel();
+        let repaint = ctx.clone();
+        let spawned = crate::gui::jobs::background::spawn(
+            "raytree-versus",
+            Some(crate::integrator::THREAD_STACK_BYTES),
+            move || {
+                if tx.send(compare(&scene, kinds)).is_ok() {
+                    repaint.request_repaint();
+                }
+            },
+        );
+        if spawned.is_ok() {
+            let made = Made {
+                path: doc.source.path.clone(),
+                scene: Arc::clone(&doc.scene),
+            };
+            self.pending = Some((made, kinds, rx));
+        }
+    }
+
+    /// The section: the pair, a button that (re)starts the comparison for the scene as set,
+    /// then the three images (A, B, B - A) and the breakdown or the test against the noise.
     pub fn ui(&mut self, ui: &mut egui::Ui, doc: &Document) {
         let ctx = ui.ctx().clone();
         self.forget_other_files(doc);
         self.poll(&ctx);
         let stale = self.stale(doc);
+        self.pair_ui(ui);
+        let [a, b] = self.kinds;
         ui.horizontal_wrapped(|ui| {
-            let label = match &self.done {
-                Some(_) if !stale => "compare again",
-                _ => "compare Whitted and path",
+            let again = self
+                .done
+                .as_ref()
+                .is_some_and(|d| !stale && d.kinds == self.kinds);
+            let text = if again {
+                "compare again".to_string()
+            } else {
+                format!("compare {} and {}", label(a), label(b))
+            };
+            let hover = if a == b {
+                "choose two different integrators"
+            } else {
+                "render the scene with both integrators (each at the scene's spp)"
             };
             if ui
-                .add_enabled(!self.running(), egui::Button::new(label))
-                .on_hover_text(
-                    "render the scene with both integrators (the path tracer at the scene's spp)",
-                )
+                .add_enabled(!self.running() && a != b, egui::Button::new(text))
+                .on_hover_text(hover)
+                .on_disabled_hover_text(hover)
                 .clicked()
             {
-                let scene = Arc::clone(&doc.scene);
-                let (tx, rx) = channel();
-                let repaint = ctx.clone();
-                let spawned = crate::gui::jobs::background::spawn(
-                    "raytree-versus",
-                    Some(crate::integrator::THREAD_STACK_BYTES),
-                    move || {
-                        let r = versus(&scene, None, &|_| {}).map_err(|e| e.to_string());
-                        if tx.send(r).is_ok() {
-                            repaint.request_repaint();
-                        }
-                    },
-                );
-                if spawned.is_ok() {
-                    let made = Made {
-                        path: doc.source.path.clone(),
-                        scene: Arc::clone(&doc.scene),
-                    };
-                    self.pending = Some((made, rx));
-                }
+                self.start(&ctx, doc);
             }
             if self.running() {
                 ui.spinner();
@@ -190,22 +281,22 @@ impl VersusPanel {
         if stale {
             ui.small("(made before the last settings change)");
         }
+        let [na, nb] = done.kinds.map(label);
         let width = (ui.available_width() / 3.0 - 6.0).max(40.0);
+        let captions = [na.to_string(), nb.to_string(), format!("{nb} - {na}")];
         ui.horizontal(|ui| {
-            for (t, caption) in done
-                .textures
-                .iter()
-                .zip(["Whitted", "path", "path - Whitted"])
-            {
+            for (t, caption) in done.textures.iter().zip(&captions) {
                 ui.vertical(|ui| {
                     let size = t.size_vec2();
                     let scale = width / size.x.max(1.0);
                     ui.image((t.id(), size * scale));
-                    ui.small(caption);
+                    ui.small(caption.as_str());
                 });
             }
         });
-        ui.small("difference: red where the path tracer is brighter, blue where Whitted is");
+        ui.small(format!(
+            "difference: red where {nb} is brighter, blue where {na} is"
+        ));
         // The summary's sentences wrap; its table is a grid, one cell per column.
         let prose = done
             .summary
