@@ -44,10 +44,13 @@ struct Done {
     checked: Option<(u64, bool)>,
 }
 
+/// A running comparison: what it was made from, its pair, and where its outcome arrives.
+type Pending = (Made, [IntegratorKind; 2], Receiver<Result<Outcome, String>>);
+
 /// The "Compare integrators" section: the pair chosen, its running job and its last result.
 pub struct VersusPanel {
     kinds: [IntegratorKind; 2],
-    pending: Option<(Made, [IntegratorKind; 2], Receiver<Result<Outcome, String>>)>,
+    pending: Option<Pending>,
     done: Option<Done>,
 }
 
