@@ -157,7 +157,7 @@ pub struct PixelDifference {
     /// Light tracing and BDPT: the light paths that splatted into the pixel in A and in B.
     /// Their part (the splats' sum over `splat_divisor`) is in `mean`, and its variance in
     /// `std_error` as that of independent light paths, each adding its splats here or nothing
-    /// ([`splat_part`]); they are not paired.
+    /// (`splat_part`); they are not paired.
     pub splat_paths: [usize; 2],
 }
 
