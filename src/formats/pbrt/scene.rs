@@ -773,6 +773,12 @@ impl<'r> State<'r> {
                 if d.try_normalize().is_none() {
                     return Err(err_at(file, t, format!("{what}: from and to coincide")));
                 }
+                if target > 0.0 {
+                    // pbrt-v4 divides by -w.y of the light-space direction here, which its
+                    // author calls a bug (mmp/pbrt-v4 issue 130): raytree takes the
+                    // illuminance on a surface facing the light, which is what it means.
+                    self.b.note(file, t.line, format!("{what}: \"illuminance\" {target} is taken on a surface facing the light (pbrt-v4 divides by -w.y of the light-space direction, its issue 130, so its image may differ)"));
+                }
                 self.b.directional_light(d, rgb.map(|x| x * gain(1.0)));
             }
             "infinite" => {

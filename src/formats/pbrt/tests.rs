@@ -501,4 +501,11 @@ fn power_and_illuminance_set_the_intensity_as_pbrt_does() {
         "{:?}",
         c.notes
     );
+    assert!(
+        c.notes.iter().any(|n| n
+            .message
+            .contains("illuminance\" 3 is taken on a surface facing the light")),
+        "{:?}",
+        c.notes
+    );
 }
