@@ -6,8 +6,9 @@
 use criterion::{Criterion, criterion_group, criterion_main};
 use raytree::bvh::TraversalCost;
 use raytree::math::Rgb;
+use raytree::sampling::SceneSampler;
 use raytree::scene::Film;
-use raytree::{NoopRecorder, RayCounts, Scene, Whitted, render_pixel_with};
+use raytree::{NoopRecorder, RayCounts, Scene, Whitted, render_pixel};
 use std::hint::black_box;
 use std::time::{Duration, Instant};
 
@@ -74,14 +75,15 @@ fn frame(scene: &Scene, tracer: &Whitted, caster: bool) -> f64 {
             s += if caster {
                 ray_cast(black_box(scene), &film, x, y).x
             } else {
-                render_pixel_with(
+                render_pixel(
                     black_box(tracer),
-                    x,
-                    y,
+                    &mut SceneSampler::for_settings(&black_box(tracer).scene().settings),
+                    (x, y),
                     &mut NoopRecorder,
                     &mut counts,
                     |_| {},
                 )
+                .0
                 .x
             };
         }
@@ -119,7 +121,15 @@ fn bench(c: &mut Criterion) {
     let mut counts = RayCounts::default();
     for y in (0..h).step_by(7) {
         for x in (0..w).step_by(5) {
-            let a = render_pixel_with(&tracer, x, y, &mut NoopRecorder, &mut counts, |_| {});
+            let a = render_pixel(
+                &tracer,
+                &mut SceneSampler::for_settings(&tracer.scene().settings),
+                (x, y),
+                &mut NoopRecorder,
+                &mut counts,
+                |_| {},
+            )
+            .0;
             let b = ray_cast(&scene, &scene.camera.film(), x, y);
             assert!(
                 (a - b).abs().max_element() < 1e-12,

@@ -2,8 +2,10 @@
 //! render worker (classic scene, 640x360, depth 16).
 
 use criterion::{Criterion, criterion_group, criterion_main};
+use raytree::SceneIntegrator;
 use raytree::diagram::{Diagram, DiagramOptions, Style, Theme, display_list};
 use raytree::gui::{Command, Files, InspectorApp, Session};
+use raytree::render::RenderOptions;
 use std::hint::black_box;
 use std::path::Path;
 use std::sync::Arc;
@@ -99,7 +101,13 @@ fn benches(c: &mut Criterion) {
         })
     });
     g.bench_function("render_640x360_depth16_noop_recorder", |b| {
-        b.iter(|| black_box(raytree::render(&scene, &|_| {})))
+        b.iter(|| {
+            black_box(raytree::render(
+                &SceneIntegrator::new(&scene),
+                &RenderOptions::new(),
+                &|_| {},
+            ))
+        })
     });
     g.finish();
 }

@@ -9,8 +9,10 @@
 use criterion::{Criterion, Throughput, criterion_group, criterion_main};
 use rayon::prelude::*;
 use raytree::Scene;
+use raytree::SceneIntegrator;
 use raytree::bvh::TraversalCost;
 use raytree::mesh::{MeshData, parse_obj};
+use raytree::render::RenderOptions;
 use raytree::scene::icosphere_scene;
 use std::hint::black_box;
 use std::path::Path;
@@ -130,7 +132,15 @@ fn diffuse_render(c: &mut Criterion) {
     g.sample_size(10).measurement_time(Duration::from_secs(6));
     g.throughput(Throughput::Elements(512 * 512));
     g.bench_function("threads1", |b| {
-        b.iter(|| pool.install(|| raytree::render(black_box(&scene), &|_| {})))
+        b.iter(|| {
+            pool.install(|| {
+                raytree::render(
+                    &SceneIntegrator::new(black_box(&scene)),
+                    &RenderOptions::new(),
+                    &|_| {},
+                )
+            })
+        })
     });
     g.finish();
 }
@@ -170,10 +180,23 @@ fn bunny(c: &mut Criterion) {
     let scene = Scene::from_json_with(json, &mut |_| Ok::<MeshData, String>(data.clone())).unwrap();
     let mut g = c.benchmark_group("bunny_glass_640x360_depth16");
     g.sample_size(10).measurement_time(Duration::from_secs(6));
-    let rays = raytree::render(&scene, &|_| {}).1.rays.total();
+    let rays = raytree::render(
+        &SceneIntegrator::new(&scene),
+        &RenderOptions::new(),
+        &|_| {},
+    )
+    .stats
+    .rays
+    .total();
     g.throughput(Throughput::Elements(rays));
     g.bench_function("render", |b| {
-        b.iter(|| raytree::render(black_box(&scene), &|_| {}))
+        b.iter(|| {
+            raytree::render(
+                &SceneIntegrator::new(black_box(&scene)),
+                &RenderOptions::new(),
+                &|_| {},
+            )
+        })
     });
     g.finish();
 }

@@ -2,8 +2,10 @@
 //! which must not pay for diagnostics) against the diagnosed render.
 
 use criterion::{Criterion, criterion_group, criterion_main};
+use raytree::SceneIntegrator;
+use raytree::render::RenderOptions;
 use raytree::scene::OffsetStrategy;
-use raytree::{Scene, render, render_diagnosed};
+use raytree::{Scene, render};
 use std::hint::black_box;
 use std::time::Duration;
 
@@ -20,12 +22,25 @@ fn bench(c: &mut Criterion) {
     for st in [OffsetStrategy::Normal, OffsetStrategy::Robust] {
         let s = scene(st);
         g.bench_function(format!("render_{}", st.name()), |b| {
-            b.iter(|| render(black_box(&s), &|_| {}));
+            b.iter(|| {
+                render(
+                    &SceneIntegrator::new(black_box(&s)),
+                    &RenderOptions::new(),
+                    &|_| {},
+                )
+            });
         });
     }
     let s = scene(OffsetStrategy::Normal);
     g.bench_function("render_diagnosed_normal", |b| {
-        b.iter(|| render_diagnosed(black_box(&s), &|_| {}));
+        b.iter(|| {
+            render(
+                &SceneIntegrator::new(black_box(&s)),
+                &RenderOptions::diagnosed(),
+                &|_| {},
+            )
+            .into_parts()
+        });
     });
     g.finish();
 }

@@ -4,6 +4,9 @@
 //! reported there as a ratio to a plain ray caster from `cargo bench --bench baseline`.
 
 use criterion::{Criterion, Throughput, criterion_group, criterion_main};
+use raytree::SceneIntegrator;
+use raytree::render::RenderOptions;
+use raytree::sampling::SceneSampler;
 use raytree::tree::{NodeId, RayNode};
 use raytree::{NoopRecorder, RayCounts, Recorder, Scene, render, render_pixel, trace_pixel};
 use std::hint::black_box;
@@ -39,10 +42,23 @@ fn throughput(c: &mut Criterion) {
     g.sample_size(10).measurement_time(Duration::from_secs(8));
     for spp in [1, 16] {
         let scene = classic(1280, 720, spp);
-        let rays = render(&scene, &|_| {}).1.rays.total();
+        let rays = render(
+            &SceneIntegrator::new(&scene),
+            &RenderOptions::new(),
+            &|_| {},
+        )
+        .stats
+        .rays
+        .total();
         g.throughput(Throughput::Elements(rays));
         g.bench_function(format!("spp{spp}"), |b| {
-            b.iter(|| render(black_box(&scene), &|_| {}))
+            b.iter(|| {
+                render(
+                    &SceneIntegrator::new(black_box(&scene)),
+                    &RenderOptions::new(),
+                    &|_| {},
+                )
+            })
         });
     }
     g.finish();
@@ -54,7 +70,16 @@ fn image_loop<R: Recorder>(scene: &Scene, rec: &mut R) -> f64 {
     let mut sum = 0.0;
     for y in 0..scene.camera.height {
         for x in 0..scene.camera.width {
-            sum += render_pixel(scene, x, y, rec, &mut counts, |_| {}).x;
+            sum += render_pixel(
+                &SceneIntegrator::new(scene),
+                &mut SceneSampler::for_settings(&scene.settings),
+                (x, y),
+                rec,
+                &mut counts,
+                |_| {},
+            )
+            .0
+            .x;
         }
     }
     sum

@@ -7,6 +7,8 @@
 //! camera sample (`width x height x spp`). Figures: docs/monte-carlo.md ("Samples per second").
 
 use criterion::{Criterion, Throughput, criterion_group, criterion_main};
+use raytree::SceneIntegrator;
+use raytree::render::RenderOptions;
 use raytree::{Scene, render};
 use std::hint::black_box;
 use std::time::Duration;
@@ -46,7 +48,15 @@ fn samples_per_second(c: &mut Criterion) {
     }
     for (name, scene) in &scenes {
         g.throughput(Throughput::Elements(160 * 100 * 4));
-        g.bench_function(*name, |b| b.iter(|| render(black_box(scene), &|_| {})));
+        g.bench_function(*name, |b| {
+            b.iter(|| {
+                render(
+                    &SceneIntegrator::new(black_box(scene)),
+                    &RenderOptions::new(),
+                    &|_| {},
+                )
+            })
+        });
     }
     g.finish();
 }

@@ -7,6 +7,7 @@
 
 use raytree::analysis::converge::rel_rmse;
 use raytree::denoise::{DenoiseParams, denoise, gather};
+use raytree::render::RenderOptions;
 use raytree::render::render;
 use raytree::scene::IntegratorKind;
 use raytree::{Scene, SceneIntegrator};
@@ -29,7 +30,12 @@ fn main() {
         scene.camera = scene.camera.with_size(width, h.max(1));
         scene.settings.integrator = IntegratorKind::Path;
         scene.settings.spp = ref_spp;
-        let (reference, _) = render(&scene, &|_| {});
+        let (reference, _, _) = render(
+            &SceneIntegrator::new(&scene),
+            &RenderOptions::new(),
+            &|_| {},
+        )
+        .into_parts();
         for spp in [1, 4, 16, 64] {
             scene.settings.spp = spp;
             let t = Instant::now();

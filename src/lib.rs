@@ -42,8 +42,7 @@ pub use integrator::{
     TreeRecorder, Whitted,
 };
 pub use render::{
-    DiagnosticMap, Image, RenderStats, render, render_diagnosed, render_pixel, render_pixel_with,
-    render_sample_map, render_with, trace_pixel,
+    DiagnosticMap, Image, RenderOptions, RenderStats, Rendered, render, render_pixel, trace_pixel,
 };
 pub use scene::{Scene, SceneError, Settings};
 pub use tree::{NodeId, RayKind, RayNode, RayTree};

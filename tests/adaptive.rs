@@ -6,8 +6,10 @@
 mod common;
 use common::{fails_with, raytree};
 
+use raytree::SceneIntegrator;
+use raytree::render::RenderOptions;
 use raytree::scene::{AdaptiveDesc, icosphere_scene};
-use raytree::{Scene, render, render_sample_map, trace_pixel};
+use raytree::{Scene, render, trace_pixel};
 
 fn adaptive(threshold: f64, max_spp: u32) -> Option<AdaptiveDesc> {
     Some(AdaptiveDesc {
@@ -49,8 +51,18 @@ fn flat_pixels_keep_spp_and_edges_take_more() {
     let uniform = disc(4);
     let mut scene = uniform.clone();
     scene.settings.adaptive = adaptive(0.0, 36);
-    let (image, stats, map) = render_sample_map(&scene, &|_| {});
-    let means = render(&uniform, &|_| {}).0;
+    let (image, stats, map) = render(
+        &SceneIntegrator::new(&scene),
+        &RenderOptions::new(),
+        &|_| {},
+    )
+    .into_parts();
+    let means = render(
+        &SceneIntegrator::new(&uniform),
+        &RenderOptions::new(),
+        &|_| {},
+    )
+    .image;
     let (w, h) = (scene.camera.width, scene.camera.height);
     assert_eq!(map.samples.len(), (w * h) as usize);
     let mut refined = 0;
@@ -89,9 +101,22 @@ fn a_high_threshold_is_the_uniform_render() {
     let uniform = disc(4);
     let mut scene = uniform.clone();
     scene.settings.adaptive = adaptive(1.0, 64);
-    let (image, stats, _) = render_sample_map(&scene, &|_| {});
+    let (image, stats, _) = render(
+        &SceneIntegrator::new(&scene),
+        &RenderOptions::new(),
+        &|_| {},
+    )
+    .into_parts();
     assert_eq!(stats.refined_pixels, 0);
-    assert_eq!(image, render(&uniform, &|_| {}).0);
+    assert_eq!(
+        image,
+        render(
+            &SceneIntegrator::new(&uniform),
+            &RenderOptions::new(),
+            &|_| {}
+        )
+        .image
+    );
 }
 
 /// Every pixel's tree is the rendered pixel bit for bit with adaptive antialiasing on, with as
@@ -107,7 +132,12 @@ fn trees_equal_pixels_with_adaptive_on() {
     mesh.settings.spp = 2;
     mesh.settings.adaptive = adaptive(0.02, 10);
     for scene in [glass, mesh] {
-        let (image, stats, map) = render_sample_map(&scene, &|_| {});
+        let (image, stats, map) = render(
+            &SceneIntegrator::new(&scene),
+            &RenderOptions::new(),
+            &|_| {},
+        )
+        .into_parts();
         assert!(stats.refined_pixels > 0);
         let w = scene.camera.width;
         for y in 0..scene.camera.height {
@@ -119,7 +149,15 @@ fn trees_equal_pixels_with_adaptive_on() {
                 assert!(tree.samples.iter().zip(0..).all(|(s, i)| s.index == i));
             }
         }
-        assert_eq!(image, render(&scene, &|_| {}).0);
+        assert_eq!(
+            image,
+            render(
+                &SceneIntegrator::new(&scene),
+                &RenderOptions::new(),
+                &|_| {}
+            )
+            .image
+        );
     }
 }
 
@@ -143,10 +181,16 @@ fn adaptive_beats_uniform_at_equal_samples() {
     base.camera = base.camera.with_size(64, 48);
     let mut reference = base.clone();
     (reference.settings.spp, reference.settings.seed) = (1024, 99);
-    let reference = render(&reference, &|_| {}).0;
+    let reference = render(
+        &SceneIntegrator::new(&reference),
+        &RenderOptions::new(),
+        &|_| {},
+    )
+    .image;
     let mut ad = base.clone();
     ad.settings.adaptive = adaptive(0.05, 64);
-    let (image, stats, _) = render_sample_map(&ad, &|_| {});
+    let (image, stats, _) =
+        render(&SceneIntegrator::new(&ad), &RenderOptions::new(), &|_| {}).into_parts();
     let pixels = u64::from(64 * 48u32);
     assert!(
         stats.refined_pixels * 4 < pixels,
@@ -158,7 +202,15 @@ fn adaptive_beats_uniform_at_equal_samples() {
     uniform.settings.spp = spp;
     let (e_ad, e_un) = (
         rmse(&image, &reference),
-        rmse(&render(&uniform, &|_| {}).0, &reference),
+        rmse(
+            &render(
+                &SceneIntegrator::new(&uniform),
+                &RenderOptions::new(),
+                &|_| {},
+            )
+            .image,
+            &reference,
+        ),
     );
     eprintln!(
         "adaptive {e_ad:.5} ({} samples), uniform {e_un:.5} ({spp} spp)",

@@ -9,8 +9,9 @@ use common::{fails_with, raytree};
 use raytree::aov::{CLASSES, McView, render_aovs, standard_classes};
 use raytree::denoise::{DenoiseParams, denoise, gather};
 use raytree::math::Rgb;
+use raytree::render::RenderOptions;
 use raytree::scene::AdaptiveDesc;
-use raytree::{Scene, SceneIntegrator, render, render_sample_map};
+use raytree::{Scene, SceneIntegrator, render};
 
 const CAUSTIC: &str = include_str!("../fixtures/caustic.json");
 
@@ -33,7 +34,12 @@ fn adaptive_caustic() -> Scene {
 #[test]
 fn aovs_and_the_spp_view_follow_the_adaptive_render() {
     let scene = adaptive_caustic();
-    let (image, stats, map) = render_sample_map(&scene, &|_| {});
+    let (image, stats, map) = render(
+        &SceneIntegrator::new(&scene),
+        &RenderOptions::new(),
+        &|_| {},
+    )
+    .into_parts();
     let total = (scene.camera.width * scene.camera.height) as u64;
     assert!(
         stats.refined_pixels > 0 && stats.refined_pixels < total,
@@ -45,7 +51,15 @@ fn aovs_and_the_spp_view_follow_the_adaptive_render() {
     assert_eq!(r.stats, stats);
     let mut uniform = scene.clone();
     uniform.settings.adaptive = None;
-    assert_ne!(r.beauty, render(&uniform, &|_| {}).0);
+    assert_ne!(
+        r.beauty,
+        render(
+            &SceneIntegrator::new(&uniform),
+            &RenderOptions::new(),
+            &|_| {}
+        )
+        .image
+    );
     let mut lit = [false; CLASSES.len()];
     for (i, p) in r.beauty.pixels.iter().enumerate() {
         let sum = r.aovs.iter().fold(Rgb::ZERO, |s, a| s + a.pixels[i]);
@@ -72,7 +86,12 @@ fn aovs_and_the_spp_view_follow_the_adaptive_render() {
 #[test]
 fn the_gather_of_an_adaptive_scene_is_the_adaptive_render() {
     let scene = adaptive_caustic();
-    let (image, stats) = render(&scene, &|_| {});
+    let (image, stats, _) = render(
+        &SceneIntegrator::new(&scene),
+        &RenderOptions::new(),
+        &|_| {},
+    )
+    .into_parts();
     let (raw, gstats, features) = gather(&SceneIntegrator::new(&scene), &|_| {});
     assert_eq!(raw, image);
     assert_eq!(gstats, stats);

@@ -3,7 +3,9 @@
 //! penumbra, tree == pixel bit for bit, and rejected `quad` / `light_samples` values.
 
 use glam::DVec3;
+use raytree::SceneIntegrator;
 use raytree::lights::polygon_irradiance;
+use raytree::render::RenderOptions;
 use raytree::{Scene, render, trace_pixel};
 use std::f64::consts::PI;
 
@@ -30,10 +32,14 @@ fn one_point(light: &str, samples: u32, seed: u64) -> Scene {
 fn estimate(light: &str, samples: u32, runs: u64) -> (f64, f64) {
     let v: Vec<f64> = (0..runs)
         .map(|seed| {
-            render(&one_point(light, samples, seed), &|_| {})
-                .0
-                .get(0, 0)
-                .x
+            render(
+                &SceneIntegrator::new(&one_point(light, samples, seed)),
+                &RenderOptions::new(),
+                &|_| {},
+            )
+            .image
+            .get(0, 0)
+            .x
         })
         .collect();
     let n = v.len() as f64;
@@ -118,7 +124,14 @@ fn an_emissive_mesh_lights_like_its_visible_triangles() {
 }"#
             .replace("SEED", &seed.to_string());
             let scene = Scene::from_json_with(&src, &mut |_| Ok(data.clone())).unwrap();
-            render(&scene, &|_| {}).0.get(0, 0).x
+            render(
+                &SceneIntegrator::new(&scene),
+                &RenderOptions::new(),
+                &|_| {},
+            )
+            .image
+            .get(0, 0)
+            .x
         })
         .collect();
     let n = v.len() as f64;
@@ -161,7 +174,12 @@ fn text_tree_names_area_samples_l_over_pdf() {
 #[test]
 fn a_quad_facing_away_lights_nothing() {
     let up = r#"{"type": "quad", "corner": [-0.5, 1, -0.5], "edge_u": [0, 0, 1], "edge_v": [1, 0, 0], "material": "lamp"}"#;
-    let img = render(&one_point(up, 16, 0), &|_| {}).0;
+    let img = render(
+        &SceneIntegrator::new(&one_point(up, 16, 0)),
+        &RenderOptions::new(),
+        &|_| {},
+    )
+    .image;
     assert_eq!(img.get(0, 0).x, 0.0);
 }
 
@@ -180,7 +198,12 @@ fn penumbra_is_monotone() {
   "settings": {"light_samples": 4096}
 }"#;
     let scene = Scene::from_json(src).unwrap();
-    let img = render(&scene, &|_| {}).0;
+    let img = render(
+        &SceneIntegrator::new(&scene),
+        &RenderOptions::new(),
+        &|_| {},
+    )
+    .image;
     let row: Vec<f64> = (0..9).map(|x| img.get(x, 0).x).collect();
     // The floor points span about x in [-0.45, 0.45]: inside the penumbra x in [-0.5, 0.5].
     assert!(row[0] > 0.0, "{row:?}");
@@ -190,7 +213,12 @@ fn penumbra_is_monotone() {
     }
     let mut umbra = scene.clone();
     umbra.camera.position = DVec3::new(-2.0, 0.5, 3.0);
-    let img = render(&umbra, &|_| {}).0;
+    let img = render(
+        &SceneIntegrator::new(&umbra),
+        &RenderOptions::new(),
+        &|_| {},
+    )
+    .image;
     assert_eq!(img.get(4, 0).x, 0.0);
 }
 
@@ -203,7 +231,12 @@ fn tree_equals_pixel_with_area_lights() {
         scene.camera = scene.camera.with_size(32, 20);
         scene.settings.spp = spp;
         scene.settings.light_samples = Some(3);
-        let img = render(&scene, &|_| {}).0;
+        let img = render(
+            &SceneIntegrator::new(&scene),
+            &RenderOptions::new(),
+            &|_| {},
+        )
+        .image;
         let mut area_nodes = 0;
         for y in 0..20 {
             for x in 0..32 {

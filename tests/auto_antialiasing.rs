@@ -6,9 +6,10 @@ mod common;
 use common::raytree;
 
 use raytree::integrator::SceneIntegrator;
+use raytree::render::RenderOptions;
 use raytree::render::adaptive_plan;
 use raytree::scene::{AdaptiveDesc, Antialiasing, IntegratorKind, SamplerKind};
-use raytree::{Scene, render, render_sample_map, trace_pixel};
+use raytree::{Scene, render, trace_pixel};
 
 fn fixture(name: &str) -> Scene {
     let path = format!("{}/fixtures/{name}.json", env!("CARGO_MANIFEST_DIR"));
@@ -105,9 +106,19 @@ fn composed(auto: &Scene) -> (raytree::Image, Vec<bool>) {
     let first = plan(auto).unwrap().first;
     let mut sobol = auto.clone();
     sobol.settings.sampler = Some(SamplerKind::Sobol);
-    let full = render(&sobol, &|_| {}).0;
+    let full = render(
+        &SceneIntegrator::new(&sobol),
+        &RenderOptions::new(),
+        &|_| {},
+    )
+    .image;
     sobol.settings.spp = first;
-    let firsts = render(&sobol, &|_| {}).0;
+    let firsts = render(
+        &SceneIntegrator::new(&sobol),
+        &RenderOptions::new(),
+        &|_| {},
+    )
+    .image;
     let mut image = firsts.clone();
     let mut edges = Vec::new();
     for y in 0..h {
@@ -137,7 +148,8 @@ fn composed(auto: &Scene) -> (raytree::Image, Vec<bool>) {
 fn auto_is_the_first_pass_or_the_sobol_render_at_edges() {
     let (w, h) = (48, 27);
     let auto = glass_emitters(w, h, 16);
-    let (a, stats, map) = render_sample_map(&auto, &|_| {});
+    let (a, stats, map) =
+        render(&SceneIntegrator::new(&auto), &RenderOptions::new(), &|_| {}).into_parts();
     let (want, edges) = composed(&auto);
     assert_eq!(a, want);
     for (i, &edge) in edges.iter().enumerate() {
@@ -152,7 +164,15 @@ fn auto_is_the_first_pass_or_the_sobol_render_at_edges() {
     let one = glass_emitters(48, 27, 1);
     let mut uniform = one.clone();
     uniform.settings.antialiasing = Antialiasing::Uniform;
-    assert_eq!(render(&one, &|_| {}).0, render(&uniform, &|_| {}).0);
+    assert_eq!(
+        render(&SceneIntegrator::new(&one), &RenderOptions::new(), &|_| {}).image,
+        render(
+            &SceneIntegrator::new(&uniform),
+            &RenderOptions::new(),
+            &|_| {}
+        )
+        .image
+    );
 }
 
 /// Above 16 spp auto's first pass is `spp / 16` Sobol points, refined by continuing the Sobol
@@ -170,8 +190,14 @@ fn above_16_spp_the_first_pass_grows_and_the_error_keeps_falling() {
         threshold: raytree::scene::AUTO_THRESHOLD,
         max_spp: Some(64),
     });
-    let (a, sa, ma) = render_sample_map(&auto, &|_| {});
-    let (e, se, me) = render_sample_map(&explicit, &|_| {});
+    let (a, sa, ma) =
+        render(&SceneIntegrator::new(&auto), &RenderOptions::new(), &|_| {}).into_parts();
+    let (e, se, me) = render(
+        &SceneIntegrator::new(&explicit),
+        &RenderOptions::new(),
+        &|_| {},
+    )
+    .into_parts();
     assert_eq!(a, e);
     assert_eq!(ma.samples, me.samples);
     assert_eq!(sa.samples, se.samples);
@@ -183,11 +209,19 @@ fn above_16_spp_the_first_pass_grows_and_the_error_keeps_falling() {
     let mut reference = auto.clone();
     reference.settings.antialiasing = Antialiasing::Uniform;
     (reference.settings.spp, reference.settings.seed) = (1024, 5);
-    let reference = render(&reference, &|_| {}).0;
+    let reference = render(
+        &SceneIntegrator::new(&reference),
+        &RenderOptions::new(),
+        &|_| {},
+    )
+    .image;
     let err = |spp: u32| {
         let mut s = auto.clone();
         s.settings.spp = spp;
-        rel_rmse(&render(&s, &|_| {}).0, &reference)
+        rel_rmse(
+            &render(&SceneIntegrator::new(&s), &RenderOptions::new(), &|_| {}).image,
+            &reference,
+        )
     };
     let (e16, e64, e256) = (err(16), err(64), err(256));
     eprintln!("auto rel-RMSE: 16 spp {e16:.5}, 64 spp {e64:.5}, 256 spp {e256:.5}");
@@ -199,7 +233,12 @@ fn above_16_spp_the_first_pass_grows_and_the_error_keeps_falling() {
 #[test]
 fn trees_equal_pixels_under_auto() {
     let scene = glass_emitters(32, 18, 8);
-    let (image, stats, map) = render_sample_map(&scene, &|_| {});
+    let (image, stats, map) = render(
+        &SceneIntegrator::new(&scene),
+        &RenderOptions::new(),
+        &|_| {},
+    )
+    .into_parts();
     assert!(stats.refined_pixels > 0);
     for y in 0..18 {
         for x in 0..32 {
@@ -237,13 +276,30 @@ fn auto_beats_uniform_with_fewer_samples() {
     uniform.settings.antialiasing = Antialiasing::Uniform;
     let mut reference = uniform.clone();
     (reference.settings.spp, reference.settings.seed) = (1024, 99);
-    let reference = render(&reference, &|_| {}).0;
+    let reference = render(
+        &SceneIntegrator::new(&reference),
+        &RenderOptions::new(),
+        &|_| {},
+    )
+    .image;
     let mut one = uniform.clone();
     one.settings.spp = 1;
-    let (image, stats) = render(&auto, &|_| {});
+    let (image, stats, _) =
+        render(&SceneIntegrator::new(&auto), &RenderOptions::new(), &|_| {}).into_parts();
     let e_auto = rel_rmse(&image, &reference);
-    let e_uniform = rel_rmse(&render(&uniform, &|_| {}).0, &reference);
-    let e_one = rel_rmse(&render(&one, &|_| {}).0, &reference);
+    let e_uniform = rel_rmse(
+        &render(
+            &SceneIntegrator::new(&uniform),
+            &RenderOptions::new(),
+            &|_| {},
+        )
+        .image,
+        &reference,
+    );
+    let e_one = rel_rmse(
+        &render(&SceneIntegrator::new(&one), &RenderOptions::new(), &|_| {}).image,
+        &reference,
+    );
     let pixels = 80 * 45;
     eprintln!(
         "auto {e_auto:.5} ({} samples), uniform 16 spp {e_uniform:.5}, 1 spp {e_one:.5}",
@@ -330,7 +386,16 @@ fn bands_of_rows_equal_the_render_under_auto() {
             assert_eq!(band.len(), 40 * ((y0 + 7).min(23) - y0) as usize);
             pixels.extend(band);
         }
-        assert_eq!(pixels, render(&scene, &|_| {}).0.pixels);
+        assert_eq!(
+            pixels,
+            render(
+                &SceneIntegrator::new(&scene),
+                &RenderOptions::new(),
+                &|_| {}
+            )
+            .image
+            .pixels
+        );
     }
 }
 
@@ -391,7 +456,7 @@ mod random_scenes {
         ) {
             let auto = scene(&spheres, spp, seed);
             prop_assert!(plan(&auto).is_some_and(|p| p.auto));
-            let (a, _, map) = render_sample_map(&auto, &|_| {});
+            let (a, _, map) = render(&SceneIntegrator::new(&auto), &RenderOptions::new(), &|_| {}).into_parts();
             prop_assert_eq!(&a, &composed(&auto).0);
             prop_assert!(a.pixels.iter().all(|p| p.is_finite()));
             let (x, y) = pixel;

@@ -9,7 +9,9 @@ mod common;
 
 use common::raytree;
 use common::stats::{agreement, lum, mean_var};
+use raytree::SceneIntegrator;
 use raytree::analysis::invariants::tree_violations;
+use raytree::render::RenderOptions;
 use raytree::scene::{IntegratorKind, MisHeuristic};
 use raytree::tree::{RayKind, TREE_SCHEMA_SPLATS};
 use raytree::{Scene, render, trace_pixel};
@@ -56,7 +58,12 @@ fn tree_equals_pixel_on_every_fixture(kind: IntegratorKind) {
         for (spp, w, h) in [(1, 16, 10), (16, 4, 3)] {
             scene.camera = scene.camera.with_size(w, h);
             scene.settings.spp = spp;
-            let (image, _) = render(&scene, &|_| {});
+            let (image, _, _) = render(
+                &SceneIntegrator::new(&scene),
+                &RenderOptions::new(),
+                &|_| {},
+            )
+            .into_parts();
             for y in 0..h {
                 for x in 0..w {
                     let tree = trace_pixel(&scene, x, y).unwrap();
@@ -129,7 +136,12 @@ fn white_furnace_under_light_tracing_and_bdpt() {
         let means: Vec<f64> = (1..=8)
             .map(|seed| {
                 let scene = furnace(kind, a, le, max_depth, rr_depth, seed);
-                let (image, _) = render(&scene, &|_| {});
+                let (image, _, _) = render(
+                    &SceneIntegrator::new(&scene),
+                    &RenderOptions::new(),
+                    &|_| {},
+                )
+                .into_parts();
                 image.pixels.iter().map(|p| lum(*p)).sum::<f64>() / image.pixels.len() as f64
             })
             .collect();
@@ -169,7 +181,12 @@ fn the_power_heuristic_is_recorded_and_unbiased() {
     scene.settings.mis = MisHeuristic::Power;
     scene.camera = scene.camera.with_size(12, 12);
     scene.settings.spp = 2;
-    let (image, _) = render(&scene, &|_| {});
+    let (image, _, _) = render(
+        &SceneIntegrator::new(&scene),
+        &RenderOptions::new(),
+        &|_| {},
+    )
+    .into_parts();
     let mut balance = scene.clone();
     balance.settings.mis = MisHeuristic::Balance;
     let mut differ = 0;
@@ -209,12 +226,16 @@ fn bdpt_is_less_noisy_than_path_tracing_on_the_cornell_box() {
                 let mut scene = scene.clone();
                 scene.settings.integrator = kind;
                 scene.settings.seed = seed;
-                render(&scene, &|_| {})
-                    .0
-                    .pixels
-                    .iter()
-                    .map(|p| lum(*p))
-                    .collect()
+                render(
+                    &SceneIntegrator::new(&scene),
+                    &RenderOptions::new(),
+                    &|_| {},
+                )
+                .image
+                .pixels
+                .iter()
+                .map(|p| lum(*p))
+                .collect()
             })
             .collect();
         // Off the lamp: its edge pixels (a hit or a miss of radiance 11) weigh the same in both.

@@ -4,6 +4,8 @@
 mod common;
 use common::{fails, fixture, raytree, stderr};
 
+use raytree::SceneIntegrator;
+use raytree::render::RenderOptions;
 use std::path::PathBuf;
 
 const GOOD: &str = r#"{
@@ -115,7 +117,12 @@ fn fixtures_render_from_the_command_line() {
         scene.settings.offset.strategy = OffsetStrategy::Ray;
         scene.settings.shadows = ShadowMode::Opaque;
         scene.settings.max_depth = 5;
-        let (expect, _) = raytree::render(&scene, &|_| {});
+        let (expect, _, _) = raytree::render(
+            &SceneIntegrator::new(&scene),
+            &RenderOptions::new(),
+            &|_| {},
+        )
+        .into_parts();
         let got = image::open(dir.path().join("t.exr")).unwrap().into_rgb32f();
         assert_eq!(got.dimensions(), (32, 18), "{name}");
         let mut lit = 0;

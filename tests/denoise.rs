@@ -5,6 +5,7 @@
 
 use raytree::analysis::converge::rel_rmse;
 use raytree::denoise::{DenoiseParams, denoise, gather};
+use raytree::render::RenderOptions;
 use raytree::render::render;
 use raytree::scene::IntegratorKind;
 use raytree::{Scene, SceneIntegrator};
@@ -27,7 +28,12 @@ fn denoising_lowers_the_error_at_4_spp_on_every_path_traced_fixture() {
     ] {
         let mut scene = fixture(name, w, h);
         scene.settings.spp = 256;
-        let (reference, _) = render(&scene, &|_| {});
+        let (reference, _, _) = render(
+            &SceneIntegrator::new(&scene),
+            &RenderOptions::new(),
+            &|_| {},
+        )
+        .into_parts();
         scene.settings.spp = 4;
         let (raw, _, features) = gather(&SceneIntegrator::new(&scene), &|_| {});
         let out = denoise(&raw, &features, &DenoiseParams::default());

@@ -8,6 +8,7 @@ use common::raytree;
 
 use raytree::bsdf::{Lobe, Microfacet};
 use raytree::integrator::{Integrator, SceneIntegrator};
+use raytree::render::RenderOptions;
 use raytree::tree::{RayKind, RayTree};
 use raytree::{Scene, render, trace_pixel};
 use std::path::Path;
@@ -30,7 +31,12 @@ fn tree_equals_pixel_with_glossy_lobes() {
         let mut scene = small(32, 20, spp);
         scene.settings.glossy_samples = 3;
         scene.settings.light_samples = Some(2);
-        let img = render(&scene, &|_| {}).0;
+        let img = render(
+            &SceneIntegrator::new(&scene),
+            &RenderOptions::new(),
+            &|_| {},
+        )
+        .image;
         let (mut reflected, mut refracted) = (0, 0);
         for y in 0..20 {
             for x in 0..32 {
@@ -78,7 +84,14 @@ fn roughness_zero_is_the_smooth_scene() {
         s.settings.spp = 2;
         s.settings.glossy_samples = 5;
     }
-    assert_eq!(render(&a, &|_| {}).0.pixels, render(&b, &|_| {}).0.pixels);
+    assert_eq!(
+        render(&SceneIntegrator::new(&a), &RenderOptions::new(), &|_| {})
+            .image
+            .pixels,
+        render(&SceneIntegrator::new(&b), &RenderOptions::new(), &|_| {})
+            .image
+            .pixels
+    );
     assert!(SceneIntegrator::new(&a).traces_packets());
     assert!(!SceneIntegrator::new(&small(4, 4, 1)).traces_packets());
 }

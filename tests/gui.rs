@@ -14,6 +14,8 @@ use std::sync::Arc;
 
 mod gui_support;
 use gui_support::*;
+use raytree::SceneIntegrator;
+use raytree::render::RenderOptions;
 
 #[test]
 fn clicking_a_pixel_shows_its_ray_tree() {
@@ -78,7 +80,12 @@ fn lowering_max_depth_prunes_the_tree() {
     // The re-render used the new depth: the image equals a direct render at depth 0.
     let mut scene = (*h.state().session.doc.scene).clone();
     scene.settings.max_depth = 0;
-    let (image, _) = raytree::render(&scene, &|_| {});
+    let (image, _, _) = raytree::render(
+        &SceneIntegrator::new(&scene),
+        &RenderOptions::new(),
+        &|_| {},
+    )
+    .into_parts();
     assert!(h.state().session.doc.image.pixels == image.pixels);
 }
 

@@ -11,6 +11,8 @@ use raytree::scene::AdaptiveDesc;
 
 mod gui_support;
 use gui_support::*;
+use raytree::SceneIntegrator;
+use raytree::render::RenderOptions;
 
 const CAUSTIC: &str = include_str!("../fixtures/caustic.json");
 
@@ -114,7 +116,12 @@ fn the_denoise_toggle_shows_the_denoised_image_and_keeps_the_raw_samples() {
     let _ = h.get_by_label_contains("denoised in");
     // The raw render is untouched: the document's image is `render`'s, bit for bit.
     let scene = h.state().session.doc.scene.clone();
-    let (raw, _) = raytree::render::render(&scene, &|_| {});
+    let (raw, _, _) = raytree::render::render(
+        &SceneIntegrator::new(&scene),
+        &RenderOptions::new(),
+        &|_| {},
+    )
+    .into_parts();
     assert!(h.state().session.doc.image.pixels == raw.pixels);
     h.get_by_label("denoised image").click();
     h.run();
@@ -245,7 +252,12 @@ fn the_denoise_toggle_works_on_an_adaptive_scene() {
     let _ = h.get_by_label_contains("denoised in");
     // The document's image is the adaptive render's, some pixels refined.
     let scene = h.state().session.doc.scene.clone();
-    let (raw, stats) = raytree::render::render(&scene, &|_| {});
+    let (raw, stats, _) = raytree::render::render(
+        &SceneIntegrator::new(&scene),
+        &RenderOptions::new(),
+        &|_| {},
+    )
+    .into_parts();
     assert!(stats.refined_pixels > 0);
     assert!(h.state().session.doc.image.pixels == raw.pixels);
 }
@@ -285,7 +297,7 @@ fn the_comparison_puts_path_and_bdpt_side_by_side() {
     use raytree::scene::IntegratorKind::{Bdpt, Path};
     let scene = h.state().session.doc.scene.clone();
     let want = raytree::aov::pair(&scene, [Path, Bdpt], None, &mut |s| {
-        raytree::render::render(s, &|_| {})
+        raytree::render::render(&SceneIntegrator::new(s), &RenderOptions::new(), &|_| {})
     });
     assert_eq!(summary, want.summary());
     assert!(

@@ -10,6 +10,8 @@ use raytree::gui::{Command, InspectorApp};
 
 mod gui_support;
 use gui_support::*;
+use raytree::SceneIntegrator;
+use raytree::render::RenderOptions;
 
 const CORNELL: &str = include_str!("../fixtures/cornell-box.json");
 
@@ -78,7 +80,12 @@ fn unticking_antialias_edges_only_gives_the_uniform_render() {
         scene.settings.antialiasing,
         raytree::scene::Antialiasing::Auto
     );
-    let auto = raytree::render(&scene, &|_| {}).0;
+    let auto = raytree::render(
+        &SceneIntegrator::new(&scene),
+        &RenderOptions::new(),
+        &|_| {},
+    )
+    .image;
     assert_eq!(h.state().session.doc.image, auto);
     h.get_by_label("antialias edges only").click();
     h.run();
@@ -86,7 +93,12 @@ fn unticking_antialias_edges_only_gives_the_uniform_render() {
     h.run();
     scene.settings.antialiasing = raytree::scene::Antialiasing::Uniform;
     assert_eq!(h.state().session.doc.scene.settings, scene.settings);
-    let uniform = raytree::render(&scene, &|_| {}).0;
+    let uniform = raytree::render(
+        &SceneIntegrator::new(&scene),
+        &RenderOptions::new(),
+        &|_| {},
+    )
+    .image;
     assert_ne!(uniform, auto);
     assert_eq!(h.state().session.doc.image, uniform);
 }
@@ -108,12 +120,22 @@ fn the_roulette_weight_is_opt_in_from_the_suggested_weight() {
     let mut scene: raytree::Scene = (*h.state().session.doc.scene).clone();
     assert_eq!(scene.settings.roulette_below, None);
     assert!(has(&h, "roulette below"));
-    let default = raytree::render(&scene, &|_| {}).0;
+    let default = raytree::render(
+        &SceneIntegrator::new(&scene),
+        &RenderOptions::new(),
+        &|_| {},
+    )
+    .image;
     assert_eq!(h.state().session.doc.image, default);
     let mut split = scene.clone();
     split.settings.roulette_below = Some(0.0);
     assert_eq!(
-        raytree::render(&split, &|_| {}).0,
+        raytree::render(
+            &SceneIntegrator::new(&split),
+            &RenderOptions::new(),
+            &|_| {}
+        )
+        .image,
         default,
         "the default splits"
     );
@@ -143,7 +165,12 @@ fn the_roulette_weight_is_opt_in_from_the_suggested_weight() {
         "the slider starts at the suggested weight"
     );
     scene.settings.roulette_below = Some(0.01);
-    let roulette = raytree::render(&scene, &|_| {}).0;
+    let roulette = raytree::render(
+        &SceneIntegrator::new(&scene),
+        &RenderOptions::new(),
+        &|_| {},
+    )
+    .image;
     assert_ne!(roulette, default);
     assert_eq!(h.state().session.doc.image, roulette);
 }

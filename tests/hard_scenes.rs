@@ -2,9 +2,11 @@
 //! offset keeps it, a large epsilon leaks through it), nested dielectrics, TIR chains ending
 //! exactly at max_depth, and the NaN/infinity guard on images.
 
+use raytree::SceneIntegrator;
 use raytree::analysis::invariants::tree_violations;
+use raytree::render::RenderOptions;
 use raytree::tree::{EndReason, RayKind};
-use raytree::{Scene, render, render_diagnosed, trace_pixel};
+use raytree::{Scene, render, trace_pixel};
 
 fn scene(materials: &str, objects: &str, settings: &str) -> Scene {
     Scene::from_json(&format!(
@@ -21,7 +23,12 @@ fn thin_shell_is_not_skipped_by_the_robust_offset_but_is_by_a_large_epsilon() {
     let mats = r#""glass": {"transmissivity": [1, 1, 1], "ior": 1.5}"#;
     let objs = r#"{"type": "box", "name": "shell", "min": [-1, -1, -1e-7], "max": [1, 1, 1e-7], "material": "glass"}"#;
     let robust = scene(mats, objs, r#""offset": {"strategy": "robust"}"#);
-    let (_, st, _) = render_diagnosed(&robust, &|_| {});
+    let (_, st, _) = render(
+        &SceneIntegrator::new(&robust),
+        &RenderOptions::diagnosed(),
+        &|_| {},
+    )
+    .into_parts();
     assert_eq!((st.rays.self_hits, st.rays.leaks), (0, 0));
     assert!(st.rays.refracted > 0);
     let coarse = scene(
@@ -29,7 +36,12 @@ fn thin_shell_is_not_skipped_by_the_robust_offset_but_is_by_a_large_epsilon() {
         objs,
         r#""offset": {"strategy": "normal", "epsilon": 1e-4}"#,
     );
-    let (_, st, _) = render_diagnosed(&coarse, &|_| {});
+    let (_, st, _) = render(
+        &SceneIntegrator::new(&coarse),
+        &RenderOptions::diagnosed(),
+        &|_| {},
+    )
+    .into_parts();
     assert!(st.rays.leaks > 0, "a 1e-4 offset must jump the 2e-7 shell");
     let tree = trace_pixel(&coarse, 4, 4).unwrap();
     let leak = tree.nodes.iter().find_map(|n| n.leak.as_ref()).unwrap();
@@ -100,7 +112,8 @@ fn no_nan_or_infinity_reaches_an_image() {
            {"type": "sphere", "center": [0, 0, -4], "radius": 2, "material": "hotter"}"#,
         "",
     );
-    let (img, stats) = render(&s, &|_| {});
+    let (img, stats, _) =
+        render(&SceneIntegrator::new(&s), &RenderOptions::new(), &|_| {}).into_parts();
     assert!(img.pixels.iter().all(|p| p.is_finite()));
     assert!(stats.nonfinite_pixels > 0);
     let (x, y) = stats.first_nonfinite.unwrap();

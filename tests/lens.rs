@@ -5,7 +5,10 @@
 mod common;
 use common::{fails_with, raytree};
 
+use raytree::SceneIntegrator;
+use raytree::render::RenderOptions;
 use raytree::render::render_pixel;
+use raytree::sampling::SceneSampler;
 use raytree::scene::{FilterDesc, icosphere_scene};
 use raytree::{RayCounts, Scene, TreeRecorder, render, trace_pixel};
 
@@ -42,18 +45,41 @@ fn aperture_zero_is_the_pinhole_bit_for_bit() {
     let no_lens =
         Scene::from_json(&no_lens.replace("\"height\": 270,\n", "\"height\": 270\n")).unwrap();
     for spp in [1, 4] {
-        let a = render(&small(pinhole.clone(), 64, 36, spp), &|_| {}).0;
-        let b = render(&small(zero.clone(), 64, 36, spp), &|_| {}).0;
+        let a = render(
+            &SceneIntegrator::new(&small(pinhole.clone(), 64, 36, spp)),
+            &RenderOptions::new(),
+            &|_| {},
+        )
+        .image;
+        let b = render(
+            &SceneIntegrator::new(&small(zero.clone(), 64, 36, spp)),
+            &RenderOptions::new(),
+            &|_| {},
+        )
+        .image;
         let mut c_scene = small(no_lens.clone(), 64, 36, spp);
         c_scene.settings.filter = FilterDesc::Box {};
-        let c = render(&c_scene, &|_| {}).0;
+        let c = render(
+            &SceneIntegrator::new(&c_scene),
+            &RenderOptions::new(),
+            &|_| {},
+        )
+        .image;
         assert_eq!(a, b, "spp {spp}");
         assert_eq!(a, c, "spp {spp}");
     }
     let mesh = small(icosphere_scene(2, 20, 3.0), 24, 24, 4);
     let mut focused = mesh.clone();
     focused.camera.focus_distance = 1.7;
-    assert_eq!(render(&mesh, &|_| {}).0, render(&focused, &|_| {}).0);
+    assert_eq!(
+        render(&SceneIntegrator::new(&mesh), &RenderOptions::new(), &|_| {}).image,
+        render(
+            &SceneIntegrator::new(&focused),
+            &RenderOptions::new(),
+            &|_| {}
+        )
+        .image
+    );
 }
 
 /// With a thin lens and a tent or Gaussian filter, every recorded tree equals its rendered
@@ -72,7 +98,7 @@ fn trees_equal_pixels_with_a_lens_and_filters() {
         for spp in [1, 4] {
             let mut s = small(dof(), 32, 18, spp);
             s.settings.filter = filter;
-            let image = render(&s, &|_| {}).0;
+            let image = render(&SceneIntegrator::new(&s), &RenderOptions::new(), &|_| {}).image;
             for y in 0..18 {
                 for x in 0..32 {
                     let tree = trace_pixel(&s, x, y).unwrap();
@@ -88,18 +114,19 @@ fn trees_equal_pixels_with_a_lens_and_filters() {
             mesh.camera.aperture_radius = 0.2;
             mesh.camera.focus_distance = 2.5;
             mesh.settings.filter = filter;
-            let image = render(&mesh, &|_| {}).0;
+            let image = render(&SceneIntegrator::new(&mesh), &RenderOptions::new(), &|_| {}).image;
             for y in 0..20 {
                 for x in 0..20 {
                     let mut counts = RayCounts::default();
                     let l = render_pixel(
-                        &mesh,
-                        x,
-                        y,
+                        &SceneIntegrator::new(&mesh),
+                        &mut SceneSampler::for_settings(&mesh.settings),
+                        (x, y),
                         &mut TreeRecorder::default(),
                         &mut counts,
                         |_| {},
-                    );
+                    )
+                    .0;
                     assert_eq!(l, image.get(x, y), "mesh {filter:?} spp {spp} ({x}, {y})");
                 }
             }
@@ -113,7 +140,10 @@ fn an_aperture_blurs_and_camera_rays_leave_from_the_lens() {
     let s = small(dof(), 48, 27, 4);
     let mut pin = s.clone();
     pin.camera.aperture_radius = 0.0;
-    assert_ne!(render(&s, &|_| {}).0, render(&pin, &|_| {}).0);
+    assert_ne!(
+        render(&SceneIntegrator::new(&s), &RenderOptions::new(), &|_| {}).image,
+        render(&SceneIntegrator::new(&pin), &RenderOptions::new(), &|_| {}).image
+    );
     let tree = trace_pixel(&s, 10, 20).unwrap();
     let p = s.camera.position;
     for sample in &tree.samples {

@@ -5,10 +5,12 @@ mod common;
 use common::{Rng, raytree};
 
 use glam::DVec3;
+use raytree::SceneIntegrator;
 use raytree::analysis::invariants::tree_violations;
 use raytree::math::Ray;
 use raytree::mesh::generate::icosphere;
 use raytree::mesh::{MeshData, parse_obj};
+use raytree::render::RenderOptions;
 use raytree::scene::Hit;
 use raytree::tree::RayKind;
 use raytree::{Scene, render, trace_pixel};
@@ -178,7 +180,12 @@ fn glass_mesh_with_bad_shading_normals_keeps_tree_invariants_and_sides() {
     let objects = r#"{"type": "mesh", "file": "ico", "translate": [0, 0.4, 0], "material": "glass", "name": "ico"},
         {"type": "mesh", "file": "ico", "translate": [-1.6, 0.2, -1], "scale": [0.6, 1, 0.6], "normals": "smooth", "material": "mirror"}"#;
     let scene = with_obj(&scene_json(objects, 40, 30), &obj);
-    let (image, _) = render(&scene, &|_| {});
+    let (image, _, _) = render(
+        &SceneIntegrator::new(&scene),
+        &RenderOptions::new(),
+        &|_| {},
+    )
+    .into_parts();
     let mut triangles = 0;
     let mut shading = 0;
     for y in 0..30 {
@@ -326,18 +333,33 @@ fn meshes_get_watertight_hits_robust_offsets_diagnostics_and_diagram_slices() {
     // Offsets: no offset at all re-hits the triangle left; the robust offset never does.
     scene.settings.offset.strategy = OffsetStrategy::Normal;
     scene.settings.offset.epsilon = 0.0;
-    let (_, stats, _) = raytree::render_diagnosed(&scene, &|_| {});
+    let (_, stats, _) = raytree::render(
+        &SceneIntegrator::new(&scene),
+        &RenderOptions::diagnosed(),
+        &|_| {},
+    )
+    .into_parts();
     assert!(stats.self_hit_pixels > 0, "{stats:?}");
     scene.settings.offset.strategy = OffsetStrategy::Robust;
     // Every split (roulette choices hash the hit points, which the move below changes).
     scene.settings.roulette_below = Some(0.0);
-    let (image, stats, _) = raytree::render_diagnosed(&scene, &|_| {});
+    let (image, stats, _) = raytree::render(
+        &SceneIntegrator::new(&scene),
+        &RenderOptions::diagnosed(),
+        &|_| {},
+    )
+    .into_parts();
     assert_eq!(stats.self_hit_pixels, 0, "{stats:?}");
     assert!(stats.rays.refracted > 100, "{stats:?}");
 
     // Translucent shadows through the mesh: every tree equals the render, with mesh blockers.
     scene.settings.shadows = ShadowMode::Translucent;
-    let (translucent, _) = render(&scene, &|_| {});
+    let (translucent, _, _) = render(
+        &SceneIntegrator::new(&scene),
+        &RenderOptions::new(),
+        &|_| {},
+    )
+    .into_parts();
     assert_ne!(translucent.pixels, image.pixels);
     let mut mesh_blockers = 0;
     for y in 0..24 {
@@ -358,7 +380,12 @@ fn meshes_get_watertight_hits_robust_offsets_diagnostics_and_diagram_slices() {
 
     // A moved scene moves its mesh (and rebuilds its BVH): the same image.
     let moved = transformed(&scene, 4.0, DVec3::new(8.0, 0.0, -16.0));
-    let (b, _) = render(&moved, &|_| {});
+    let (b, _, _) = render(
+        &SceneIntegrator::new(&moved),
+        &RenderOptions::new(),
+        &|_| {},
+    )
+    .into_parts();
     let worst = raytree::analysis::cost::compare(&translucent, &b)
         .expect("same size")
         .max;

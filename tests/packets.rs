@@ -2,12 +2,15 @@
 //! give the single rays' hits and the per-pixel render's image, bit for bit.
 
 use glam::DVec3;
+use raytree::SceneIntegrator;
 use raytree::bvh::TraversalCost;
 use raytree::effects::EffectPlan;
 use raytree::math::Ray;
 use raytree::mesh::MeshData;
 use raytree::mesh::generate::icosphere;
+use raytree::render::RenderOptions;
 use raytree::render::render_pixel;
+use raytree::sampling::SceneSampler;
 use raytree::scene::Hit;
 use raytree::{NoopRecorder, RayCounts, Scene, render};
 
@@ -153,11 +156,24 @@ fn packet_render_equals_per_pixel_render_bit_for_bit() {
         // Packets trace uniform renders (automatic antialiasing probes pixel by pixel).
         scene.settings.antialiasing = raytree::scene::Antialiasing::Uniform;
         assert_eq!(EffectPlan::for_scene(&scene).direct_only(), direct);
-        let (image, stats) = render(&scene, &|_| {});
+        let (image, stats, _) = render(
+            &SceneIntegrator::new(&scene),
+            &RenderOptions::new(),
+            &|_| {},
+        )
+        .into_parts();
         let mut counts = RayCounts::default();
         for y in 0..h {
             for x in 0..w {
-                let l = render_pixel(&scene, x, y, &mut NoopRecorder, &mut counts, |_| {});
+                let l = render_pixel(
+                    &SceneIntegrator::new(&scene),
+                    &mut SceneSampler::for_settings(&scene.settings),
+                    (x, y),
+                    &mut NoopRecorder,
+                    &mut counts,
+                    |_| {},
+                )
+                .0;
                 assert_eq!(image.get(x, y), l, "pixel {x},{y}, spp {spp}");
             }
         }

@@ -4,9 +4,10 @@
 //! light sample and in the MIS weight of emission found by BSDF sampling agree). Welch t-tests
 //! per 8x8 block over seeds, as tests/path_stats.rs; fixed seeds; 5 standard errors.
 
+use raytree::SceneIntegrator;
 use raytree::integrator::{PathStrategy, PathTracer};
 use raytree::math::Rgb;
-use raytree::render::render_sampled;
+use raytree::render::RenderOptions;
 use raytree::sampling::SceneSampler;
 use raytree::scene::SamplerKind;
 use raytree::{Scene, render};
@@ -74,7 +75,15 @@ fn cornell(size: u32, depth: u32, spp: u32, seed: u64, sampler: SamplerKind) -> 
 fn sobol_and_stratified_agree_in_mean() {
     let images = |kind| -> Vec<Vec<Rgb>> {
         (1..=12)
-            .map(|seed| render(&cornell(16, 4, 8, seed, kind), &|_| {}).0.pixels)
+            .map(|seed| {
+                render(
+                    &SceneIntegrator::new(&cornell(16, 4, 8, seed, kind)),
+                    &RenderOptions::new(),
+                    &|_| {},
+                )
+                .image
+                .pixels
+            })
             .collect()
     };
     let t = worst_block_t(
@@ -89,13 +98,23 @@ fn sobol_and_stratified_agree_in_mean() {
 /// lower than the stratified sampler's (mean squared error over 4 seeds at 32 spp).
 #[test]
 fn sobol_has_lower_error_at_equal_samples() {
-    let reference = render(&cornell(24, 4, 2048, 99, SamplerKind::Stratified), &|_| {})
-        .0
-        .pixels;
+    let reference = render(
+        &SceneIntegrator::new(&cornell(24, 4, 2048, 99, SamplerKind::Stratified)),
+        &RenderOptions::new(),
+        &|_| {},
+    )
+    .image
+    .pixels;
     let mse = |kind| {
         let mut sum = 0.0;
         for seed in 1..=4 {
-            let img = render(&cornell(24, 4, 32, seed, kind), &|_| {}).0.pixels;
+            let img = render(
+                &SceneIntegrator::new(&cornell(24, 4, 32, seed, kind)),
+                &RenderOptions::new(),
+                &|_| {},
+            )
+            .image
+            .pixels;
             sum += img
                 .iter()
                 .zip(&reference)
@@ -140,7 +159,9 @@ fn power_proportional_light_choice_is_unbiased() {
                 let s = scene(seed);
                 let pt = PathTracer::with_strategy(&s, strategy);
                 let sampler = SceneSampler::new(SamplerKind::Stratified, 4, seed);
-                render_sampled(&pt, &sampler, &|_| {}).0.pixels
+                render(&pt, &RenderOptions::new().with_sampler(sampler), &|_| {})
+                    .image
+                    .pixels
             })
             .collect()
     };

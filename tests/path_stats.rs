@@ -5,7 +5,8 @@
 
 use raytree::integrator::{PathStrategy, PathTracer};
 use raytree::math::Rgb;
-use raytree::render::render_sampled;
+use raytree::render::RenderOptions;
+use raytree::render::render;
 use raytree::sampling::{PixelSampler, StratifiedJitter, splitmix64, unit};
 use raytree::scene::IntegratorKind;
 use raytree::{Scene, SceneIntegrator};
@@ -18,7 +19,9 @@ fn lum(c: Rgb) -> f64 {
 fn path_image(scene: &Scene, strategy: PathStrategy) -> Vec<Rgb> {
     let pt = PathTracer::with_strategy(scene, strategy);
     let sampler = StratifiedJitter::for_settings(&scene.settings);
-    render_sampled(&pt, &sampler, &|_| {}).0.pixels
+    render(&pt, &RenderOptions::new().with_sampler(sampler), &|_| {})
+        .image
+        .pixels
 }
 
 fn mean_var(v: &[f64]) -> (f64, f64) {
@@ -203,7 +206,9 @@ fn rmse_falls_as_one_over_sqrt_n() {
         s.settings.spp = spp;
         let pt = PathTracer::new(&s);
         let sampler = Independent { seed, state: 0 };
-        render_sampled(&pt, &sampler, &|_| {}).0.pixels
+        render(&pt, &RenderOptions::new().with_sampler(sampler), &|_| {})
+            .image
+            .pixels
     };
     let reference = render_at(4096, 99);
     let mut pts = Vec::new();
@@ -245,7 +250,12 @@ fn converges_to_whitted(json: &str, w: usize, h: usize, seeds: u64) -> f64 {
         scene.settings.seed = seed;
         scene.settings.integrator = IntegratorKind::Whitted;
         let sampler = StratifiedJitter::for_settings(&scene.settings);
-        let whitted = render_sampled(&SceneIntegrator::new(&scene), &sampler, &|_| {}).0;
+        let whitted = render(
+            &SceneIntegrator::new(&scene),
+            &RenderOptions::new().with_sampler(sampler),
+            &|_| {},
+        )
+        .image;
         scene.settings.integrator = IntegratorKind::Path;
         let path = path_image(&scene, PathStrategy::Mis);
         let d: Vec<Rgb> = path

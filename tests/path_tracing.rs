@@ -5,11 +5,12 @@
 mod common;
 
 use common::raytree;
+use raytree::SceneIntegrator;
 use raytree::analysis::invariants::tree_violations;
 use raytree::bvh::TraversalCost;
 use raytree::integrator::PathTracer;
 use raytree::math::{Ray, Rgb};
-use raytree::render::render_with;
+use raytree::render::RenderOptions;
 use raytree::sampling::PixelSampler;
 use raytree::scene::{Film, Hit, IntegratorKind};
 use raytree::tree::{EndReason, Pdf, RayKind};
@@ -60,7 +61,12 @@ fn every_fixture_tree_equals_pixel_under_the_path_integrator() {
             scene.settings.sampler = sampler;
             scene.camera = scene.camera.with_size(w, h);
             scene.settings.spp = spp;
-            let (image, stats) = render(&scene, &|_| {});
+            let (image, stats, _) = render(
+                &SceneIntegrator::new(&scene),
+                &RenderOptions::new(),
+                &|_| {},
+            )
+            .into_parts();
             assert_eq!(stats.rays.dropped_samples, 0, "{name}");
             for y in 0..h {
                 for x in 0..w {
@@ -202,7 +208,7 @@ fn nan_samples_are_dropped_counted_and_named() {
         inner: PathTracer::new(&scene),
         calls: AtomicU64::new(0),
     };
-    let (image, stats) = render_with(&nan, &|_| {});
+    let (image, stats, _) = render(&nan, &RenderOptions::new(), &|_| {}).into_parts();
     assert_eq!(stats.rays.dropped_samples, 8 * 6 * 4 / 5);
     assert!(image.pixels.iter().all(|p| p.is_finite()));
     assert_eq!(stats.nonfinite_pixels, 0);

@@ -6,11 +6,13 @@
 mod common;
 use common::Rng;
 use glam::DVec3;
+use raytree::SceneIntegrator;
 use raytree::geometry::Shape;
 use raytree::integrator::offset::robust_origin;
 use raytree::math::Ray;
+use raytree::render::RenderOptions;
 use raytree::scene::{OffsetStrategy, transformed};
-use raytree::{Scene, render, render_diagnosed};
+use raytree::{Scene, render};
 
 impl Rng {
     fn range(&mut self, a: f64, b: f64) -> f64 {
@@ -114,10 +116,16 @@ fn small(mut s: Scene, w: u32, h: u32) -> Scene {
 fn whole_scenes_moved_to_1e4_to_1e6_stay_clean_with_the_robust_offset() {
     let mut base = small(Scene::default_scene(), 32, 24);
     base.settings.offset.strategy = OffsetStrategy::Robust;
-    let (reference, _) = render(&base, &|_| {});
+    let (reference, _, _) =
+        render(&SceneIntegrator::new(&base), &RenderOptions::new(), &|_| {}).into_parts();
     for shift in [1e4, 1e5, 1e6] {
         let moved = transformed(&base, 1.0, DVec3::new(shift, -shift, shift));
-        let (img, stats, _) = render_diagnosed(&moved, &|_| {});
+        let (img, stats, _) = render(
+            &SceneIntegrator::new(&moved),
+            &RenderOptions::diagnosed(),
+            &|_| {},
+        )
+        .into_parts();
         assert_eq!(
             (stats.rays.self_hits, stats.rays.leaks),
             (0, 0),
@@ -140,7 +148,12 @@ fn whole_scenes_moved_to_1e4_to_1e6_stay_clean_with_the_robust_offset() {
     let mut normal = transformed(&base, 1.0, DVec3::splat(1e6));
     normal.settings.offset.strategy = OffsetStrategy::Normal;
     normal.settings.offset.epsilon = 1e-12;
-    let (_, stats, _) = render_diagnosed(&normal, &|_| {});
+    let (_, stats, _) = render(
+        &SceneIntegrator::new(&normal),
+        &RenderOptions::diagnosed(),
+        &|_| {},
+    )
+    .into_parts();
     assert!(stats.rays.self_hits > 0);
 }
 

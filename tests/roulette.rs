@@ -2,6 +2,8 @@
 //! in expectation against the exhaustive tree, at linear cost.
 
 mod common;
+use raytree::SceneIntegrator;
+use raytree::render::RenderOptions;
 use raytree::{Scene, render, trace_pixel};
 
 fn glass(depth: u32) -> Scene {
@@ -38,7 +40,12 @@ fn the_roulette_below_a_weight_is_exact_in_expectation() {
 /// `max_ratio` of the split's rays.
 fn exact_in_expectation(roulette: impl Fn(&mut Scene), max_ratio: f64) {
     let exhaustive = glass(8);
-    let (exact, split) = render(&exhaustive, &|_| {});
+    let (exact, split, _) = render(
+        &SceneIntegrator::new(&exhaustive),
+        &RenderOptions::new(),
+        &|_| {},
+    )
+    .into_parts();
     let n = 300;
     let pixels = exact.pixels.len();
     let (mut sum, mut sum2) = (vec![0.0; pixels], vec![0.0; pixels]);
@@ -48,7 +55,8 @@ fn exact_in_expectation(roulette: impl Fn(&mut Scene), max_ratio: f64) {
         let mut s = exhaustive.clone();
         roulette(&mut s);
         s.settings.seed = seed;
-        let (img, stats) = render(&s, &|_| {});
+        let (img, stats, _) =
+            render(&SceneIntegrator::new(&s), &RenderOptions::new(), &|_| {}).into_parts();
         rays += stats.rays.total();
         let mut image = 0.0;
         for (i, p) in img.pixels.iter().enumerate() {
@@ -94,7 +102,12 @@ fn trees_equal_pixels_with_the_roulette() {
     scene.settings.dielectric_roulette = Some(0);
     scene.settings.seed = 7;
     scene.settings.spp = 2;
-    let image = render(&scene, &|_| {}).0;
+    let image = render(
+        &SceneIntegrator::new(&scene),
+        &RenderOptions::new(),
+        &|_| {},
+    )
+    .image;
     for y in 0..18 {
         for x in 0..32 {
             assert_eq!(trace_pixel(&scene, x, y).unwrap().radiance, image.get(x, y));
@@ -124,7 +137,12 @@ fn the_suggested_weight_plays_roulette_only_below_it() {
             .all(|n| n.interface.as_ref().is_none_or(|i| i.roulette.is_none()))
     );
     scene.settings.roulette_below = Some(0.01);
-    let image = render(&scene, &|_| {}).0;
+    let image = render(
+        &SceneIntegrator::new(&scene),
+        &RenderOptions::new(),
+        &|_| {},
+    )
+    .image;
     let mut choices = 0;
     for y in 0..18 {
         for x in 0..32 {

@@ -1,8 +1,10 @@
 //! Whole scenes: the tree invariants on every fixture, bit-for-bit agreement of render and
 //! trace, and analytic scenes with closed-form answers.
 
+use raytree::SceneIntegrator;
 use raytree::analysis::invariants::tree_violations;
 use raytree::math::Rgb;
+use raytree::render::RenderOptions;
 use raytree::tree::{EndReason, RayKind};
 use raytree::{Scene, render, trace_pixel};
 use std::path::PathBuf;
@@ -44,8 +46,22 @@ fn every_fixture_tree_matches_render_bit_for_bit_and_keeps_invariants() {
             let scene = small(scene.clone(), w, h, spp);
             // Under automatic antialiasing (the Whitted fixtures at 4 spp) a pixel takes its
             // first pass or spp samples: the tree takes what the render took.
-            let (image, stats, map) = raytree::render_sample_map(&scene, &|_| {});
-            assert_eq!(image, render(&scene, &|_| {}).0, "{name}");
+            let (image, stats, map) = raytree::render(
+                &SceneIntegrator::new(&scene),
+                &RenderOptions::new(),
+                &|_| {},
+            )
+            .into_parts();
+            assert_eq!(
+                image,
+                render(
+                    &SceneIntegrator::new(&scene),
+                    &RenderOptions::new(),
+                    &|_| {}
+                )
+                .image,
+                "{name}"
+            );
             assert_eq!(stats.nonfinite_pixels, 0, "{name}");
             for y in 0..h {
                 for x in 0..w {
@@ -229,7 +245,7 @@ fn slab_displaces_but_keeps_direction() {
 #[test]
 fn switching_off_unused_effects_is_bit_identical() {
     use raytree::effects::EffectPlan;
-    use raytree::{Whitted, render_with};
+    use raytree::{Whitted, render};
     let mut scenes = fixtures();
     // A diffuse-and-mirror scene in translucent mode: translucent shadows are planned off.
     let mut m = scenes.iter().find(|f| f.0 == "mirrors").unwrap().1.clone();
@@ -239,8 +255,18 @@ fn switching_off_unused_effects_is_bit_identical() {
         let scene = small(scene, 48, 27, 1);
         let planned = EffectPlan::for_scene(&scene);
         let all = EffectPlan::everything(&scene);
-        let a = render_with(&Whitted::with_plan(&scene, planned), &|_| {}).0;
-        let b = render_with(&Whitted::with_plan(&scene, all), &|_| {}).0;
+        let a = render(
+            &Whitted::with_plan(&scene, planned),
+            &RenderOptions::new(),
+            &|_| {},
+        )
+        .image;
+        let b = render(
+            &Whitted::with_plan(&scene, all),
+            &RenderOptions::new(),
+            &|_| {},
+        )
+        .image;
         assert!(
             a == b,
             "{name}: planned render differs from everything-on ({planned:?})"
@@ -292,7 +318,7 @@ fn direct_only_path_equals_the_recursive_tracer_bit_for_bit() {
     use raytree::effects::EffectPlan;
     use raytree::mesh::{MeshData, generate::icosphere};
     use raytree::scene::OffsetStrategy;
-    use raytree::{Whitted, render_with};
+    use raytree::{Whitted, render};
     let diffuse = fixtures().into_iter().find(|f| f.0 == "diffuse").unwrap().1;
     let json = std::fs::read_to_string(
         PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("fixtures/diffuse.json"),
@@ -319,9 +345,19 @@ fn direct_only_path_equals_the_recursive_tracer_bit_for_bit() {
         ] {
             let mut scene = small(scene.clone(), 64, 36, 1);
             scene.settings.offset.strategy = strategy;
-            let (fast, stats) = render_with(&Whitted::with_plan(&scene, planned), &|_| {});
+            let (fast, stats, _) = render(
+                &Whitted::with_plan(&scene, planned),
+                &RenderOptions::new(),
+                &|_| {},
+            )
+            .into_parts();
             let all = EffectPlan::everything(&scene);
-            let (general, general_stats) = render_with(&Whitted::with_plan(&scene, all), &|_| {});
+            let (general, general_stats, _) = render(
+                &Whitted::with_plan(&scene, all),
+                &RenderOptions::new(),
+                &|_| {},
+            )
+            .into_parts();
             assert!(
                 fast == general,
                 "{name} {strategy:?}: direct-only != recursive"

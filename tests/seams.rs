@@ -4,7 +4,8 @@
 mod common;
 use common::raytree;
 
-use raytree::render::{render_pixel_sampled, render_sampled};
+use raytree::render::RenderOptions;
+use raytree::render::render_pixel;
 use raytree::sampling::{PixelSampler, StratifiedJitter};
 use raytree::scene::{IntegratorKind, icosphere_scene};
 use raytree::{
@@ -65,8 +66,18 @@ fn film_positions_come_from_the_sampler() {
     let mesh = small(icosphere_scene(2, 20, 3.0), 20, 20, 2);
     for scene in [classic, mesh] {
         let integrator = SceneIntegrator::new(&scene);
-        let (image, _) = render_sampled(&integrator, &Fixed::default(), &|_| {});
-        let default = render(&scene, &|_| {}).0;
+        let (image, _, _) = render(
+            &integrator,
+            &RenderOptions::new().with_sampler(Fixed::default()),
+            &|_| {},
+        )
+        .into_parts();
+        let default = render(
+            &SceneIntegrator::new(&scene),
+            &RenderOptions::new(),
+            &|_| {},
+        )
+        .image;
         assert_ne!(image, default, "the sampler changed nothing");
         let mut sampler = Fixed::default();
         for y in 0..scene.camera.height {
@@ -74,15 +85,15 @@ fn film_positions_come_from_the_sampler() {
                 let mut rec = TreeRecorder::default();
                 let mut samples = Vec::new();
                 let mut counts = RayCounts::default();
-                let l = render_pixel_sampled(
+                let l = render_pixel(
                     &integrator,
                     &mut sampler,
-                    x,
-                    y,
+                    (x, y),
                     &mut rec,
                     &mut counts,
                     |s| samples.push(s),
-                );
+                )
+                .0;
                 assert_eq!(l, image.get(x, y), "pixel ({x}, {y})");
                 for s in &samples {
                     let (u, v) = Fixed::offset((x, y), s.index);
@@ -101,7 +112,15 @@ fn the_seed_moves_samples_and_trees_still_equal_pixels() {
     let base = small(Scene::default_scene(), 40, 24, 4);
     let mut seeded = base.clone();
     seeded.settings.seed = 12_345;
-    let (a, b) = (render(&base, &|_| {}).0, render(&seeded, &|_| {}).0);
+    let (a, b) = (
+        render(&SceneIntegrator::new(&base), &RenderOptions::new(), &|_| {}).image,
+        render(
+            &SceneIntegrator::new(&seeded),
+            &RenderOptions::new(),
+            &|_| {},
+        )
+        .image,
+    );
     assert_ne!(a, b);
     let tree = trace_pixel(&seeded, 20, 12).unwrap();
     assert_eq!(tree.radiance, b.get(20, 12));
@@ -114,7 +133,12 @@ fn the_seed_moves_samples_and_trees_still_equal_pixels() {
     }
     // The default sampler built by hand at seed 0 gives the default render.
     let integrator = SceneIntegrator::new(&base);
-    let by_hand = render_sampled(&integrator, &StratifiedJitter::new(4, 0), &|_| {}).0;
+    let by_hand = render(
+        &integrator,
+        &RenderOptions::new().with_sampler(StratifiedJitter::new(4, 0)),
+        &|_| {},
+    )
+    .image;
     assert_eq!(by_hand, a);
 }
 
@@ -145,16 +169,21 @@ fn the_scene_chooses_the_integrator() {
     let mut counts = RayCounts::default();
     let mut sampler = StratifiedJitter::for_settings(&ok.settings);
     let integrator = SceneIntegrator::new(&ok);
-    let l = render_pixel_sampled(
+    let l = render_pixel(
         &integrator,
         &mut sampler,
-        2,
-        1,
+        (2, 1),
         &mut NoopRecorder,
         &mut counts,
         |_| {},
+    )
+    .0;
+    assert_eq!(
+        l,
+        render(&SceneIntegrator::new(&ok), &RenderOptions::new(), &|_| {})
+            .image
+            .get(2, 1)
     );
-    assert_eq!(l, render(&ok, &|_| {}).0.get(2, 1));
 }
 
 fn fails_with(o: &Output, text: &str) {
@@ -268,14 +297,29 @@ fn the_sampler_follows_the_integrator_and_the_setting() {
     path.settings.integrator = IntegratorKind::Path;
     path.settings.seed = 5;
     assert_eq!(path.settings.sampler_kind(), SamplerKind::Sobol);
-    let sobol = render(&path, &|_| {}).0;
+    let sobol = render(&SceneIntegrator::new(&path), &RenderOptions::new(), &|_| {}).image;
     let integrator = SceneIntegrator::new(&path);
-    let by_hand = render_sampled(&integrator, &SobolSampler::new(5, (0, 0), 0), &|_| {}).0;
+    let by_hand = render(
+        &integrator,
+        &RenderOptions::new().with_sampler(SobolSampler::new(5, (0, 0), 0)),
+        &|_| {},
+    )
+    .image;
     assert_eq!(by_hand, sobol);
     let mut strat = path.clone();
     strat.settings.sampler = Some(SamplerKind::Stratified);
-    let stratified = render(&strat, &|_| {}).0;
-    let by_hand = render_sampled(&integrator, &StratifiedJitter::new(4, 5), &|_| {}).0;
+    let stratified = render(
+        &SceneIntegrator::new(&strat),
+        &RenderOptions::new(),
+        &|_| {},
+    )
+    .image;
+    let by_hand = render(
+        &integrator,
+        &RenderOptions::new().with_sampler(StratifiedJitter::new(4, 5)),
+        &|_| {},
+    )
+    .image;
     assert_eq!(by_hand, stratified);
     assert_ne!(sobol, stratified);
     for (scene, image) in [(&path, &sobol), (&strat, &stratified)] {
@@ -288,9 +332,19 @@ fn the_sampler_follows_the_integrator_and_the_setting() {
     // Whitted asked for Sobol renders with it; its default stays stratified.
     let mut whitted = small(Scene::default_scene(), 12, 8, 4);
     assert_eq!(whitted.settings.sampler_kind(), SamplerKind::Stratified);
-    let plain = render(&whitted, &|_| {}).0;
+    let plain = render(
+        &SceneIntegrator::new(&whitted),
+        &RenderOptions::new(),
+        &|_| {},
+    )
+    .image;
     whitted.settings.sampler = Some(SamplerKind::Sobol);
-    let w_sobol = render(&whitted, &|_| {}).0;
+    let w_sobol = render(
+        &SceneIntegrator::new(&whitted),
+        &RenderOptions::new(),
+        &|_| {},
+    )
+    .image;
     assert_ne!(plain, w_sobol);
     assert_eq!(
         trace_pixel(&whitted, 3, 2).unwrap().radiance,

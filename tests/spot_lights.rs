@@ -7,8 +7,10 @@
 mod common;
 
 use common::stats::agreement;
+use raytree::SceneIntegrator;
 use raytree::lights::{Spot, SpotProfile};
 use raytree::math::Rgb;
+use raytree::render::RenderOptions;
 use raytree::scene::IntegratorKind;
 use raytree::tree::RayKind;
 use raytree::{Scene, render, trace_pixel};
@@ -48,7 +50,12 @@ fn spot(profile: SpotProfile) -> Spot {
 /// point (relative 1e-12); returns how many pixels lie (lit, in the falloff band, dark).
 fn check_closed_form(profile: SpotProfile, integrator: &str) -> (u32, u32, u32) {
     let scene = floor(profile, integrator);
-    let (image, _) = render(&scene, &|_| {});
+    let (image, _, _) = render(
+        &SceneIntegrator::new(&scene),
+        &RenderOptions::new(),
+        &|_| {},
+    )
+    .into_parts();
     let cone = spot(profile);
     let light = glam::DVec3::from(POSITION);
     let mut counts = (0, 0, 0);

@@ -7,8 +7,10 @@
 mod common;
 
 use common::raytree;
+use raytree::SceneIntegrator;
 use raytree::analysis::strategies::{Part, Split, split};
 use raytree::math::Rgb;
+use raytree::render::RenderOptions;
 use raytree::scene::IntegratorKind;
 use raytree::{Scene, render};
 use std::path::PathBuf;
@@ -39,7 +41,12 @@ fn the_weighted_strategies_add_up_to_the_render() {
     for bounces in [0, 2] {
         let scene = cornell(24, 4);
         let s = split(&scene, bounces, &|_| {});
-        let (image, _) = render(&scene, &|_| {});
+        let (image, _, _) = render(
+            &SceneIntegrator::new(&scene),
+            &RenderOptions::new(),
+            &|_| {},
+        )
+        .into_parts();
         let total = s.total();
         let mut worst = 0.0f64;
         for (a, b) in total.iter().zip(&image.pixels) {

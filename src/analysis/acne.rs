@@ -2,7 +2,7 @@
 //! strategy x epsilon x scene scale with the diagnostics on, and count self-hit (acne) and
 //! leak pixels. Pure: the CLI writes the report, heat maps and plot.
 
-use crate::render::{DiagnosticMap, Image, render_diagnosed};
+use crate::render::{DiagnosticMap, Image, render};
 use crate::scene::{OffsetStrategy, Scene, transformed};
 use glam::DVec3;
 use serde::Serialize;
@@ -100,7 +100,12 @@ pub fn cell(scaled: &Scene, strategy: OffsetStrategy, epsilon: f64, scale: f64) 
     let mut sc = scaled.clone();
     sc.settings.offset.strategy = strategy;
     sc.settings.offset.epsilon = epsilon;
-    let (image, stats, map) = render_diagnosed(&sc, &|_| {});
+    let (image, stats, map) = render(
+        &crate::integrator::SceneIntegrator::new(&sc),
+        &crate::render::RenderOptions::diagnosed(),
+        &|_| {},
+    )
+    .into_parts();
     AcneCell {
         strategy,
         epsilon,

@@ -6,7 +6,7 @@
 use crate::denoise::{DenoiseParams, denoise, gather_sampled};
 use crate::integrator::{Integrator, PathStrategy, PathTracer, SceneIntegrator};
 use crate::math::Rgb;
-use crate::render::{Image, render_sampled};
+use crate::render::{Image, render};
 use crate::sampling::{PixelSampler, SceneSampler};
 use crate::scene::{IntegratorKind, SamplerKind, Scene};
 use serde::Serialize;
@@ -221,7 +221,12 @@ pub fn render_series(scene: &Scene, series: Series) -> (Image, f64) {
 }
 
 fn run<I: Integrator, S: PixelSampler>(integrator: &I, sampler: &S) -> Image {
-    render_sampled(integrator, sampler, &|_| {}).0
+    render(
+        integrator,
+        &crate::render::RenderOptions::new().with_sampler(sampler.clone()),
+        &|_| {},
+    )
+    .image
 }
 
 /// The reference: the scene's integrator at `spp` samples in every pixel (uniform

@@ -45,7 +45,7 @@ pub fn pair(
     scene: &Scene,
     kinds: [IntegratorKind; 2],
     region: Option<[u32; 4]>,
-    render: &mut dyn FnMut(&Scene) -> (Image, RenderStats),
+    render: &mut dyn FnMut(&Scene) -> crate::render::Rendered,
 ) -> Pair {
     let (w, h) = (scene.camera.width, scene.camera.height);
     let region = region.map_or([0, 0, w, h], |[x0, y0, x1, y1]| {
@@ -54,7 +54,7 @@ pub fn pair(
     let mut side = |kind| {
         let mut s = scene.clone();
         s.settings.integrator = kind;
-        let (image, stats) = render(&s);
+        let crate::render::Rendered { image, stats, .. } = render(&s);
         Side {
             kind,
             mean_luminance: mean_luminance(&image, region),
@@ -213,9 +213,13 @@ mod tests {
         }
     }
 
-    fn fake(images: [Image; 2]) -> impl FnMut(&Scene) -> (Image, RenderStats) {
+    fn fake(images: [Image; 2]) -> impl FnMut(&Scene) -> crate::render::Rendered {
         let mut it = images.into_iter();
-        move |_| (it.next().unwrap(), RenderStats::default())
+        move |_| crate::render::Rendered {
+            image: it.next().unwrap(),
+            stats: RenderStats::default(),
+            map: crate::render::DiagnosticMap::default(),
+        }
     }
 
     #[test]

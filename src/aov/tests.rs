@@ -24,7 +24,12 @@ fn aovs(scene: &Scene, specs: &[&str]) -> AovRender {
 fn the_beauty_image_is_the_renders_bit_for_bit() {
     let scene = caustic(2);
     let r = aovs(&scene, &["c=C<RD>S+L"]);
-    let (image, stats) = render(&scene, &|_| {});
+    let (image, stats, _) = render(
+        &crate::integrator::SceneIntegrator::new(&scene),
+        &crate::render::RenderOptions::new(),
+        &|_| {},
+    )
+    .into_parts();
     assert_eq!(r.beauty, image);
     assert_eq!(r.stats.rays, stats.rays);
     // Whitted (no expressions) too.
@@ -32,7 +37,15 @@ fn the_beauty_image_is_the_renders_bit_for_bit() {
     w.camera.width = 64;
     w.camera.height = 48;
     let r = render_aovs(&SceneIntegrator::new(&w), &[], &|_| {}).unwrap();
-    assert_eq!(r.beauty, render(&w, &|_| {}).0);
+    assert_eq!(
+        r.beauty,
+        render(
+            &crate::integrator::SceneIntegrator::new(&w),
+            &crate::render::RenderOptions::new(),
+            &|_| {}
+        )
+        .image
+    );
 }
 
 #[test]

@@ -155,7 +155,12 @@ pub fn versus(
     whitted_scene.settings.integrator = IntegratorKind::Whitted;
     let mut path_scene = scene.clone();
     path_scene.settings.integrator = IntegratorKind::Path;
-    let (whitted, whitted_stats) = crate::render::render(&whitted_scene, progress);
+    let (whitted, whitted_stats, _) = crate::render::render(
+        &crate::integrator::SceneIntegrator::new(&whitted_scene),
+        &crate::render::RenderOptions::new(),
+        progress,
+    )
+    .into_parts();
     let lpes = standard_classes();
     let path = render_aovs(&SceneIntegrator::new(&path_scene), &lpes, progress)?;
     let classes = CLASSES

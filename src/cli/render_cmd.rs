@@ -60,13 +60,14 @@ pub fn run(a: &RenderArgs) -> Result<()> {
     let progress = |rows| bar.set_position(u64::from(rows));
     let (image, stats, map) = if let Some(g) = &guides {
         g.render(scene, &progress)
-    } else if a.diagnose {
-        raytree::render_diagnosed(scene, &progress)
-    } else if a.spp_map.is_some() {
-        raytree::render_sample_map(scene, &progress)
     } else {
-        let (image, stats) = raytree::render(scene, &progress);
-        (image, stats, raytree::DiagnosticMap::default())
+        // The samples per pixel are in every render's map; the diagnostics only when asked.
+        let options = if a.diagnose {
+            raytree::RenderOptions::diagnosed()
+        } else {
+            raytree::RenderOptions::new()
+        };
+        raytree::render(&raytree::SceneIntegrator::new(scene), &options, &progress).into_parts()
     };
     let secs = start.elapsed().as_secs_f64();
     bar.finish_and_clear();

@@ -204,7 +204,11 @@ fn run_pair(
     let mut secs = Vec::new();
     let p = pair(&loaded.scene, kinds, region, &mut |s| {
         let start = Instant::now();
-        let out = raytree::render::render(s, &|_| {});
+        let out = raytree::render::render(
+            &raytree::SceneIntegrator::new(s),
+            &raytree::render::RenderOptions::new(),
+            &|_| {},
+        );
         secs.push(start.elapsed().as_secs_f64());
         out
     });

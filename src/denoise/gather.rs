@@ -1,4 +1,4 @@
-//! The render with feature buffers: the same samples as [`crate::render::render_sampled`] (the
+//! The render with feature buffers: the same samples as [`crate::render::render`] with a sampler (the
 //! same pixel loop, [`crate::render::pixel_loop`], with adaptive antialiasing's passes when the
 //! scene has them, so the same image bit for bit), plus per pixel the mean albedo and normal of
 //! its samples' feature rays and the variance of its mean luminance. With adaptive
@@ -86,7 +86,7 @@ impl SampleSink for FeatureSink<'_> {
     }
 }
 
-/// [`gather_sampled`] with the scene's default sampler, as [`crate::render::render_with`].
+/// [`gather_sampled`] with the scene's default sampler, as [`crate::render::render`] by default.
 pub fn gather<I: Integrator>(
     integrator: &I,
     progress: &(dyn Fn(u32) + Sync),
@@ -95,7 +95,7 @@ pub fn gather<I: Integrator>(
     gather_sampled(integrator, &sampler, progress)
 }
 
-/// Render every pixel as [`crate::render::render_sampled`] does (the pixel loop, rows in
+/// Render every pixel as [`crate::render::render`] with a sampler does (the pixel loop, rows in
 /// parallel, copies of `sampler`; with `settings.adaptive` its two passes), and gather the
 /// features over each pixel's samples. `progress` is called with the rows finished so far.
 pub fn gather_sampled<I: Integrator, S: PixelSampler>(
@@ -108,7 +108,7 @@ pub fn gather_sampled<I: Integrator, S: PixelSampler>(
 }
 
 /// [`gather_sampled`] that also returns the samples each pixel took
-/// ([`DiagnosticMap::samples`], as [`crate::render::render_sample_map`]'s; its self-hit and
+/// ([`DiagnosticMap::samples`], as [`crate::render::Rendered::map`]'s; its self-hit and
 /// leak counts stay empty).
 pub fn gather_counted<I: Integrator, S: PixelSampler>(
     integrator: &I,

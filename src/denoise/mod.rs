@@ -2,7 +2,7 @@
 //! Dammertz et al. 2010 guided by albedo and normal buffers taken at the first non-delta hit
 //! (`features`), with the per-pixel variance steering the luminance edge stopping (the SVGF
 //! idea of Schied et al. 2017, for one frame) (`atrous`). [`gather`] renders the image with
-//! its features: the same image, bit for bit, as [`crate::render::render_with`]. The filter only
+//! its features: the same image, bit for bit, as [`crate::render::render`]. The filter only
 //! changes the image: a pixel's recorded tree (`raytree trace`, the diagram, the inspector) is
 //! always of its raw samples. See `docs/denoise.md`.
 

@@ -95,7 +95,12 @@ fn the_gathered_image_is_the_render_bit_for_bit() {
         } else {
             crate::scene::IntegratorKind::Whitted
         };
-        let (plain, stats) = render(&scene, &|_| {});
+        let (plain, stats, _) = render(
+            &crate::integrator::SceneIntegrator::new(&scene),
+            &crate::render::RenderOptions::new(),
+            &|_| {},
+        )
+        .into_parts();
         let (img, s2, f) = gather(&crate::SceneIntegrator::new(&scene), &|_| {});
         assert_eq!(plain, img, "{integrator}");
         assert_eq!(stats.rays, s2.rays);
@@ -170,7 +175,12 @@ fn a_directly_seen_lamp_is_kept_out_of_the_filter() {
     scene.settings.max_depth = 8;
     let mut reference = scene.clone();
     reference.settings.spp = 256;
-    let (reference, _) = render(&reference, &|_| {});
+    let (reference, _, _) = render(
+        &crate::integrator::SceneIntegrator::new(&reference),
+        &crate::render::RenderOptions::new(),
+        &|_| {},
+    )
+    .into_parts();
     scene.settings.spp = 4;
     let (raw, _, f) = gather(&crate::SceneIntegrator::new(&scene), &|_| {});
     let denoised = denoise(&raw, &f, &DenoiseParams::default());

@@ -10,7 +10,7 @@
 //! 4 spp, 83% of the remaining error sat in unrefined pixels beside refined ones.
 //!
 //! The render computes every pixel's first pass, then decides and traces the second passes
-//! ([`rows`]); one pixel alone ([`pixel`], so `render_pixel_counted` and `raytree trace`)
+//! ([`rows`]); one pixel alone ([`pixel`], so `render_pixel` and `raytree trace`)
 //! traces the neighbours' first passes without recording, so it makes the same decision from
 //! the same bits and records exactly the samples the render used, in the same order (first
 //! pass, then second pass) for every [`SampleSink`].

@@ -73,49 +73,6 @@ pub(crate) fn camera_sample<S: PixelSampler>(
     ((fx, fy), ray)
 }
 
-/// Trace every sample of pixel (x, y) into `rec`; returns the pixel radiance (the plain mean
-/// of its samples, whose positions the filter chose).
-pub fn render_pixel<R: Recorder>(
-    scene: &Scene,
-    x: u32,
-    y: u32,
-    rec: &mut R,
-    counts: &mut RayCounts,
-    on_sample: impl FnMut(SampleRecord),
-) -> Rgb {
-    render_pixel_with(&SceneIntegrator::new(scene), x, y, rec, counts, on_sample)
-}
-
-/// [`render_pixel`] with a prepared integrator (and so a chosen effect plan) and the scene's
-/// sampler ([`SceneSampler::for_settings`]: its kind, `spp` and `seed`).
-pub fn render_pixel_with<I: Integrator, R: Recorder>(
-    integrator: &I,
-    x: u32,
-    y: u32,
-    rec: &mut R,
-    counts: &mut RayCounts,
-    on_sample: impl FnMut(SampleRecord),
-) -> Rgb {
-    let mut sampler = SceneSampler::for_settings(&integrator.scene().settings);
-    render_pixel_sampled(integrator, &mut sampler, x, y, rec, counts, on_sample)
-}
-
-/// [`render_pixel_with`] drawing every sample from `sampler` (the sampler seam): sample `s`
-/// starts with [`PixelSampler::start_sample`], its film position is the pixel corner plus the
-/// first [`PixelSampler::next_2d`] through the filter (`camera_sample`: then the lens sample
-/// of a thin-lens camera), and the integrator draws its further dimensions.
-pub fn render_pixel_sampled<I: Integrator, S: PixelSampler, R: Recorder>(
-    integrator: &I,
-    sampler: &mut S,
-    x: u32,
-    y: u32,
-    rec: &mut R,
-    counts: &mut RayCounts,
-    on_sample: impl FnMut(SampleRecord),
-) -> Rgb {
-    render_pixel_counted(integrator, sampler, x, y, rec, counts, on_sample).0
-}
-
 /// Re-trace pixel (x, y) and record its full tree. `None` if the pixel is outside the image.
 #[must_use]
 pub fn trace_pixel(scene: &Scene, x: u32, y: u32) -> Option<RayTree> {
@@ -151,9 +108,15 @@ pub fn trace_pixel_within(
     let mut samples = Vec::new();
     let mut counts = RayCounts::default();
     let integrator = SceneIntegrator::new(scene);
-    let radiance = render_pixel_with(&integrator, x, y, &mut rec, &mut counts, |s| {
-        samples.push(s);
-    });
+    let mut sampler = SceneSampler::for_settings(&scene.settings);
+    let (radiance, _) = render_pixel(
+        &integrator,
+        &mut sampler,
+        (x, y),
+        &mut rec,
+        &mut counts,
+        |s| samples.push(s),
+    );
     // Automatic antialiasing: an edge pixel took more than its first pass.
     let edge = adaptive_plan(&integrator)
         .filter(|p| p.auto)
@@ -198,62 +161,108 @@ pub fn trace_pixel_within(
     }))
 }
 
-/// Render the whole image in parallel (rows over rayon's pool; for scenes with meshes, bands of
-/// 8 rows whose camera rays are traced as 8x8 packets, the same pixels bit for bit). `progress`
-/// is called with the number of rows finished so far, from worker threads. Non-finite pixels
-/// are written black and counted; [`RenderStats::first_nonfinite`] names the first so its tree
-/// can be inspected.
-pub fn render(scene: &Scene, progress: &(dyn Fn(u32) + Sync)) -> (Image, RenderStats) {
-    render_with(&SceneIntegrator::new(scene), progress)
+/// How [`render`] renders a whole image: the sampler its pixels draw from and whether the
+/// diagnostics run.
+#[derive(Clone, Copy, Debug)]
+pub struct RenderOptions<S = SceneSampler> {
+    /// The sampler every row or band copies; `None`: the scene's
+    /// ([`SceneSampler::for_settings`]: its kind, `spp` and `seed`). Under automatic
+    /// antialiasing ([`AdaptivePlan::auto`]) the film positions are the plan's own (the
+    /// pixel's Sobol points) and it is not used.
+    pub sampler: Option<S>,
+    /// Run the self-hit and leak diagnostics ([`DiagnosticRecorder`]): the same image, plus
+    /// the counts in [`RenderStats`] and per pixel in [`Rendered::map`]. Costs extra
+    /// intersections per spawned ray.
+    pub diagnose: bool,
 }
 
-/// [`render`] with a prepared integrator (and so a chosen effect plan) and the scene's default
-/// sampler.
-pub fn render_with<I: Integrator>(
+impl RenderOptions {
+    /// The scene's sampler, no diagnostics.
+    #[must_use]
+    pub fn new() -> Self {
+        Self {
+            sampler: None,
+            diagnose: false,
+        }
+    }
+
+    /// The scene's sampler, with the diagnostics.
+    #[must_use]
+    pub fn diagnosed() -> Self {
+        Self {
+            sampler: None,
+            diagnose: true,
+        }
+    }
+}
+
+impl Default for RenderOptions {
+    fn default() -> Self {
+        Self::new()
+    }
+}
+
+impl<S: PixelSampler> RenderOptions<S> {
+    /// These options drawing from copies of `sampler` instead.
+    #[must_use]
+    pub fn with_sampler<T: PixelSampler>(self, sampler: T) -> RenderOptions<T> {
+        RenderOptions {
+            sampler: Some(sampler),
+            diagnose: self.diagnose,
+        }
+    }
+}
+
+/// A finished [`render`].
+#[derive(Clone, Debug)]
+pub struct Rendered {
+    /// The image (non-finite pixels written black).
+    pub image: Image,
+    /// What the render did.
+    pub stats: RenderStats,
+    /// The samples each pixel took ([`DiagnosticMap::samples`]), and with
+    /// [`RenderOptions::diagnose`] its self-hit and leak counts (empty otherwise).
+    pub map: DiagnosticMap,
+}
+
+impl Rendered {
+    /// The image, the statistics and the per-pixel map, as a tuple.
+    #[must_use]
+    pub fn into_parts(self) -> (Image, RenderStats, DiagnosticMap) {
+        (self.image, self.stats, self.map)
+    }
+}
+
+/// Render the whole image by `integrator` in parallel: the one entry point of every command,
+/// the inspector and the tests. Rows go over rayon's pool; for scenes with meshes, bands of 8
+/// rows whose camera rays are traced as 8x8 packets, the same pixels bit for bit; under light
+/// tracing and BDPT the light pass splats after the camera pass. `progress` is called with the
+/// number of rows finished so far, from worker threads. Non-finite pixels are written black
+/// and counted; [`RenderStats::first_nonfinite`] names the first so its tree can be
+/// inspected.
+pub fn render<I: Integrator, S: PixelSampler>(
     integrator: &I,
+    options: &RenderOptions<S>,
     progress: &(dyn Fn(u32) + Sync),
-) -> (Image, RenderStats) {
-    let sampler = SceneSampler::for_settings(&integrator.scene().settings);
-    render_sampled(integrator, &sampler, progress)
-}
-
-/// [`render_with`] drawing samples from copies of `sampler` (one per row or band); under
-/// automatic antialiasing ([`AdaptivePlan::auto`]) the film positions are its own (the
-/// pixel's Sobol points) and `sampler` is not used.
-pub fn render_sampled<I: Integrator, S: PixelSampler>(
-    integrator: &I,
-    sampler: &S,
-    progress: &(dyn Fn(u32) + Sync),
-) -> (Image, RenderStats) {
-    let (image, stats, _) = render_recorded::<NoopRecorder, _, _>(integrator, sampler, progress);
-    (image, stats)
-}
-
-/// [`render`] that also returns the samples each pixel took ([`DiagnosticMap::samples`]; its
-/// self-hit and leak counts stay empty): the same image.
-pub fn render_sample_map(
-    scene: &Scene,
-    progress: &(dyn Fn(u32) + Sync),
-) -> (Image, RenderStats, DiagnosticMap) {
-    let integrator = SceneIntegrator::new(scene);
-    let sampler = SceneSampler::for_settings(&scene.settings);
-    render_recorded::<NoopRecorder, _, _>(&integrator, &sampler, progress)
-}
-
-/// [`render`] with the self-hit and leak diagnostics on: the same image, plus the counts in
-/// [`RenderStats`] and per pixel. Costs extra intersections per spawned ray.
-pub fn render_diagnosed(
-    scene: &Scene,
-    progress: &(dyn Fn(u32) + Sync),
-) -> (Image, RenderStats, DiagnosticMap) {
-    let integrator = SceneIntegrator::new(scene);
-    let sampler = SceneSampler::for_settings(&scene.settings);
-    render_recorded::<DiagnosticRecorder, _, _>(&integrator, &sampler, progress)
+) -> Rendered {
+    let (image, stats, map) = match (&options.sampler, options.diagnose) {
+        (Some(s), false) => render_recorded::<NoopRecorder, _, _>(integrator, s, progress),
+        (Some(s), true) => render_recorded::<DiagnosticRecorder, _, _>(integrator, s, progress),
+        (None, diagnose) => {
+            let s = SceneSampler::for_settings(&integrator.scene().settings);
+            if diagnose {
+                render_recorded::<DiagnosticRecorder, _, _>(integrator, &s, progress)
+            } else {
+                render_recorded::<NoopRecorder, _, _>(integrator, &s, progress)
+            }
+        }
+    };
+    Rendered { image, stats, map }
 }
 
 /// Rows `rows` of the image without recording, in parallel over rayon's pool: linear radiance
 /// (row-major, non-finite values as traced) and the rays traced. The same pixels as
-/// [`render_with`] (for scenes with meshes, bands of 8 rows from `rows.start` traced as 8x8
+/// [`render`] (for scenes with meshes, bands of 8 rows from `rows.start` traced as 8x8
 /// packets; under adaptive or automatic antialiasing the first passes of the rows and of the
 /// rows beside them, which the next band traces again); the inspector shows its image with it
 /// before it gathers statistics.
@@ -278,15 +287,7 @@ pub fn render_rows<I: Integrator>(
                 let row = (0..w)
                     .map(|x| {
                         let rec = &mut NoopRecorder;
-                        render_pixel_sampled(
-                            integrator,
-                            &mut sampler,
-                            x,
-                            y,
-                            rec,
-                            &mut counts,
-                            |_| {},
-                        )
+                        render_pixel(integrator, &mut sampler, (x, y), rec, &mut counts, |_| {}).0
                     })
                     .collect();
                 (row, counts)
@@ -369,15 +370,20 @@ fn render_recorded<R: Recorder + Default, I: Integrator, S: PixelSampler>(
     (image, stats, map)
 }
 
-/// Trace every sample of pixel (x, y) into `rec`; returns the pixel radiance (the mean of its
-/// samples) and how many samples it took: `spp`, or with `settings.adaptive` `max_spp` where
-/// the pixel is refined (the two passes of `src/render/adaptive.rs`). The pixel loop
-/// ([`pixel_loop::pixel`]) with the sink that reports each recorded sample through `on_sample`.
-pub fn render_pixel_counted<I: Integrator, S: PixelSampler, R: Recorder>(
+/// Trace every sample of pixel `(x, y)` by `integrator` into `rec`, drawing from `sampler`
+/// (the sampler seam; [`SceneSampler::for_settings`] for the scene's own): sample `s` starts
+/// with [`PixelSampler::start_sample`], its film position is the pixel plus the first
+/// [`PixelSampler::next_2d`] through the filter (`camera_sample`: then the lens sample of a
+/// thin-lens camera), and the integrator draws its further dimensions. Returns the pixel
+/// radiance (the mean of its samples) and how many samples it took: `spp`, or with
+/// `settings.adaptive` `max_spp` where the pixel is refined (the two passes of
+/// `src/render/adaptive.rs`). The pixel loop ([`pixel_loop::pixel`]) with the sink that
+/// reports each recorded sample through `on_sample`. Under light tracing and BDPT this is the
+/// camera samples' part only: [`trace_pixel`] adds the splats.
+pub fn render_pixel<I: Integrator, S: PixelSampler, R: Recorder>(
     integrator: &I,
     sampler: &mut S,
-    x: u32,
-    y: u32,
+    (x, y): (u32, u32),
     rec: &mut R,
     counts: &mut RayCounts,
     on_sample: impl FnMut(SampleRecord),

@@ -35,8 +35,8 @@ const TILE: u32 = 8;
 
 /// Rows `y0..y0 + rows` (at most [`TILE`]) without recording, a tile of camera rays at a time
 /// through [`Scene::intersect_packet`]: the pixels (row-major) and the ray counts. Each pixel
-/// sums its samples in the same order as [`render_pixel_with`], and each ray's hit is its single
-/// ray's, so the pixels are [`render_pixel_sampled`]'s bit for bit (the integrator takes
+/// sums its samples in the same order as [`render_pixel`], and each ray's hit is its single
+/// ray's, so the pixels are [`render_pixel`]'s bit for bit (the integrator takes
 /// packets only when it draws nothing from the sampler past the film offset).
 fn render_band<R: Recorder + Default, I: Integrator, S: PixelSampler>(
     integrator: &I,

@@ -2,7 +2,7 @@
 //! [`AdaptivePlan`](super::AdaptivePlan) the two passes of `src/render/adaptive.rs`), draw each camera sample
 //! from the scene's sampler (`camera_sample`), trace it, apply the NaN rule
 //! ([`RayCounts::keep_sample`]) and hand it to a [`SampleSink`]. The render ([`Beauty`]), a
-//! pixel's tree (`render_pixel_counted`), the AOV render (`crate::aov::render_aovs`: the
+//! pixel's tree (`render_pixel`), the AOV render (`crate::aov::render_aovs`: the
 //! split by light path expression and the debug views' statistics) and the denoiser's feature
 //! gather (`crate::denoise::gather`) are sinks of this loop, so they take the same samples in
 //! the same order and their beauty images are the render's bit for bit, adaptive or not.

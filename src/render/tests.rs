@@ -1,5 +1,5 @@
 //! The pixel filter and the thin lens through the render path: the film positions and camera-ray
-//! origins that [`render_pixel_sampled`] records follow the filter's and the lens disk's pdfs
+//! origins that [`render_pixel`] records follow the filter's and the lens disk's pdfs
 //! (chi-square, `sampling::chi2`), with the default sampler at fixed seeds.
 
 use super::*;
@@ -32,11 +32,10 @@ fn recorded(scene: &Scene) -> (Vec<DVec2>, Vec<DVec2>) {
         let mut rec = TreeRecorder::default();
         let mut samples = Vec::new();
         let mut counts = RayCounts::default();
-        render_pixel_sampled(
+        render_pixel(
             &integrator,
             &mut sampler,
-            x,
-            2,
+            (x, 2),
             &mut rec,
             &mut counts,
             |s| {

@@ -7,6 +7,7 @@ mod adaptive;
 #[cfg(test)]
 pub(crate) mod chi2;
 mod filter;
+mod pixel_sampler;
 mod scene_sampler;
 mod sobol;
 mod stratified;
@@ -16,6 +17,7 @@ pub mod warp;
 
 pub use adaptive::{CONTRAST_FLOOR, Spread, contrast};
 pub use filter::PixelFilter;
+pub use pixel_sampler::PixelSampler;
 pub use scene_sampler::{SamplerKind, SceneSampler};
 pub use sobol::{SobolSampler, SplitMix64, mix64, nested_uniform_scramble, pixel_key, sample_2d};
-pub use stratified::{PixelSampler, StratifiedJitter, splitmix64, unit};
+pub use stratified::{StratifiedJitter, splitmix64, unit};

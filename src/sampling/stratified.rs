@@ -1,34 +1,7 @@
-//! The per-pixel sampler seam: where every sample position (and, for stochastic integrators,
-//! every random number of a camera sample) comes from.
-//!
-//! A sampler is deterministic in (seed, pixel, sample index, dimension): the render and the
-//! re-trace of one pixel ask it the same questions in the same order and get the same bits, so
-//! a recorded tree equals its rendered pixel. [`render_pixel_sampled`](crate::render) calls
-//! [`PixelSampler::start_sample`] before each camera sample and takes the film offset inside
-//! the pixel as the sample's first [`PixelSampler::next_2d`]; integrators draw further
-//! dimensions from the same sampler. [`StratifiedJitter`] is the default, today's positions bit
-//! for bit at seed 0.
+//! [`StratifiedJitter`], the default [`PixelSampler`]: jittered strata in the pixel, today's
+//! positions bit for bit at seed 0; and the small hashes the samplers share.
 
-/// A source of sample values in `[0, 1)`, restarted for each (pixel, sample index).
-///
-/// Implementations must be deterministic: after `start_sample(pixel, index)` the sequence of
-/// `next_1d`/`next_2d` answers depends only on the sampler's configuration (seed, samples per
-/// pixel), the pixel, the index and the position in the sequence (the dimension).
-pub trait PixelSampler: Clone + Send + Sync {
-    /// Start sample `index` of pixel `(x, y)`: the next value is dimension 0.
-    fn start_sample(&mut self, pixel: (u32, u32), index: u32);
-    /// The next dimension, in `[0, 1)`.
-    fn next_1d(&mut self) -> f64;
-    /// The next two dimensions, in `[0, 1)^2`.
-    fn next_2d(&mut self) -> (f64, f64);
-    /// Turn this (a copy of the pixel's sampler) into the sampler of adaptive antialiasing's
-    /// second pass: samples `first..first + count` of the same pixels. The default continues
-    /// the sequence (indices from `first` on); a stratified sampler puts the pass on its own
-    /// complete grid of `count` strata, so that no stratum is left empty.
-    fn refine(&mut self, first: u32, count: u32) {
-        let _ = (first, count);
-    }
-}
+use super::PixelSampler;
 
 /// SplitMix64 (Steele, Lea, Flood 2014): a tiny, well-mixed hash for per-pixel seeds.
 #[must_use]
@@ -86,7 +59,7 @@ impl StratifiedJitter {
             base: 0,
             cols,
             rows,
-            // Branch-free would hash twice per construction, and `render_pixel_with` builds one
+            // Branch-free would hash twice per construction, and `render_pixel`'s callers build one
             // per pixel; at seed 0 the mix is 0 by definition.
             seed_mix: if seed == 0 {
                 0

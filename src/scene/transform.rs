@@ -87,8 +87,18 @@ mod tests {
         // Scale by a power of two and translate by whole checker cells (2 x cell size):
         // every computation scales exactly, so the image matches closely.
         let moved = transformed(&s, 4.0, DVec3::new(8.0, 0.0, -16.0));
-        let (a, _) = render(&s, &|_| {});
-        let (b, _) = render(&moved, &|_| {});
+        let (a, _, _) = render(
+            &crate::integrator::SceneIntegrator::new(&s),
+            &crate::render::RenderOptions::new(),
+            &|_| {},
+        )
+        .into_parts();
+        let (b, _, _) = render(
+            &crate::integrator::SceneIntegrator::new(&moved),
+            &crate::render::RenderOptions::new(),
+            &|_| {},
+        )
+        .into_parts();
         let worst = crate::analysis::cost::compare(&a, &b)
             .expect("same size")
             .max;

@@ -5,6 +5,8 @@
 use ::raytree::math::Rgb;
 use ::raytree::scene::IntegratorKind;
 use ::raytree::{Scene, render};
+use raytree::SceneIntegrator;
+use raytree::render::RenderOptions;
 
 /// The mean of the three channels.
 pub fn lum(c: Rgb) -> f64 {
@@ -24,7 +26,12 @@ pub fn blocks(scene: &Scene, kind: IntegratorKind, seed: u64) -> Vec<f64> {
     let mut scene = scene.clone();
     scene.settings.integrator = kind;
     scene.settings.seed = seed;
-    let (image, _) = render(&scene, &|_| {});
+    let (image, _, _) = render(
+        &SceneIntegrator::new(&scene),
+        &RenderOptions::new(),
+        &|_| {},
+    )
+    .into_parts();
     let (w, h) = (image.width as usize, image.height as usize);
     let mut out = vec![0.0; (w / 8) * (h / 8)];
     for y in 0..h / 8 * 8 {

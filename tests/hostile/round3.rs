@@ -7,6 +7,8 @@
 use super::finite::nonfinite_tokens;
 use super::harness::{MEM_MIB, Run, run, run_with, snapshot, temp_files};
 use super::outputs::{BIN, classic};
+use raytree::SceneIntegrator;
+use raytree::render::RenderOptions;
 use std::path::Path;
 use std::process::{Command, Stdio};
 use std::time::Duration;
@@ -547,8 +549,18 @@ fn lamp_scene(copies: usize, integrator: &str) -> raytree::Scene {
 #[test]
 fn coincident_emitters_light_the_floor_once() {
     for integrator in ["path", "whitted"] {
-        let (one, _) = raytree::render(&lamp_scene(1, integrator), &|_| {});
-        let (many, _) = raytree::render(&lamp_scene(100, integrator), &|_| {});
+        let (one, _, _) = raytree::render(
+            &SceneIntegrator::new(&lamp_scene(1, integrator)),
+            &RenderOptions::new(),
+            &|_| {},
+        )
+        .into_parts();
+        let (many, _, _) = raytree::render(
+            &SceneIntegrator::new(&lamp_scene(100, integrator)),
+            &RenderOptions::new(),
+            &|_| {},
+        )
+        .into_parts();
         let lum = |i: &raytree::Image| i.pixels.iter().map(|p| p.x).sum::<f64>();
         assert!(lum(&one) > 0.0, "{integrator}: the floor is lit");
         assert_eq!(one.pixels, many.pixels, "{integrator}");
@@ -567,7 +579,12 @@ fn a_finite_mean_is_written_when_the_running_sum_overflows() {
             "settings": {{"integrator": "{integrator}", "spp": 4, "antialiasing": "uniform"}}}}"#
         );
         let scene = raytree::Scene::from_json(&json).unwrap();
-        let (img, stats) = raytree::render(&scene, &|_| {});
+        let (img, stats, _) = raytree::render(
+            &SceneIntegrator::new(&scene),
+            &RenderOptions::new(),
+            &|_| {},
+        )
+        .into_parts();
         assert_eq!(stats.nonfinite_pixels, 0, "{integrator}");
         for p in &img.pixels {
             assert!(

@@ -197,7 +197,15 @@ pub fn run(scene: &Scene, sweep: &Sweep, progress: &dyn Fn(usize, usize)) -> Cos
     let mut done = 0;
     let mut refs = Vec::new();
     for r in wanted {
-        refs.push((r, render(&with_settings(scene, r), &|_| {}).0));
+        refs.push((
+            r,
+            render(
+                &crate::integrator::SceneIntegrator::new(&with_settings(scene, r)),
+                &crate::render::RenderOptions::new(),
+                &|_| {},
+            )
+            .image,
+        ));
         done += 1;
         progress(done, total);
     }
@@ -208,13 +216,17 @@ pub fn run(scene: &Scene, sweep: &Sweep, progress: &dyn Fn(usize, usize)) -> Cos
         let mut last = None;
         for _ in 0..repeats {
             let start = Instant::now();
-            let r = render(&s, &|_| {});
+            let r = render(
+                &crate::integrator::SceneIntegrator::new(&s),
+                &crate::render::RenderOptions::new(),
+                &|_| {},
+            );
             times.push(start.elapsed().as_secs_f64() * 1e3);
             last = Some(r);
             done += 1;
             progress(done, total);
         }
-        let (image, stats) = last.expect("at least one repeat");
+        let crate::render::Rendered { image, stats, .. } = last.expect("at least one repeat");
         let want = sweep.reference_for(&axis, &settings, &reference);
         let reference = &refs
             .iter()

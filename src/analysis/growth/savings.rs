@@ -117,7 +117,14 @@ pub fn cut_savings(
             if cancelled() {
                 return None;
             }
-            crate::render::render_pixel_with(&tracer, x, y, &mut NoopRecorder, &mut counts, |_| {});
+            crate::render::render_pixel(
+                &tracer,
+                &mut crate::sampling::SceneSampler::for_settings(&tracer.scene().settings),
+                (x, y),
+                &mut NoopRecorder,
+                &mut counts,
+                |_| {},
+            );
         }
         Some(counts)
     };

@@ -102,7 +102,12 @@ mod tests {
     fn encodings_have_their_magic_numbers() {
         let mut scene = crate::Scene::default_scene();
         scene.camera = scene.camera.with_size(8, 4);
-        let (img, _) = crate::render(&scene, &|_| {});
+        let (img, _, _) = crate::render(
+            &crate::integrator::SceneIntegrator::new(&scene),
+            &crate::render::RenderOptions::new(),
+            &|_| {},
+        )
+        .into_parts();
         assert_eq!(&png(&img).unwrap()[1..4], b"PNG");
         let (bytes, warning) = exr(&img).unwrap();
         assert_eq!(&bytes[..4], &[0x76, 0x2f, 0x31, 0x01]);
@@ -120,7 +125,12 @@ mod tests {
     fn non_finite_values_are_clamped_with_a_warning_or_refused() {
         let mut scene = crate::Scene::default_scene();
         scene.camera = scene.camera.with_size(8, 4);
-        let (mut img, _) = crate::render(&scene, &|_| {});
+        let mut img = crate::render(
+            &crate::integrator::SceneIntegrator::new(&scene),
+            &crate::render::RenderOptions::new(),
+            &|_| {},
+        )
+        .image;
         img.pixels[1].x = 1e42;
         img.pixels[2].y = f64::NAN;
         let (bytes, warning) = exr(&img).unwrap();

@@ -260,7 +260,15 @@ mod tests {
             let tree = trace_pixel(&scene, x, y).unwrap();
             let mut rec = StatsRecorder::default();
             let mut counts = RayCounts::default();
-            let l = render_pixel(&scene, x, y, &mut rec, &mut counts, |_| {});
+            let l = render_pixel(
+                &crate::integrator::SceneIntegrator::new(&scene),
+                &mut crate::sampling::SceneSampler::for_settings(&scene.settings),
+                (x, y),
+                &mut rec,
+                &mut counts,
+                |_| {},
+            )
+            .0;
             assert_eq!(l, tree.radiance);
             let s = rec.take(1);
             assert_eq!(s, summarize(&tree.nodes, 1));

@@ -91,7 +91,11 @@ fn compare(scene: &Scene, kinds: [IntegratorKind; 2]) -> Result<Outcome, String>
         });
     }
     let p = pair(scene, kinds, None, &mut |s| {
-        crate::render::render(s, &|_| {})
+        crate::render::render(
+            &crate::integrator::SceneIntegrator::new(s),
+            &crate::render::RenderOptions::new(),
+            &|_| {},
+        )
     });
     Ok(Outcome {
         summary: p.summary(),

@@ -61,7 +61,12 @@ fn sobol_passes_equal_render_and_the_estimate_falls() {
     let passes = accumulate(&scene, &[4, 8, 16, 64]);
     for (n, _, image) in &passes {
         scene.settings.spp = *n;
-        let (want, _) = crate::render(&scene, &|_| {});
+        let (want, _, _) = crate::render(
+            &crate::integrator::SceneIntegrator::new(&scene),
+            &crate::render::RenderOptions::new(),
+            &|_| {},
+        )
+        .into_parts();
         assert_eq!(image, &want.pixels, "{n} spp");
     }
     let errors: Vec<f64> = passes.iter().map(|p| p.1).collect();
@@ -82,7 +87,16 @@ fn stratified_first_pass_equals_render_and_later_passes_add_new_samples() {
     scene.settings.sampler = Some(SamplerKind::Stratified);
     let passes = accumulate(&scene, &[4, 8]);
     scene.settings.spp = 4;
-    assert_eq!(passes[0].2, crate::render(&scene, &|_| {}).0.pixels);
+    assert_eq!(
+        passes[0].2,
+        crate::render(
+            &crate::integrator::SceneIntegrator::new(&scene),
+            &crate::render::RenderOptions::new(),
+            &|_| {}
+        )
+        .image
+        .pixels
+    );
     assert_ne!(passes[0].2, passes[1].2);
     assert!(passes[1].1 < passes[0].1, "{} {}", passes[1].1, passes[0].1);
 }
@@ -157,7 +171,16 @@ fn a_progressive_job_refines_and_stops_at_the_target() {
     assert_eq!(reports2[2].stop, Some(Stop::Target));
     assert_eq!(reports2[2].error, reports[2].error);
     scene.settings.spp = 16;
-    assert_eq!(image, crate::render(&scene, &|_| {}).0.pixels);
+    assert_eq!(
+        image,
+        crate::render(
+            &crate::integrator::SceneIntegrator::new(&scene),
+            &crate::render::RenderOptions::new(),
+            &|_| {}
+        )
+        .image
+        .pixels
+    );
 }
 
 /// Issue 32: the estimate's composition. Its terms are what the estimate is the RMS of; on the

@@ -11,7 +11,7 @@ use crate::gui::jobs::progressive;
 use crate::gui::model::stats::{PixelStats, StatsRecorder};
 use crate::integrator::{Integrator, NoopRecorder, RayCounts, SceneIntegrator};
 use crate::math::Rgb;
-use crate::render::{render_pixel_with, render_rows};
+use crate::render::{render_pixel, render_rows};
 use rayon::prelude::*;
 use web_time::Instant;
 
@@ -221,7 +221,17 @@ impl JobRun {
                 let mut counts = RayCounts::default();
                 let (px, st) = (0..w)
                     .map(|x| {
-                        let l = render_pixel_with(tracer, x, y, &mut rec, &mut counts, |_| {});
+                        let l = render_pixel(
+                            tracer,
+                            &mut crate::sampling::SceneSampler::for_settings(
+                                &tracer.scene().settings,
+                            ),
+                            (x, y),
+                            &mut rec,
+                            &mut counts,
+                            |_| {},
+                        )
+                        .0;
                         (if l.is_finite() { l } else { Rgb::ZERO }, rec.take(spp))
                     })
                     .unzip();
@@ -293,7 +303,15 @@ impl JobRun {
         let row = self.row.get_or_insert_with(Row::default);
         loop {
             let x = row.pixels.len() as u32;
-            let l = render_pixel_with(tracer, x, y0, &mut NoopRecorder, &mut self.rays, |_| {});
+            let l = render_pixel(
+                tracer,
+                &mut crate::sampling::SceneSampler::for_settings(&tracer.scene().settings),
+                (x, y0),
+                &mut NoopRecorder,
+                &mut self.rays,
+                |_| {},
+            )
+            .0;
             row.pixels.push(if l.is_finite() { l } else { Rgb::ZERO });
             if x + 1 == w {
                 break;
@@ -327,7 +345,15 @@ impl JobRun {
         let mut rec = StatsRecorder::default();
         loop {
             let x = row.stats.len() as u32;
-            let l = render_pixel_with(tracer, x, y0, &mut rec, &mut self.rays, |_| {});
+            let l = render_pixel(
+                tracer,
+                &mut crate::sampling::SceneSampler::for_settings(&tracer.scene().settings),
+                (x, y0),
+                &mut rec,
+                &mut self.rays,
+                |_| {},
+            )
+            .0;
             row.pixels.push(if l.is_finite() { l } else { Rgb::ZERO });
             row.stats.push(rec.take(spp));
             if x + 1 == w {

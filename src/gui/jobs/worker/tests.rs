@@ -44,7 +44,12 @@ fn a_newer_job_supersedes_an_older_one_and_matches_render() {
         }
     }
     assert_eq!(stats_rows, 36);
-    let (image, _) = crate::render(&scene, &|_| {});
+    let (image, _, _) = crate::render(
+        &crate::integrator::SceneIntegrator::new(&scene),
+        &crate::render::RenderOptions::new(),
+        &|_| {},
+    )
+    .into_parts();
     assert_eq!(pixels, image.pixels);
     // The statistics are those of each pixel's recorded tree.
     for (x, y) in [(10, 5), (40, 20), (63, 35)] {
@@ -90,7 +95,16 @@ fn with_a_debug_view_one_recorded_pass_delivers_the_same_image_and_statistics() 
     assert_eq!(a.0, b.0);
     assert_eq!(a.1, b.1);
     assert_eq!(a.2, b.2);
-    assert_eq!(a.0, crate::render(&scene, &|_| {}).0.pixels);
+    assert_eq!(
+        a.0,
+        crate::render(
+            &crate::integrator::SceneIntegrator::new(&scene),
+            &crate::render::RenderOptions::new(),
+            &|_| {}
+        )
+        .image
+        .pixels
+    );
 }
 
 #[test]

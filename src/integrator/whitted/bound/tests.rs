@@ -124,7 +124,15 @@ fn the_ray_budget_cuts_each_sample_and_keeps_the_tree_whole() {
             t.nodes.len()
         );
         let mut counts = RayCounts::default();
-        let l = render_pixel(&s, x, y, &mut NoopRecorder, &mut counts, |_| {});
+        let l = render_pixel(
+            &crate::integrator::SceneIntegrator::new(&s),
+            &mut crate::sampling::SceneSampler::for_settings(&s.settings),
+            (x, y),
+            &mut NoopRecorder,
+            &mut counts,
+            |_| {},
+        )
+        .0;
         assert_eq!(l, t.radiance);
         assert_eq!(counts.budget_samples > 0, cut > 0);
     }
