@@ -275,3 +275,48 @@ fn diff_splits_a_bidirectional_pixel_by_strategy() {
     assert!(out.status.success(), "{out:?}");
     assert!(text.contains("by strategy ("), "{text}");
 }
+
+/// The sample list and the firefly sentence understand strategies: under BDPT each sample's
+/// paths carry their `(s, t)`, the rows' labels name it, and a firefly's sentence names its
+/// strategy and MIS weight (a caustic under BDPT is not "at full MIS weight": the strategies
+/// from the light's side share it).
+#[test]
+fn sample_rows_and_fireflies_name_their_strategy() {
+    let p = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("fixtures/caustic.json");
+    let mut scene = Scene::from_json(&std::fs::read_to_string(p).unwrap()).unwrap();
+    scene.camera = scene.camera.with_size(48, 36);
+    scene.settings.integrator = IntegratorKind::Bdpt;
+    scene.settings.spp = 16;
+    let mut fireflies = Vec::new();
+    let mut labelled = 0;
+    for y in (14..30).step_by(2) {
+        for x in (8..40).step_by(2) {
+            let tree = raytree::trace_pixel(&scene, x, y).unwrap();
+            for row in raytree::analysis::samples::sample_rows(&tree) {
+                for path in &row.paths {
+                    match path.strategy {
+                        Some([s, t]) => {
+                            assert_eq!(path.label(), format!("{} s={s} t={t}", path.lpe));
+                            labelled += 1;
+                        }
+                        // The background a camera ray escaped to is no strategy's.
+                        None => assert_eq!(path.label(), path.lpe),
+                    }
+                }
+                if let Some(f) = raytree::analysis::firefly::explain(&tree, row.index) {
+                    fireflies.push(f.sentence());
+                }
+            }
+        }
+    }
+    assert!(labelled > 100, "{labelled} paths");
+    assert!(
+        !fireflies.is_empty(),
+        "some BDPT firefly in the caustic's middle"
+    );
+    for f in &fireflies {
+        assert!(f.contains("strategy s="), "{f}");
+        assert!(f.contains("MIS weigh"), "{f}");
+        assert!(!f.contains("at full MIS weight"), "{f}");
+    }
+}

@@ -20,6 +20,19 @@ pub struct SamplePath {
     pub lpe: String,
     /// What it adds to the sample's radiance.
     pub contribution: Rgb,
+    /// Light tracing and BDPT: the strategy `(s, t)` that made it.
+    pub strategy: Option<[u32; 2]>,
+}
+
+impl SamplePath {
+    /// Its LPE, and under light tracing and BDPT its strategy: `C<RD>L s=1 t=2`.
+    #[must_use]
+    pub fn label(&self) -> String {
+        match self.strategy {
+            Some([s, t]) => format!("{} s={s} t={t}", self.lpe),
+            None => self.lpe.clone(),
+        }
+    }
 }
 
 /// One sample of the pixel.
@@ -79,6 +92,7 @@ pub fn sample_rows(tree: &RayTree) -> Vec<SampleRow> {
                         node: id,
                         lpe: p.lpe.clone(),
                         contribution: p.contribution,
+                        strategy: p.strategy,
                     });
                 }
             }

@@ -35,6 +35,18 @@ impl StrategyPart {
     }
 }
 
+/// What strategy `(s, t)` is, in words (`None`: what camera rays saw without a strategy).
+#[must_use]
+pub fn strategy_words(strategy: Option<[u32; 2]>) -> &'static str {
+    match strategy {
+        None => "seen directly by camera rays",
+        Some([0, _]) => "the camera path hit an emitter",
+        Some([1, _]) => "light sampling from the camera path",
+        Some([_, 1]) => "light tracing: a light path splatted to the camera",
+        Some(_) => "a connection between a light and a camera path",
+    }
+}
+
 /// Whether `tree` holds bidirectional strategies (a `light` or `bdpt` tree).
 #[must_use]
 pub fn has_strategies(tree: &RayTree) -> bool {

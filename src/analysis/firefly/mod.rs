@@ -103,6 +103,8 @@ pub struct Firefly {
     pub roulette_gain: f64,
     /// The pixel's samples.
     pub samples: usize,
+    /// Light tracing and BDPT: the strategy `(s, t)` of the dominant path and its MIS weight.
+    pub strategy: Option<([u32; 2], f64)>,
 }
 
 impl Firefly {
@@ -132,12 +134,12 @@ impl Firefly {
                 weight,
                 events,
             } => format!(
-                "a caustic found by BSDF sampling. Light sampling cannot reach the light through the specular chain, so only the {} bounce's BSDF sample finds it, at full MIS weight; the sample itself is ordinary{}, what is rare is the event: {} of the pixel's {} samples found the light this way",
-                if *lobe == LobeKind::Diffuse {
+                "a caustic found by BSDF sampling. {}; the sample itself is ordinary{}, what is rare is the event: {} of the pixel's {} samples found the light this way",
+                self.caustic_reach(if *lobe == LobeKind::Diffuse {
                     "diffuse"
                 } else {
                     "glossy"
-                },
+                }),
                 match weight {
                     Some(w) => format!(" (f cos/pdf = {}{})", g(*w), pdf_inner(*pdf)),
                     None => pdf_text(*pdf),
@@ -173,7 +175,29 @@ impl Firefly {
         } else {
             String::new()
         };
-        format!("{head}{why}{gain} (#{}).", self.node.0)
+        let strategy = match self.strategy {
+            Some(([s, t], w)) if !matches!(self.cause, Cause::Caustic { .. }) => format!(
+                "; its light came by strategy s={s} t={t} ({}) at MIS weight {w:.3}",
+                crate::analysis::strategy_parts::strategy_words(Some([s, t]))
+            ),
+            _ => String::new(),
+        };
+        format!("{head}{why}{gain}{strategy} (#{}).", self.node.0)
+    }
+
+    /// Why a caustic's camera path carries it: under the path tracer the light sample cannot
+    /// reach the light through the specular chain, so the `lobe` bounce's BSDF sample carries
+    /// it at full weight; under BDPT the strategies from the light's side find such paths too,
+    /// and MIS weighs this one by its recorded weight.
+    fn caustic_reach(&self, lobe: &str) -> String {
+        match self.strategy {
+            Some(([s, t], w)) => format!(
+                "The camera path hit the lamp after the {lobe} bounce (strategy s={s} t={t}); the strategies from the light's side find such paths too, so MIS weighs this one {w:.3}"
+            ),
+            None => format!(
+                "Light sampling cannot reach the light through the specular chain, so only the {lobe} bounce's BSDF sample finds it, at full MIS weight"
+            ),
+        }
     }
 }
 
@@ -280,6 +304,7 @@ pub fn explain(tree: &RayTree, sample: usize) -> Option<Firefly> {
         cause,
         roulette_gain: roulette_gain(tree, &chain),
         samples: tree.samples.len(),
+        strategy: info.strategy.map(|st| (st, info.mis_weight.unwrap_or(1.0))),
     })
 }
 

@@ -4,19 +4,8 @@
 //! sentence, which these trees do not fit (they have connections, not shadow rays).
 
 use crate::analysis::explain::{Sentence, SentenceKind, ids, luminance, num};
-use crate::analysis::strategy_parts::{StrategyPart, strategy_parts};
+use crate::analysis::strategy_parts::{StrategyPart, strategy_parts, strategy_words};
 use crate::tree::RayTree;
-
-/// What strategy `(s, t)` is, in words.
-fn strategy_words(strategy: Option<[u32; 2]>) -> &'static str {
-    match strategy {
-        None => "seen directly by camera rays",
-        Some([0, _]) => "the camera path hit an emitter",
-        Some([1, _]) => "light sampling from the camera path",
-        Some([_, 1]) => "light tracing: a light path splatted to the camera",
-        Some(_) => "a connection between a light and a camera path",
-    }
-}
 
 pub(super) use crate::analysis::strategy_parts::has_strategies;
 

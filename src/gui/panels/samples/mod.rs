@@ -264,8 +264,8 @@ fn list_ui(
             for r in &rows[range] {
                 let on = selected == Some(r.index);
                 let lpe = match (r.dominant(), r.paths.len()) {
-                    (Some(p), 1) => p.lpe.clone(),
-                    (Some(p), n) => format!("{} (+{} paths)", p.lpe, n - 1),
+                    (Some(p), 1) => p.label(),
+                    (Some(p), n) => format!("{} (+{} paths)", p.label(), n - 1),
                     (None, 0) => "-".into(),
                     (None, n) => format!("no light ({n} paths)"),
                 };
@@ -308,7 +308,7 @@ fn row_tip(r: &SampleRow) -> String {
     for p in &r.paths {
         t.push_str(&format!(
             "\n{} (#{}): {}",
-            p.lpe,
+            p.label(),
             p.node.0,
             rgb(p.contribution)
         ));
