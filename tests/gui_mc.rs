@@ -355,3 +355,29 @@ fn the_strategies_section_shows_each_strategys_share() {
     h.run();
     let _ = h.get_by_label("split again");
 }
+
+/// Issue 30: under light tracing and BDPT the "denoised image" is refused, as `raytree render
+/// --denoise` refuses it (its guide pass is a camera pass: a light-traced image is nearly all
+/// splats, and the inspector showed the filter's black image), and the status says why.
+#[test]
+fn the_denoiser_is_refused_under_light_tracing() {
+    let mut h = gui_support::read_only_inspector(
+        include_str!("../fixtures/caustic.json"),
+        Box::new(|s: &mut raytree::Scene| {
+            s.camera = s.camera.with_size(48, 36);
+            s.settings.spp = 2;
+            s.settings.integrator = raytree::scene::IntegratorKind::Light;
+            Ok(())
+        }),
+    );
+    h.get_by_label("denoised image").click();
+    for _ in 0..5 {
+        h.run();
+    }
+    assert!(!h.state().shows_denoised());
+    assert!(matches!(
+        h.state().denoise_state(),
+        Some(raytree::gui::jobs::denoise::DenoiseState::Unavailable(why)) if why.contains("light tracing")
+    ));
+    let _ = h.get_by_label_contains("denoise: not under light tracing or BDPT");
+}

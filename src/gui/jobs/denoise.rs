@@ -58,6 +58,17 @@ impl DenoiseView {
                 DenoiseState::Unavailable("not with progressive rendering"),
             );
         }
+        if doc.scene.settings.integrator.splats() {
+            // As `raytree render --denoise` refuses: the guide pass is a camera pass, and these
+            // pixels also hold the light paths' splats (a light-traced image is nearly all
+            // splats: the filter would show a black image).
+            return (
+                None,
+                DenoiseState::Unavailable(
+                    "not under light tracing or BDPT (their pixels also hold light-path splats, which the guide pass leaves out)",
+                ),
+            );
+        }
         let Some(key) = key(doc) else {
             return (None, DenoiseState::Waiting);
         };
