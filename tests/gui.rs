@@ -279,3 +279,68 @@ fn exports_warn_or_refuse_as_the_command_line_does_for_non_finite_values() {
         .expect("written");
     assert!(!svg.contains("NaN") && !svg.contains("inf\""), "finite SVG");
 }
+
+/// Issue 31: the scene's text in a window. **Edit** opens the file's text; a broken edit
+/// applied names its line and column and keeps the scene; a good one is loaded as the scene
+/// without writing the file; **revert** takes the file's text again.
+#[test]
+fn the_scene_text_is_edited_and_applied_without_writing_the_file() {
+    let files = MemFiles::default();
+    let mut h = classic_harness(&files);
+    h.get_by_label("Edit").click();
+    h.run();
+    assert_eq!(h.state().scene_editor(), (true, CLASSIC));
+    let ior = |h: &Harness<'static, InspectorApp>| {
+        h.state()
+            .session
+            .doc
+            .scene
+            .materials
+            .iter()
+            .filter_map(|m| m.ior)
+            .fold(0.0, f64::max)
+    };
+    assert_eq!(ior(&h), 1.5);
+    // A broken edit: the error names the file, line and column; the scene stays.
+    let broken = CLASSIC.replacen('{', "{ \"camera\": 7,", 1);
+    h.get_by_role(Role::MultilineTextInput)
+        .set_text_value_accesskit(&broken);
+    h.run();
+    h.get_by_label("apply").click();
+    settle(&mut h);
+    h.run();
+    assert!(
+        has(
+            &h,
+            "scenes/classic.json:2:3: camera: duplicate key \"camera\" (first defined at 1:3)"
+        ),
+        "the error names line and column: {:?}",
+        h.state().session.doc.error
+    );
+    assert_eq!(ior(&h), 1.5, "the scene stays");
+    // A good edit is loaded, and the file is not written.
+    let clear = CLASSIC.replace("\"ior\": 1.5", "\"ior\": 1.0");
+    h.get_by_role(Role::MultilineTextInput)
+        .set_text_value_accesskit(&clear);
+    h.run();
+    h.get_by_label("apply").click();
+    settle(&mut h);
+    h.run();
+    assert_eq!(ior(&h), 1.0, "the edited scene is shown");
+    assert!(
+        h.state()
+            .session
+            .doc
+            .status
+            .starts_with("applied the edited text of scenes/classic.json")
+    );
+    assert_eq!(
+        files.get("scenes/classic.json").as_deref(),
+        Some(CLASSIC),
+        "not written"
+    );
+    assert!(!has(&h, "duplicate key"), "the error is gone");
+    h.get_by_label("revert").click();
+    h.run();
+    assert_eq!(h.state().scene_editor(), (true, CLASSIC));
+}

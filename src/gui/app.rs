@@ -33,6 +33,7 @@ pub struct InspectorApp {
     samples: crate::gui::panels::samples::SamplesView,
     versus: crate::gui::panels::versus::VersusPanel,
     strategies: crate::gui::panels::strategies::StrategiesPanel,
+    editor: crate::gui::panels::editor::SceneEditor,
 }
 
 impl InspectorApp {
@@ -55,6 +56,7 @@ impl InspectorApp {
             samples: Default::default(),
             versus: Default::default(),
             strategies: Default::default(),
+            editor: Default::default(),
         }
     }
 
@@ -62,6 +64,12 @@ impl InspectorApp {
     #[must_use]
     pub fn denoise_state(&self) -> Option<&crate::gui::jobs::denoise::DenoiseState> {
         self.denoise_state.as_ref()
+    }
+
+    /// The scene text window: whether it is open, and its text.
+    #[must_use]
+    pub fn scene_editor(&self) -> (bool, &str) {
+        (self.editor.is_open(), self.editor.text())
     }
 
     /// The Strategies section's captions (`s=1 t=2: 41.3%`), and whether a split is running.
@@ -156,6 +164,7 @@ impl InspectorApp {
         let doc = &self.session.doc;
         let denoise_state = self.denoise_state.as_ref();
         let mut cmds = Vec::new();
+        let mut edit = false;
         egui::Panel::top("title").show(ui, |ui| title_ui(ui, doc));
         // Fixed limits on every panel: content never widens them (long rows are cut or wrapped
         // inside), so the image does not move under the cursor.
@@ -165,7 +174,9 @@ impl InspectorApp {
             .size_range(240.0..=420.0)
             .show(ui, |ui| {
                 egui::ScrollArea::vertical().show(ui, |ui| {
-                    section(ui, "Scene", |ui| settings::scene_ui(ui, doc, &mut cmds));
+                    section(ui, "Scene", |ui| {
+                        edit = settings::scene_ui(ui, doc, &mut cmds);
+                    });
                     section(ui, "Settings", |ui| {
                         settings::settings_ui(ui, doc, &mut cmds)
                     });
@@ -250,6 +261,12 @@ impl InspectorApp {
         });
         self.placement = placement;
         compare_window(&ctx, doc, &mut self.compare, &mut cmds);
+        let session = &self.session;
+        if edit {
+            self.editor.open_with(session.scene_text());
+        }
+        self.editor
+            .ui(&ctx, doc, || session.scene_text(), &mut cmds);
         keys_ui(ui, doc, &mut cmds);
         for c in cmds {
             self.session.apply(c);

@@ -284,6 +284,10 @@ pub enum Command {
     Open(PathBuf),
     /// Re-read the current scene file.
     Reload,
+    /// Load the scene from this text, edited in the inspector, as if it were the current
+    /// scene's file (its format, its meshes and includes beside it); the file on disk is not
+    /// written. On error the current scene stays and the error names the line and column.
+    ApplyText(String),
     /// Write an export next to the export base.
     Export(ExportKind),
     /// Edit the "open scene" field.

@@ -6,6 +6,7 @@ pub(super) mod acne;
 pub mod compare;
 pub(super) mod details;
 pub mod diagram;
+pub mod editor;
 pub mod explain;
 pub(super) mod image;
 pub mod progressive;

@@ -9,8 +9,10 @@ use crate::scene::{Antialiasing, IntegratorKind, OffsetStrategy, ShadowMode};
 use crate::tree::RayKind;
 use egui::{RichText, Slider};
 
-/// Scene file field, open and reload.
-pub fn scene_ui(ui: &mut egui::Ui, doc: &Document, cmds: &mut Vec<Command>) {
+/// Scene file field, open, reload and edit; returns whether **edit** was clicked (the app
+/// opens the scene's text in its window).
+pub fn scene_ui(ui: &mut egui::Ui, doc: &Document, cmds: &mut Vec<Command>) -> bool {
+    let mut open_editor = false;
     ui.label(RichText::new(doc.source.label()).strong());
     let mut path = doc.path_field.clone();
     let label = ui.label("scene file");
@@ -26,6 +28,12 @@ pub fn scene_ui(ui: &mut egui::Ui, doc: &Document, cmds: &mut Vec<Command>) {
         if ui.button("Reload").clicked() {
             cmds.push(Command::Reload);
         }
+        open_editor = ui
+            .button("Edit")
+            .on_hover_text(
+                "the scene's text in a window: edit it and apply it (the file is not written)",
+            )
+            .clicked();
     });
     if let Some(e) = &doc.error {
         ui.add(egui::Label::new(RichText::new(e).color(ERROR)).wrap());
@@ -41,6 +49,7 @@ pub fn scene_ui(ui: &mut egui::Ui, doc: &Document, cmds: &mut Vec<Command>) {
         };
         ui.add(egui::Label::new(text).wrap());
     }
+    open_editor
 }
 
 /// How each offset strategy places a secondary ray's origin.

@@ -77,15 +77,44 @@ impl Session {
             self.files.read(path).map(String::into_bytes)
         }
         .map_err(|e| format!("cannot read scene {label}: {e}"))?;
+        self.parse(path, &src)
+    }
+
+    /// The text of the current scene as the editor starts from: its file's (a glTF binary
+    /// cannot be edited as text), or the built-in scene's JSON.
+    ///
+    /// # Errors
+    /// Why the file cannot be read as text.
+    pub fn scene_text(&self) -> Result<String, String> {
+        match &self.doc.source.path {
+            None => Ok(crate::scene::DEFAULT_SCENE_JSON.to_string()),
+            Some(p) if p.extension().is_some_and(|e| e.eq_ignore_ascii_case("glb")) => {
+                Err(format!("{}: a binary glTF is not text", p.display()))
+            }
+            Some(p) => self
+                .files
+                .read(p)
+                .map_err(|e| format!("cannot read scene {}: {e}", p.display())),
+        }
+    }
+
+    /// Parse, validate and adjust scene source `src` as the file `path` (its format detected
+    /// from the name and the bytes; meshes and includes read beside it).
+    fn parse(
+        &self,
+        path: &Path,
+        src: &[u8],
+    ) -> Result<(Scene, Source, Vec<crate::formats::Note>), String> {
+        let label = path.display();
         if src.len() as u64 > crate::input::MAX_SCENE_BYTES {
             return Err(format!(
                 "cannot read scene {label}: larger than the limit of {} MiB",
                 crate::input::MAX_SCENE_BYTES >> 20
             ));
         }
-        let format = crate::formats::Format::detect(&path.to_string_lossy(), &src);
+        let format = crate::formats::Format::detect(&path.to_string_lossy(), src);
         let (mut scene, notes) = if format == crate::formats::Format::Json {
-            let src = String::from_utf8_lossy(&src);
+            let src = String::from_utf8_lossy(src);
             // Mesh files are read through the same hook, relative to the scene's directory.
             let dir = path.parent().unwrap_or(Path::new(""));
             let mut load_mesh = |file: &str| {
@@ -96,7 +125,7 @@ impl Session {
                 Scene::from_json_with(&src, &mut load_mesh).map_err(|e| format!("{label}:{e}"))?;
             (scene, Vec::new())
         } else {
-            self.read_foreign(path, format, &src)?
+            self.read_foreign(path, format, src)?
         };
         (self.adjust)(&mut scene).map_err(|e| format!("{label}: {e}"))?;
         let source = Source {
@@ -129,7 +158,42 @@ impl Session {
 
     /// Load `path`; on error keep the current scene and show the error.
     fn open(&mut self, path: &Path) -> Result<(), ()> {
-        match self.read(path) {
+        let read = self.read(path);
+        self.install(path, read, "loaded")
+    }
+
+    /// Load the edited text `text` as the current scene's file (the built-in scene's as JSON),
+    /// without writing it; on error keep the current scene and show the error.
+    fn apply_text(&mut self, text: &str) {
+        let path = self
+            .doc
+            .source
+            .path
+            .clone()
+            .unwrap_or_else(|| PathBuf::from("<built-in classic>.json"));
+        let mut read = self.parse(&path, text.as_bytes());
+        if let Ok((_, source, _)) = &mut read {
+            // Reload only when the file itself changes again; the built-in scene has no file.
+            source.path = self.doc.source.path.clone();
+            source.modified = self
+                .doc
+                .source
+                .path
+                .as_ref()
+                .and_then(|p| self.files.modified(p));
+        }
+        let _ = self.install(&path, read, "applied the edited text of");
+    }
+
+    /// Show a scene `read` from `path` (keeping the view, the selection, the pin, the step,
+    /// the lab and the filter), or its error with the current scene kept.
+    fn install(
+        &mut self,
+        path: &Path,
+        read: Result<(Scene, Source, Vec<crate::formats::Note>), String>,
+        verb: &str,
+    ) -> Result<(), ()> {
+        match read {
             Ok((scene, source, notes)) => {
                 let view = self.doc.view;
                 let selection = self.doc.selection;
@@ -148,9 +212,9 @@ impl Session {
                 self.doc.tree_version = versions.0;
                 self.doc.image_version = versions.1 + 1;
                 self.doc.status = match notes.first() {
-                    None => format!("loaded {}", path.display()),
+                    None => format!("{verb} {}", path.display()),
                     Some(n) => format!(
-                        "loaded {} with {} approximation(s) (raytree effects lists them), first: {}",
+                        "{verb} {} with {} approximation(s) (raytree effects lists them), first: {}",
                         path.display(),
                         notes.len(),
                         crate::input::escape_controls(&n.to_string())
@@ -295,6 +359,10 @@ impl Session {
             Command::Open(path) => {
                 self.doc.error = None;
                 let _ = self.open(&path);
+            }
+            Command::ApplyText(text) => {
+                self.doc.error = None;
+                self.apply_text(&text);
             }
             Command::Reload => {
                 self.doc.error = None;
