@@ -325,6 +325,10 @@ pub fn first_spp<I: Integrator>(integrator: &I) -> u32 {
     adaptive_plan(integrator).map_or(integrator.scene().settings.spp.max(1), |p| p.first)
 }
 
+// Not inlined into `render`: there LLVM compiled the pixel loop's callees (the Whitted
+// recursion, the path loop) differently, 2.1-2.5% more instructions for the same source
+// (callgrind; docs/architecture.md). Called once per render, so the call costs nothing.
+#[inline(never)]
 fn render_recorded<R: Recorder + Default, I: Integrator, S: PixelSampler>(
     integrator: &I,
     sampler: &S,
