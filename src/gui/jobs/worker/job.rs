@@ -12,6 +12,7 @@ use crate::gui::model::stats::{PixelStats, StatsRecorder};
 use crate::integrator::{Integrator, NoopRecorder, RayCounts, SceneIntegrator};
 use crate::math::Rgb;
 use crate::render::{render_pixel, render_rows};
+use crate::sampling::SceneSampler;
 use rayon::prelude::*;
 use web_time::Instant;
 
@@ -219,13 +220,14 @@ impl JobRun {
             .map(|y| {
                 let mut rec = StatsRecorder::default();
                 let mut counts = RayCounts::default();
+                // One sampler per row, as the render's pixel loop keeps one: each sample
+                // restarts it at its (pixel, index), so the pixels are the same.
+                let mut sampler = SceneSampler::for_settings(&tracer.scene().settings);
                 let (px, st) = (0..w)
                     .map(|x| {
                         let l = render_pixel(
                             tracer,
-                            &mut crate::sampling::SceneSampler::for_settings(
-                                &tracer.scene().settings,
-                            ),
+                            &mut sampler,
                             (x, y),
                             &mut rec,
                             &mut counts,
@@ -301,11 +303,12 @@ impl JobRun {
     ) -> Option<Phase> {
         let w = self.job.scene.camera.width;
         let row = self.row.get_or_insert_with(Row::default);
+        let mut sampler = SceneSampler::for_settings(&tracer.scene().settings);
         loop {
             let x = row.pixels.len() as u32;
             let l = render_pixel(
                 tracer,
-                &mut crate::sampling::SceneSampler::for_settings(&tracer.scene().settings),
+                &mut sampler,
                 (x, y0),
                 &mut NoopRecorder,
                 &mut self.rays,
@@ -343,11 +346,12 @@ impl JobRun {
         let spp = self.job.scene.settings.spp.max(1);
         let row = self.row.get_or_insert_with(Row::default);
         let mut rec = StatsRecorder::default();
+        let mut sampler = SceneSampler::for_settings(&tracer.scene().settings);
         loop {
             let x = row.stats.len() as u32;
             let l = render_pixel(
                 tracer,
-                &mut crate::sampling::SceneSampler::for_settings(&tracer.scene().settings),
+                &mut sampler,
                 (x, y0),
                 &mut rec,
                 &mut self.rays,
