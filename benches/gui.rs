@@ -72,7 +72,7 @@ fn benches(c: &mut Criterion) {
     let mut change = |s: &mut Session| {
         let mut st = s.doc.scene.settings;
         st.max_depth = 16;
-        st.min_weight = Some(if flip { 1e-12 } else { 0.0 });
+        st.whitted.min_weight = Some(if flip { 1e-12 } else { 0.0 });
         flip = !flip;
         s.apply(Command::SetSettings(st));
     };

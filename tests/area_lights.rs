@@ -230,7 +230,7 @@ fn tree_equals_pixel_with_area_lights() {
         let mut scene = Scene::from_json(src).unwrap();
         scene.camera = scene.camera.with_size(32, 20);
         scene.settings.spp = spp;
-        scene.settings.light_samples = Some(3);
+        scene.settings.whitted.light_samples = Some(3);
         let img = render(
             &SceneIntegrator::new(&scene),
             &RenderOptions::new(),
@@ -284,9 +284,25 @@ fn bad_quads_and_light_samples_are_rejected_with_their_path() {
             "\"light_samples\": -1",
             "settings.light_samples",
         ),
+        // The new spelling: the error is where the file writes the key.
+        (
+            ok.to_string(),
+            "\"integrator\": {\"type\": \"whitted\", \"light_samples\": 0}",
+            "settings.integrator.light_samples",
+        ),
+        (
+            ok.to_string(),
+            "\"integrator\": {\"type\": \"path\"}, \"other_integrators\": [{\"type\": \"whitted\", \"light_samples\": 70000}]",
+            "settings.other_integrators[0].light_samples",
+        ),
     ] {
-        let e = Scene::from_json(&base(&obj, settings)).unwrap_err();
+        let text = base(&obj, settings);
+        let e = Scene::from_json(&text).unwrap_err();
         assert_eq!(e.path, path, "{e}");
         assert!(e.line.is_some() && e.column.is_some(), "{e}");
+        if settings.contains("integrator") {
+            let (line, column) = raytree::scene::locate(&text, path).expect(path);
+            assert_eq!((e.line, e.column), (Some(line), Some(column)), "{e}");
+        }
     }
 }

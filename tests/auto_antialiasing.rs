@@ -72,7 +72,7 @@ fn auto_only_where_the_image_depends_on_the_film_position_alone() {
             "roulette",
             with(classic.clone(), &|s| {
                 s.settings.spp = 8;
-                s.settings.dielectric_roulette = Some(2);
+                s.settings.whitted.dielectric_roulette = Some(2);
             }),
         ),
         (

@@ -178,7 +178,7 @@ fn light_tracing_and_bdpt_agree_with_path_tracing_on_the_cornell_box() {
 fn the_power_heuristic_is_recorded_and_unbiased() {
     let mut scene = fixture("cornell-box.json");
     scene.settings.integrator = IntegratorKind::Bdpt;
-    scene.settings.mis = MisHeuristic::Power;
+    scene.settings.path.mis = MisHeuristic::Power;
     scene.camera = scene.camera.with_size(12, 12);
     scene.settings.spp = 2;
     let (image, _, _) = render(
@@ -188,7 +188,7 @@ fn the_power_heuristic_is_recorded_and_unbiased() {
     )
     .into_parts();
     let mut balance = scene.clone();
-    balance.settings.mis = MisHeuristic::Balance;
+    balance.settings.path.mis = MisHeuristic::Balance;
     let mut differ = 0;
     for (x, y) in [(6, 6), (3, 9), (9, 3), (6, 11)] {
         let tree = trace_pixel(&scene, x, y).unwrap();

@@ -113,9 +113,9 @@ fn fixtures_render_from_the_command_line() {
             raytree::Scene::from_json(&std::fs::read_to_string(fixtures.join(name)).unwrap())
                 .unwrap();
         scene.camera = scene.camera.with_size(32, 18);
-        scene.settings.fresnel = FresnelModel::Schlick;
+        scene.settings.whitted.fresnel = FresnelModel::Schlick;
         scene.settings.offset.strategy = OffsetStrategy::Ray;
-        scene.settings.shadows = ShadowMode::Opaque;
+        scene.settings.whitted.shadows = ShadowMode::Opaque;
         scene.settings.max_depth = 5;
         let (expect, _, _) = raytree::render(
             &SceneIntegrator::new(&scene),
@@ -316,4 +316,59 @@ fn flags_the_path_integrator_ignores_are_named() {
         err.contains("note: the Whitted integrator ignores --rr-depth"),
         "{err}"
     );
+}
+
+/// `raytree effects` names the settings keys a scene writes in the old spelling and prints its
+/// settings in the new one, which reads back to the same render; the new spelling gets no
+/// such line, and a key of another integrator inside `settings.integrator` is refused with
+/// the file and position, exit 2.
+#[test]
+fn effects_names_the_old_spelling_and_the_new_one_renders_the_same() {
+    let dir = tempfile::tempdir().unwrap();
+    let d = dir.path();
+    let old = GOOD.replace(
+        "\n}",
+        r#", "settings": {"integrator": "path", "rr_depth": 3, "light_samples": 2, "spp": 2}}"#,
+    );
+    std::fs::write(d.join("old.json"), &old).unwrap();
+    let o = raytree(&["effects", "old.json"], d);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let out = String::from_utf8_lossy(&o.stdout).to_string();
+    let line = out
+        .lines()
+        .find(|l| l.starts_with("settings written in the old spelling"))
+        .unwrap_or_else(|| panic!("{out}"));
+    let want = r#"integrator, light_samples, rr_depth; in the new spelling: "integrator": {"type":"path","rr_depth":3}, "other_integrators": [{"type":"whitted","light_samples":2}]"#;
+    assert!(line.ends_with(want), "{line}");
+    let new = GOOD.replace(
+        "\n}",
+        r#", "settings": {"integrator": {"type":"path","rr_depth":3}, "other_integrators": [{"type":"whitted","light_samples":2}], "spp": 2}}"#,
+    );
+    std::fs::write(d.join("new.json"), &new).unwrap();
+    let o = raytree(&["effects", "new.json"], d);
+    assert!(o.status.success(), "{}", stderr(&o));
+    assert!(!String::from_utf8_lossy(&o.stdout).contains("old spelling"));
+    for (scene, out) in [("old.json", "old.exr"), ("new.json", "new.exr")] {
+        let o = raytree(&["render", scene, "-o", out], d);
+        assert!(o.status.success(), "{}", stderr(&o));
+    }
+    assert_eq!(
+        std::fs::read(d.join("old.exr")).unwrap(),
+        std::fs::read(d.join("new.exr")).unwrap()
+    );
+    let bad = GOOD.replace(
+        "\n}",
+        ",\n\"settings\": {\"integrator\": {\"type\": \"path\", \"fresnel\": \"schlick\"}}}",
+    );
+    std::fs::write(d.join("bad.json"), &bad).unwrap();
+    let o = raytree(&["render", "bad.json", "-o", "bad.png"], d);
+    assert_eq!(o.status.code(), Some(2), "{}", stderr(&o));
+    let err = stderr(&o);
+    assert!(
+        err.contains("bad.json:9:")
+            && err.contains("settings.integrator")
+            && err.contains("unknown field \"fresnel\", expected `rr_depth`"),
+        "{err}"
+    );
+    assert!(!d.join("bad.png").exists());
 }

@@ -16,7 +16,7 @@ fn scene(name: &str) -> Scene {
 /// `nested.json` at the refracting pixel with the exhaustive tree (`--min-weight 0`).
 fn nested() -> (Scene, RayTree) {
     let mut s = scene("nested.json");
-    s.settings.min_weight = Some(0.0);
+    s.settings.whitted.min_weight = Some(0.0);
     let tree = trace_pixel(&s, 320, 150).unwrap();
     (s, tree)
 }
@@ -256,7 +256,7 @@ fn the_translucent_shadow_lies_in_the_automatic_plane() {
 fn the_plane_follows_a_chosen_ray() {
     let mut s = scene("tir-block.json");
     // Every split of the tree, deep weak ones included (no roulette below a weight).
-    s.settings.roulette_below = Some(0.0);
+    s.settings.whitted.roulette_below = Some(0.0);
     let tree = trace_pixel(&s, 320, 230).unwrap();
     // A ray deep in the tree, off the plane of incidence.
     let inc = build(
@@ -346,14 +346,13 @@ fn the_legend_counts_roulette_choices() {
     };
     let mut s = scene("tir-block.json");
     assert_eq!(line(&s), None, "the default splits every hit");
-    s.settings.roulette_below = Some(raytree::integrator::bound::carried::auto_roulette_below(
-        &s,
-        &s.settings,
-    ));
+    s.settings.whitted.roulette_below = Some(
+        raytree::integrator::bound::carried::auto_roulette_below(&s, &s.settings),
+    );
     assert_eq!(
         line(&s).as_deref(),
         Some("1 weak glass hit followed one ray (Russian roulette, weight / probability).")
     );
-    s.settings.roulette_below = Some(0.0);
+    s.settings.whitted.roulette_below = Some(0.0);
     assert_eq!(line(&s), None);
 }

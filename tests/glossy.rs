@@ -29,8 +29,8 @@ fn small(w: u32, h: u32, spp: u32) -> Scene {
 fn tree_equals_pixel_with_glossy_lobes() {
     for spp in [1, 4] {
         let mut scene = small(32, 20, spp);
-        scene.settings.glossy_samples = 3;
-        scene.settings.light_samples = Some(2);
+        scene.settings.whitted.glossy_samples = 3;
+        scene.settings.whitted.light_samples = Some(2);
         let img = render(
             &SceneIntegrator::new(&scene),
             &RenderOptions::new(),
@@ -82,7 +82,7 @@ fn roughness_zero_is_the_smooth_scene() {
     for s in [&mut a, &mut b] {
         s.camera = s.camera.with_size(40, 25);
         s.settings.spp = 2;
-        s.settings.glossy_samples = 5;
+        s.settings.whitted.glossy_samples = 5;
     }
     assert_eq!(
         render(&SceneIntegrator::new(&a), &RenderOptions::new(), &|_| {})
@@ -179,7 +179,7 @@ fn refracted_samples_enter_and_leave_the_medium() {
     );
     let mut scene = Scene::from_json(&src).unwrap();
     scene.camera = scene.camera.with_size(32, 20);
-    scene.settings.glossy_samples = 4;
+    scene.settings.whitted.glossy_samples = 4;
     let ball = scene
         .objects
         .iter()
@@ -330,8 +330,8 @@ fn effects_say_glossy_is_simulated() {
 #[test]
 fn the_cut_compares_one_samples_estimate() {
     let mut scene = Scene::from_json(GLOSSY).unwrap();
-    scene.settings.min_weight = Some(0.05);
-    scene.settings.glossy_samples = 64;
+    scene.settings.whitted.min_weight = Some(0.05);
+    scene.settings.whitted.glossy_samples = 64;
     let tree = trace_pixel(&scene, 100, 110).unwrap();
     let root = tree.node(tree.samples[0].root);
     assert_eq!(root.hit.as_ref().unwrap().object_name, "brushed ball");
@@ -354,7 +354,7 @@ fn glossy_trees_keep_the_invariants_and_explain_adds_up() {
     for spp in [1, 4] {
         let mut scene = Scene::from_json(GLOSSY).unwrap();
         scene.settings.spp = spp;
-        scene.settings.light_samples = Some(2);
+        scene.settings.whitted.light_samples = Some(2);
         for (x, y) in [(100, 110), (215, 110), (160, 40), (60, 60), (250, 160)] {
             let tree = trace_pixel(&scene, x, y).unwrap();
             let v = tree_violations(&tree, scene.background);

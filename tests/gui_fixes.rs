@@ -519,8 +519,8 @@ fn pin_and_compare_names_the_roulette_depth() {
     h.get_by_label("pin this tree").click();
     h.run();
     let mut s = h.state().session.doc.scene.settings;
-    assert_eq!(s.rr_depth, 5);
-    s.rr_depth = 2;
+    assert_eq!(s.path.rr_depth, 5);
+    s.path.rr_depth = 2;
     h.state_mut()
         .session
         .apply(raytree::gui::Command::SetSettings(s));
@@ -555,7 +555,7 @@ fn settings_beyond_the_sliders_are_kept_and_refusals_are_said() {
             s.camera = s.camera.with_size(8, 6);
             s.settings.max_depth = 64;
             s.settings.spp = 128;
-            s.settings.rr_depth = 100;
+            s.settings.path.rr_depth = 100;
             Ok(())
         }),
     );
@@ -564,7 +564,11 @@ fn settings_beyond_the_sliders_are_kept_and_refusals_are_said() {
         .apply(raytree::gui::Command::SelectPixel([4, 3]));
     settle(&mut h);
     let s = settings(&h);
-    assert_eq!((s.max_depth, s.spp, s.rr_depth), (64, 128, 100), "kept");
+    assert_eq!(
+        (s.max_depth, s.spp, s.path.rr_depth),
+        (64, 128, 100),
+        "kept"
+    );
     let tree = h.state().session.doc.tree.clone().expect("a traced pixel");
     assert_eq!(
         (tree.settings.max_depth, tree.settings.spp),
@@ -578,8 +582,8 @@ fn settings_beyond_the_sliders_are_kept_and_refusals_are_said() {
         Box::new(|s: &mut raytree::Scene| {
             s.camera = s.camera.with_size(4, 2);
             s.settings.max_depth = 2;
-            s.settings.light_samples = Some(100);
-            s.settings.glossy_samples = 100;
+            s.settings.whitted.light_samples = Some(100);
+            s.settings.whitted.glossy_samples = 100;
             Ok(())
         }),
     );
@@ -587,7 +591,7 @@ fn settings_beyond_the_sliders_are_kept_and_refusals_are_said() {
     assert!(has(&h, "glossy samples"), "the glossy slider is shown");
     let s = settings(&h);
     assert_eq!(
-        (s.light_samples, s.glossy_samples),
+        (s.whitted.light_samples, s.whitted.glossy_samples),
         (Some(100), 100),
         "kept"
     );

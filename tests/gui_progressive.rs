@@ -118,7 +118,7 @@ fn the_roulette_weight_is_opt_in_from_the_suggested_weight() {
     h.state_mut().session.wait_render();
     h.run();
     let mut scene: raytree::Scene = (*h.state().session.doc.scene).clone();
-    assert_eq!(scene.settings.roulette_below, None);
+    assert_eq!(scene.settings.whitted.roulette_below, None);
     assert!(has(&h, "roulette below"));
     let default = raytree::render(
         &SceneIntegrator::new(&scene),
@@ -128,7 +128,7 @@ fn the_roulette_weight_is_opt_in_from_the_suggested_weight() {
     .image;
     assert_eq!(h.state().session.doc.image, default);
     let mut split = scene.clone();
-    split.settings.roulette_below = Some(0.0);
+    split.settings.whitted.roulette_below = Some(0.0);
     assert_eq!(
         raytree::render(
             &SceneIntegrator::new(&split),
@@ -160,11 +160,11 @@ fn the_roulette_weight_is_opt_in_from_the_suggested_weight() {
     h.state_mut().session.wait_render();
     h.run();
     assert_eq!(
-        h.state().session.doc.scene.settings.roulette_below,
+        h.state().session.doc.scene.settings.whitted.roulette_below,
         Some(0.01),
         "the slider starts at the suggested weight"
     );
-    scene.settings.roulette_below = Some(0.01);
+    scene.settings.whitted.roulette_below = Some(0.01);
     let roulette = raytree::render(
         &SceneIntegrator::new(&scene),
         &RenderOptions::new(),

@@ -178,7 +178,7 @@ fn pin_and_compare_shows_the_first_divergence_and_the_changed_numbers() {
     assert!(has(&h, "no difference: the trees are identical"));
     // Schlick instead of the exact Fresnel: the camera ray's R diverges first.
     let mut s = h.state().session.doc.scene.settings;
-    s.fresnel = raytree::math::FresnelModel::Schlick;
+    s.whitted.fresnel = raytree::math::FresnelModel::Schlick;
     h.state_mut().session.apply(Command::SetSettings(s));
     settle(&mut h);
     let d = h.state().compare_diff().expect("a diff").clone();

@@ -72,7 +72,7 @@ fn long_tir_chain_ends_exactly_at_max_depth() {
     // internal reflection until max_depth cuts it.
     let mut s = Scene::from_json(include_str!("../fixtures/tir-block.json")).unwrap();
     s.camera = s.camera.with_size(48, 27);
-    s.settings.min_weight = Some(0.0); // the exhaustive chain
+    s.settings.whitted.min_weight = Some(0.0); // the exhaustive chain
     for max_depth in [3, 7, 16] {
         s.settings.max_depth = max_depth;
         let (mut tir, mut deepest) = (0, 0);

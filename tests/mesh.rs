@@ -342,7 +342,7 @@ fn meshes_get_watertight_hits_robust_offsets_diagnostics_and_diagram_slices() {
     assert!(stats.self_hit_pixels > 0, "{stats:?}");
     scene.settings.offset.strategy = OffsetStrategy::Robust;
     // Every split (roulette choices hash the hit points, which the move below changes).
-    scene.settings.roulette_below = Some(0.0);
+    scene.settings.whitted.roulette_below = Some(0.0);
     let (image, stats, _) = raytree::render(
         &SceneIntegrator::new(&scene),
         &RenderOptions::diagnosed(),
@@ -353,7 +353,7 @@ fn meshes_get_watertight_hits_robust_offsets_diagnostics_and_diagram_slices() {
     assert!(stats.rays.refracted > 100, "{stats:?}");
 
     // Translucent shadows through the mesh: every tree equals the render, with mesh blockers.
-    scene.settings.shadows = ShadowMode::Translucent;
+    scene.settings.whitted.shadows = ShadowMode::Translucent;
     let (translucent, _, _) = render(
         &SceneIntegrator::new(&scene),
         &RenderOptions::new(),

@@ -127,7 +127,7 @@ fn the_caustic_is_recorded_as_its_light_path_expression() {
 #[test]
 fn russian_roulette_is_recorded() {
     let mut scene = fixture("cornell-box.json");
-    scene.settings.rr_depth = 1;
+    scene.settings.path.rr_depth = 1;
     scene.settings.spp = 16;
     let tree = trace_pixel(&scene, 128, 200).unwrap();
     let (mut killed, mut survived) = (0, 0);

@@ -11,7 +11,7 @@ fn glass(depth: u32) -> Scene {
     let mut scene = Scene::from_json(src).unwrap();
     scene.camera = scene.camera.with_size(32, 18);
     scene.settings.max_depth = depth;
-    scene.settings.min_weight = Some(0.0);
+    scene.settings.whitted.min_weight = Some(0.0);
     scene
 }
 
@@ -24,7 +24,7 @@ fn glass(depth: u32) -> Scene {
 /// far fewer rays.
 #[test]
 fn the_roulette_is_exact_in_expectation() {
-    exact_in_expectation(|s| s.settings.dielectric_roulette = Some(0), 0.5);
+    exact_in_expectation(|s| s.settings.whitted.dielectric_roulette = Some(0), 0.5);
 }
 
 /// The same for the roulette below a weight (`settings.roulette_below`, here 0.3 so that most
@@ -33,7 +33,7 @@ fn the_roulette_is_exact_in_expectation() {
 /// every hit plays).
 #[test]
 fn the_roulette_below_a_weight_is_exact_in_expectation() {
-    exact_in_expectation(|s| s.settings.roulette_below = Some(0.3), 0.6);
+    exact_in_expectation(|s| s.settings.whitted.roulette_below = Some(0.3), 0.6);
 }
 
 /// Mean over 300 seeds against the exhaustive split (see above); the roulette traces less than
@@ -99,7 +99,7 @@ fn exact_in_expectation(roulette: impl Fn(&mut Scene), max_ratio: f64) {
 #[test]
 fn trees_equal_pixels_with_the_roulette() {
     let mut scene = glass(8);
-    scene.settings.dielectric_roulette = Some(0);
+    scene.settings.whitted.dielectric_roulette = Some(0);
     scene.settings.seed = 7;
     scene.settings.spp = 2;
     let image = render(
@@ -125,7 +125,11 @@ fn the_suggested_weight_plays_roulette_only_below_it() {
     let src = include_str!("../benches/mitsuba-scenes/glass-emitters.json");
     let mut scene = Scene::from_json(src).unwrap();
     scene.camera = scene.camera.with_size(32, 18);
-    let bound = carried_bound(&scene, scene.settings.max_depth, scene.settings.shadows);
+    let bound = carried_bound(
+        &scene,
+        scene.settings.max_depth,
+        scene.settings.whitted.shadows,
+    );
     assert_eq!(bound, 1.0);
     assert_eq!(auto_roulette_below(&scene, &scene.settings), 0.01);
     // The default plays no roulette at all.
@@ -136,7 +140,7 @@ fn the_suggested_weight_plays_roulette_only_below_it() {
             .iter()
             .all(|n| n.interface.as_ref().is_none_or(|i| i.roulette.is_none()))
     );
-    scene.settings.roulette_below = Some(0.01);
+    scene.settings.whitted.roulette_below = Some(0.01);
     let image = render(
         &SceneIntegrator::new(&scene),
         &RenderOptions::new(),
@@ -168,8 +172,8 @@ fn the_suggested_weight_plays_roulette_only_below_it() {
         }
     }
     assert!(choices > 0);
-    scene.settings.roulette_below = None;
-    scene.settings.min_weight = Some(0.0);
+    scene.settings.whitted.roulette_below = None;
+    scene.settings.whitted.min_weight = Some(0.0);
     assert_eq!(auto_roulette_below(&scene, &scene.settings), 0.0);
 }
 

@@ -192,7 +192,7 @@ fn facing_mirrors_sum_a_geometric_series() {
             r#", "ambient": [0.1, 0.1, 0.1]"#,
         );
         s.settings.max_depth = depth;
-        s.settings.min_weight = Some(0.0); // the exhaustive series
+        s.settings.whitted.min_weight = Some(0.0); // the exhaustive series
         let t = trace_pixel(&s, 1, 1).unwrap();
         let expect: f64 = (0..=depth).map(|k| ad * r.powi(k as i32)).sum();
         assert!(
@@ -249,7 +249,7 @@ fn switching_off_unused_effects_is_bit_identical() {
     let mut scenes = fixtures();
     // A diffuse-and-mirror scene in translucent mode: translucent shadows are planned off.
     let mut m = scenes.iter().find(|f| f.0 == "mirrors").unwrap().1.clone();
-    m.settings.shadows = raytree::scene::ShadowMode::Translucent;
+    m.settings.whitted.shadows = raytree::scene::ShadowMode::Translucent;
     scenes.push(("mirrors-translucent".into(), m));
     for (name, scene) in scenes {
         let scene = small(scene, 48, 27, 1);

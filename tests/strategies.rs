@@ -222,8 +222,8 @@ fn explain_names_the_strategy_of_a_caustic() {
 fn diff_splits_a_bidirectional_pixel_by_strategy() {
     let mut a = cornell(24, 4);
     let mut b = a.clone();
-    a.settings.mis = raytree::scene::MisHeuristic::Balance;
-    b.settings.mis = raytree::scene::MisHeuristic::Power;
+    a.settings.path.mis = raytree::scene::MisHeuristic::Balance;
+    b.settings.path.mis = raytree::scene::MisHeuristic::Power;
     let (ta, tb) = (
         raytree::trace_pixel(&a, 12, 14).unwrap(),
         raytree::trace_pixel(&b, 12, 14).unwrap(),

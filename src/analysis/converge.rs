@@ -183,7 +183,7 @@ pub struct Curve {
 pub fn render_series(scene: &Scene, series: Series) -> (Image, f64) {
     let mut s = scene.clone();
     if let Series::RrDepth(n) = series {
-        s.settings.rr_depth = n;
+        s.settings.path.rr_depth = n;
     }
     // A sampler series names its sampler in the settings too, so automatic antialiasing (its
     // own film positions, for the default series) stands aside and the series is that sampler.

@@ -219,7 +219,7 @@ mod tests {
     fn weights_split_into_the_factors_the_tracer_multiplied() {
         let mut scene = Scene::default_scene();
         // With the suggested roulette weight (opt-in), deep weak hits follow one ray.
-        scene.settings.roulette_below = Some(
+        scene.settings.whitted.roulette_below = Some(
             crate::integrator::bound::carried::auto_roulette_below(&scene, &scene.settings),
         );
         let tree = trace_pixel(&scene, 400, 200).unwrap();

@@ -350,6 +350,18 @@ impl Bsdf {
         self.pdf_local(self.frame.to_local(wo), self.frame.to_local(wi))
     }
 
+    /// The reverse density: that of sampling `wo` given `wi`, `pdf(wi, wo)`, the density the
+    /// same pair of directions has on a path traced the other way (from the light when this
+    /// one is from the camera). Bidirectional estimators need both: a vertex's forward density
+    /// is [`Self::pdf`], its reverse one this (Veach 1997, section 10.2; pbrt-v4's
+    /// `BSDF::PDF` with the arguments swapped and `TransportMode` reversed). Not `pdf` in
+    /// general: a rough dielectric's densities differ by the `eta^2` of its Jacobian, a
+    /// cosine-weighted lobe's by the cosines.
+    #[must_use]
+    pub fn pdf_rev(&self, wo: DVec3, wi: DVec3) -> f64 {
+        self.pdf(wi, wo)
+    }
+
     /// [`Self::sample_local`] for a world `wo`; `wi` is returned in world space.
     #[must_use]
     pub fn sample(&self, wo: DVec3, uc: f64, u: DVec2) -> Option<BsdfSample> {

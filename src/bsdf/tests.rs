@@ -414,3 +414,28 @@ proptest! {
         }
     }
 }
+
+/// The reverse density is the density of the swapped pair, and a rough dielectric's
+/// transmission densities differ from it by the half-vector Jacobian (`eta^2`-scaled): a
+/// bidirectional estimator that took `pdf` for both directions would weigh its strategies
+/// wrongly through glass. Over `wo`, for a fixed `wi`, the reverse density integrates to the
+/// probability that sampling from `wi` succeeds (at most 1; uniform-sphere estimate).
+#[test]
+fn the_reverse_density_is_the_swapped_pair_and_integrates_over_wo() {
+    let glass = Bsdf::new(Frame::from_normal(DVec3::Z), &[rough_glass(0.3, 1.5)]);
+    // wi near the refraction of wo (20 degrees in air, 13 in glass).
+    let (wo, wi) = (dir(20.0), -dir(10.0));
+    assert_eq!(glass.pdf_rev(wo, wi).to_bits(), glass.pdf(wi, wo).to_bits());
+    let (fwd, rev) = (glass.pdf(wo, wi), glass.pdf_rev(wo, wi));
+    assert!(
+        fwd > 0.0 && rev > 0.0 && (fwd / rev - 1.0).abs() > 0.1,
+        "{fwd} {rev}"
+    );
+    let mut rng = SplitMix64::new(7);
+    let n = 400_000;
+    let total: f64 = (0..n)
+        .map(|_| glass.pdf_rev(square_to_uniform_sphere(rng.next_2d()), wi) * 4.0 * PI)
+        .sum::<f64>()
+        / n as f64;
+    assert!(total > 0.9 && total < 1.02, "{total}");
+}

@@ -156,7 +156,7 @@ fn path_header(r: &CostReport, label: &str) -> String {
         r.reference.max_depth,
         r.reference.offset.strategy.name(),
         r.reference_spp,
-        IntegratorKind::WHITTED_ONLY_WHY,
+        raytree::scene::WhittedSettings::WHY_OTHERS_IGNORE,
         spp_of(r, "rr_depth"),
         r.reference_spp,
         spp_of(r, "filter"),

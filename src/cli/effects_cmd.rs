@@ -27,6 +27,9 @@ pub fn run(a: &EffectsArgs) -> Result<()> {
             sayln!("  - {}", raytree::input::escape_controls(&n.to_string()))?;
         }
     }
+    if let Some(old) = &loaded.old_spelling {
+        sayln!("settings written in the old spelling (still read): {old}")?;
+    }
     let growth = tree_growth(&loaded.scene);
     // Under the path integrator the tree and the cut are Whitted's: said first, then labelled.
     let whitted = match path_note(&loaded.scene) {

@@ -7,7 +7,7 @@ use super::say::warnln;
 use anyhow::{Result, anyhow, bail};
 use raytree::Scene;
 use raytree::input::{MAX_SCENE_BYTES, escape_controls};
-use raytree::scene::IntegratorKind;
+use raytree::scene::{IntegratorKind, WhittedSettings};
 use serde::de::DeserializeOwned;
 use std::path::Path;
 
@@ -22,12 +22,16 @@ pub struct Loaded {
     pub inputs: Vec<std::path::PathBuf>,
     /// What converting a pbrt or Mitsuba scene approximated (empty for JSON).
     pub notes: Vec<raytree::formats::Note>,
+    /// For a JSON scene whose settings use the old spelling: the keys so written
+    /// ([`raytree::scene::desc::old_spelling`]) and the file's settings in the new spelling.
+    pub old_spelling: Option<String>,
 }
 
 /// Read and validate `path` (or the built-in scene), then apply `o`.
 pub fn load(path: Option<&Path>, o: &Overrides) -> Result<Loaded> {
     let mut inputs = Vec::new();
     let mut notes = Vec::new();
+    let mut old_spelling = None;
     let (mut scene, label) = match path {
         None => (Scene::default_scene(), "<built-in classic>".to_string()),
         Some(p) => {
@@ -53,6 +57,7 @@ pub fn load(path: Option<&Path>, o: &Overrides) -> Result<Loaded> {
                     read_obj(dir, file)
                 })
                 .map_err(|e| anyhow!("{label}:{e}"))?;
+                old_spelling = old_spelling_note(&src, &scene.settings);
                 (scene, label)
             }
         }
@@ -75,6 +80,20 @@ pub fn load(path: Option<&Path>, o: &Overrides) -> Result<Loaded> {
         label,
         inputs,
         notes,
+        old_spelling,
+    })
+}
+
+/// The keys `src` (a JSON scene) writes in the old spelling and `settings` (its settings) in
+/// the new one, or `None` when it uses the new spelling.
+fn old_spelling_note(src: &str, settings: &raytree::scene::Settings) -> Option<String> {
+    let keys = raytree::scene::desc::old_spelling(src);
+    (!keys.is_empty()).then(|| {
+        format!(
+            "{}; in the new spelling: {}",
+            keys.join(", "),
+            raytree::scene::desc::new_spelling(settings)
+        )
     })
 }
 
@@ -103,23 +122,7 @@ fn ignored_integrator_flags(scene: &Scene, o: &Overrides) -> Option<String> {
                 .to_string()
         });
     }
-    // Each setting the path integrator ignores, and whether its flag was given.
-    let given = |setting: &str| match setting {
-        "fresnel" => o.fresnel.is_some(),
-        "shadows" => o.shadows.is_some(),
-        "min_weight" => o.min_weight.is_some(),
-        "tolerance" => o.tolerance.is_some(),
-        "light_samples" => o.light_samples.is_some(),
-        "glossy_samples" => o.glossy_samples.is_some(),
-        "dielectric_roulette" => o.dielectric_roulette.is_some(),
-        "roulette_below" => o.roulette_below.is_some(),
-        _ => false,
-    };
-    let flags: Vec<String> = IntegratorKind::WHITTED_ONLY
-        .iter()
-        .filter(|s| given(s))
-        .map(|s| format!("--{}", s.replace('_', "-")))
-        .collect();
+    let flags = whitted_flags(o);
     (!flags.is_empty()).then(|| {
         let (list, are) = (
             flags.join(", "),
@@ -131,9 +134,27 @@ fn ignored_integrator_flags(scene: &Scene, o: &Overrides) -> Option<String> {
         };
         format!(
             "note: {who} ignores {list}: {are} the Whitted integrator's ({})",
-            IntegratorKind::WHITTED_ONLY_WHY
+            WhittedSettings::WHY_OTHERS_IGNORE
         )
     })
+}
+
+/// The flags given in `o` that set the Whitted integrator's own settings
+/// ([`WhittedSettings`]), in its fields' order.
+fn whitted_flags(o: &Overrides) -> Vec<&'static str> {
+    [
+        ("--fresnel", o.fresnel.is_some()),
+        ("--shadows", o.shadows.is_some()),
+        ("--min-weight", o.min_weight.is_some()),
+        ("--tolerance", o.tolerance.is_some()),
+        ("--light-samples", o.light_samples.is_some()),
+        ("--glossy-samples", o.glossy_samples.is_some()),
+        ("--dielectric-roulette", o.dielectric_roulette.is_some()),
+        ("--roulette-below", o.roulette_below.is_some()),
+    ]
+    .into_iter()
+    .filter_map(|(flag, given)| given.then_some(flag))
+    .collect()
 }
 
 fn enum_value<T: DeserializeOwned>(flag: &str, v: &str) -> Result<T> {
@@ -165,18 +186,7 @@ pub fn apply(scene: &mut Scene, o: &Overrides) -> Result<()> {
     if let Some(v) = &o.offset {
         s.offset.strategy = enum_value("offset", v)?;
     }
-    if let Some(v) = &o.fresnel {
-        s.fresnel = enum_value("fresnel", v)?;
-    }
-    if let Some(v) = &o.shadows {
-        s.shadows = enum_value("shadows", v)?;
-    }
-    if let Some(v) = o.min_weight {
-        s.min_weight = Some(v);
-    }
-    if let Some(v) = o.tolerance {
-        s.tolerance = v;
-    }
+    apply_whitted(&mut s.whitted, o)?;
     if let Some(v) = o.max_rays {
         s.max_rays = v;
     }
@@ -188,10 +198,10 @@ pub fn apply(scene: &mut Scene, o: &Overrides) -> Result<()> {
         s.seed = v;
     }
     if let Some(v) = o.rr_depth {
-        s.rr_depth = v;
+        s.path.rr_depth = v;
     }
     if let Some(v) = &o.mis {
-        s.mis =
+        s.path.mis =
             raytree::scene::MisHeuristic::from_name(v).map_err(|msg| anyhow!("--mis: {msg}"))?;
     }
     if let Some(v) = &o.sampler {
@@ -199,21 +209,9 @@ pub fn apply(scene: &mut Scene, o: &Overrides) -> Result<()> {
             raytree::scene::SamplerKind::from_name(v).map_err(|msg| anyhow!("--sampler: {msg}"))?,
         );
     }
-    if let Some(v) = o.light_samples {
-        s.light_samples = Some(v);
-    }
-    if let Some(v) = o.glossy_samples {
-        s.glossy_samples = v;
-    }
     if let Some(v) = &o.filter {
         s.filter =
             raytree::scene::FilterDesc::parse(v).map_err(|msg| anyhow!("--filter: {msg}"))?;
-    }
-    if let Some(v) = o.dielectric_roulette {
-        s.dielectric_roulette = Some(v);
-    }
-    if let Some(v) = o.roulette_below {
-        s.roulette_below = Some(v);
     }
     if let Some(v) = &o.antialiasing {
         s.antialiasing = match v.as_str() {
@@ -266,6 +264,35 @@ pub fn apply(scene: &mut Scene, o: &Overrides) -> Result<()> {
     Ok(())
 }
 
+/// The Whitted integrator's flags of `o` applied to `w`.
+fn apply_whitted(w: &mut WhittedSettings, o: &Overrides) -> Result<()> {
+    if let Some(v) = &o.fresnel {
+        w.fresnel = enum_value("fresnel", v)?;
+    }
+    if let Some(v) = &o.shadows {
+        w.shadows = enum_value("shadows", v)?;
+    }
+    if let Some(v) = o.min_weight {
+        w.min_weight = Some(v);
+    }
+    if let Some(v) = o.tolerance {
+        w.tolerance = v;
+    }
+    if let Some(v) = o.light_samples {
+        w.light_samples = Some(v);
+    }
+    if let Some(v) = o.glossy_samples {
+        w.glossy_samples = v;
+    }
+    if let Some(v) = o.dielectric_roulette {
+        w.dielectric_roulette = Some(v);
+    }
+    if let Some(v) = o.roulette_below {
+        w.roulette_below = Some(v);
+    }
+    Ok(())
+}
+
 /// Refuse `what` (flags whose images are built from camera samples alone: the denoiser's
 /// features, AOVs, debug views) under an integrator whose pixels also hold light-path splats
 /// (`light`, `bdpt`): their images would leave the splats out.
@@ -302,10 +329,16 @@ mod tests {
             ..Overrides::default()
         };
         let note = ignored_flags(&scene, &o).unwrap();
-        let want: Vec<String> = IntegratorKind::WHITTED_ONLY
-            .iter()
-            .map(|s| format!("--{}", s.replace('_', "-")))
-            .collect();
+        let want = [
+            "--fresnel",
+            "--shadows",
+            "--min-weight",
+            "--tolerance",
+            "--light-samples",
+            "--glossy-samples",
+            "--dielectric-roulette",
+            "--roulette-below",
+        ];
         assert!(
             note.contains(&format!("ignores {}: they are", want.join(", "))),
             "{note}"

@@ -121,7 +121,7 @@ pub fn run(a: &RenderArgs) -> Result<()> {
         }
     }
     if r.roulette > 0 {
-        let why = match scene.settings.dielectric_roulette {
+        let why = match scene.settings.whitted.dielectric_roulette {
             Some(d) => format!("from depth {d}"),
             None => format!(
                 "where the throughput was below {:.2e}",
@@ -146,7 +146,7 @@ pub fn run(a: &RenderArgs) -> Result<()> {
             "path: {samples} samples ({:.0} samples/s), diffuse bounces {}, rr depth {}, sampler {}",
             samples as f64 / secs,
             r.diffuse,
-            scene.settings.rr_depth,
+            scene.settings.path.rr_depth,
             scene.settings.sampler_kind().name()
         )?;
     }
@@ -159,7 +159,7 @@ pub fn run(a: &RenderArgs) -> Result<()> {
             paths as f64 / secs,
             r.light,
             r.connection,
-            scene.settings.rr_depth,
+            scene.settings.path.rr_depth,
             scene.settings.sampler_kind().name()
         )?;
     }

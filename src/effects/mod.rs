@@ -63,7 +63,7 @@ impl EffectPlan {
                 "Fresnel",
                 self.fresnel,
                 if self.refraction {
-                    format!("model {:?} at transmissive surfaces", s.fresnel).to_lowercase()
+                    format!("model {:?} at transmissive surfaces", s.whitted.fresnel).to_lowercase()
                 } else {
                     "no transmissive material".to_string()
                 },
@@ -92,7 +92,7 @@ impl EffectPlan {
                 self.translucent_shadows,
                 format!(
                     "shadows {:?}, transmissive: {}",
-                    s.shadows,
+                    s.whitted.shadows,
                     names(&|m| m.is_transmissive())
                 )
                 .to_lowercase(),
@@ -135,7 +135,7 @@ impl EffectPlan {
                     format!("emissive: {}", emitters.join(", "))
                 };
                 let list = format!("{list}{}", dark_note(scene));
-                match s.light_samples {
+                match s.whitted.light_samples {
                     Some(n) => format!("{list}; {n} shadow rays per light per hit"),
                     None => format!("{list}; settings.light_samples absent (seen, not sampled)"),
                 }
@@ -149,7 +149,7 @@ impl EffectPlan {
                          lobe at a path's first rough hit, 1 below it; glossy highlight from \
                          point and directional lights; exact Fresnel",
                         names(&crate::scene::Material::is_rough),
-                        s.glossy_samples
+                        s.whitted.glossy_samples
                     )
                 } else {
                     "no material with roughness > 0 on reflectivity or transmissivity".to_string()
@@ -359,9 +359,9 @@ mod tests {
     #[test]
     fn path_lines_state_what_the_path_integrator_does() {
         let mut s = Scene::from_json(include_str!("../../fixtures/caustic.json")).unwrap();
-        s.settings.fresnel = FresnelModel::Schlick;
-        s.settings.shadows = ShadowMode::Translucent;
-        s.settings.light_samples = Some(4);
+        s.settings.whitted.fresnel = FresnelModel::Schlick;
+        s.settings.whitted.shadows = ShadowMode::Translucent;
+        s.settings.whitted.light_samples = Some(4);
         let find = |lines: &[EffectLine], e: &str| lines.iter().find(|l| l.effect == e).cloned();
         let lines = EffectPlan::for_scene(&s).explain(&s);
         let fresnel = find(&lines, "Fresnel").unwrap();

@@ -22,7 +22,7 @@ pub(super) fn restate(out: &mut Vec<EffectLine>, scene: &Scene) {
                 l.reason = format!(
                     "exact at transmissive surfaces (the path integrator's; settings.fresnel \
                      {} is the Whitted integrator's)",
-                    format!("{:?}", s.fresnel).to_lowercase()
+                    format!("{:?}", s.whitted.fresnel).to_lowercase()
                 );
             }
             "area lights" => {
@@ -68,7 +68,7 @@ pub(super) fn lines(scene: &Scene, names: Names<'_>) -> Vec<EffectLine> {
                  Russian roulette from bounce {}, max depth {}{}",
                 scene.lights.len() + emitters,
                 scene.lights.len(),
-                s.rr_depth,
+                s.path.rr_depth,
                 s.max_depth,
                 super::dark_note(scene)
             ),
@@ -98,7 +98,7 @@ pub(super) fn lines(scene: &Scene, names: Names<'_>) -> Vec<EffectLine> {
             format!(
                 "shadow rays are visibility tests; light through glass arrives by BSDF \
                  sampling (caustics); shadows {:?}",
-                s.shadows
+                s.whitted.shadows
             )
             .to_lowercase()
             .replace("bsdf", "BSDF"),
@@ -166,7 +166,7 @@ pub(super) fn light_lines(scene: &Scene, names: Names<'_>) -> Vec<EffectLine> {
          use path); Russian roulette from bounce {}, max depth {}{filter}{adaptive}{}",
         scene.lights.len() + emitters,
         scene.lights.len(),
-        s.rr_depth,
+        s.path.rr_depth,
         s.max_depth,
         super::dark_note(scene)
     );
@@ -207,7 +207,7 @@ pub(super) fn bdpt_lines(scene: &Scene, names: Names<'_>) -> Vec<EffectLine> {
          from bounce {} on both subpaths; the background lights nothing from the light's \
          side (only escaping camera subpaths see it){}",
         s.max_depth + 1,
-        s.rr_depth,
+        s.path.rr_depth,
         super::dark_note(scene)
     );
     if !matches!(s.filter, crate::scene::FilterDesc::Box {}) || s.adaptive.is_some() {

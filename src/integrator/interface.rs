@@ -53,7 +53,7 @@ pub trait Integrator: Sync {
         self.kind() == IntegratorKind::Whitted
             && self.traces_packets()
             && !self.film().has_lens()
-            && settings.dielectric_roulette.is_none()
+            && settings.whitted.dielectric_roulette.is_none()
     }
 
     /// The radiance of a packet of camera rays (at most [`crate::bvh::wide::PACKET`]) whose

@@ -59,15 +59,15 @@ impl EffectPlan {
         Self {
             reflection: true,
             refraction: true,
-            fresnel: s.fresnel != FresnelModel::None,
+            fresnel: s.whitted.fresnel != FresnelModel::None,
             tir: true,
             absorption: true,
-            translucent_shadows: s.shadows == ShadowMode::Translucent,
+            translucent_shadows: s.whitted.shadows == ShadowMode::Translucent,
             specular: true,
             lights: u64::MAX,
             recursion: s.max_depth > 0,
             supersampling: s.spp > 1,
-            area_lights: s.light_samples.is_some(),
+            area_lights: s.whitted.light_samples.is_some(),
             glossy: true,
         }
     }
@@ -80,7 +80,7 @@ impl EffectPlan {
         let mats: Vec<&crate::scene::Material> = scene.used_materials().collect();
         let transmissive = mats.iter().any(|m| m.is_transmissive());
         let reflective = mats.iter().any(|m| nonzero(m.reflectivity));
-        let fresnel = transmissive && s.fresnel != FresnelModel::None;
+        let fresnel = transmissive && s.whitted.fresnel != FresnelModel::None;
         let tir = transmissive && max_ior_step(scene).is_some();
         let glossy = mats.iter().any(|m| m.is_rough());
         let shaded = mats
@@ -105,12 +105,12 @@ impl EffectPlan {
             absorption: mats
                 .iter()
                 .any(|m| m.is_transmissive() && nonzero(m.absorption)),
-            translucent_shadows: s.shadows == ShadowMode::Translucent && transmissive,
+            translucent_shadows: s.whitted.shadows == ShadowMode::Translucent && transmissive,
             specular: mats.iter().any(|m| nonzero(m.specular)),
             lights,
             recursion: s.max_depth > 0 && (reflection || transmissive),
             supersampling: s.spp > 1,
-            area_lights: s.light_samples.is_some()
+            area_lights: s.whitted.light_samples.is_some()
                 && shaded
                 && (0..scene.objects.len()).any(|i| scene.area_light(i).is_some()),
             glossy,

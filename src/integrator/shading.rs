@@ -148,7 +148,7 @@ impl<'a> Shading<'a> {
             let n2 = media.ior_outside(object);
             (m.ior.unwrap_or(n2), n2)
         };
-        let model = self.scene.settings.fresnel;
+        let model = self.scene.settings.whitted.fresnel;
         match refract(d, n, n1 / n2) {
             Some(t) => {
                 let fresnel: Fresnel = math::fresnel(model, n1, n2, cos_i, t.cos_t);

@@ -138,9 +138,12 @@ pub fn trace_pixel_within(
     };
     let roulette = crate::integrator::bound::carried::effective_roulette_below(scene);
     let settings = crate::scene::Settings {
-        min_weight: Some(crate::integrator::bound::effective_min_weight(scene)),
-        roulette_below: (roulette > 0.0 || scene.settings.roulette_below.is_some())
-            .then_some(roulette),
+        whitted: crate::scene::WhittedSettings {
+            min_weight: Some(crate::integrator::bound::effective_min_weight(scene)),
+            roulette_below: (roulette > 0.0 || scene.settings.whitted.roulette_below.is_some())
+                .then_some(roulette),
+            ..scene.settings.whitted
+        },
         ..scene.settings
     };
     let schema = if splats.is_empty() {

@@ -1,5 +1,6 @@
 //! [`Check`]: the validation helpers (finite numbers, directions, colours, positive values)
 //! that reject a value with its JSON path and position.
+use crate::scene::IntegratorKind;
 
 use super::SceneError;
 use super::desc::Triple;
@@ -24,6 +25,26 @@ impl Check<'_> {
             path,
             message: message.into(),
         })
+    }
+
+    /// Where the file writes the setting `path` names in the flat record (`settings.rr_depth`):
+    /// there in the old spelling, or in `settings.integrator` or an element of
+    /// `settings.other_integrators` in the new one; `path` itself when the file does not
+    /// write it.
+    pub(super) fn settings_key(&self, path: &str) -> String {
+        let Some(key) = path.strip_prefix("settings.") else {
+            return path.to_string();
+        };
+        let first = key.split(['.', '[']).next().unwrap_or(key);
+        let rest = &key[first.len()..];
+        std::iter::once(format!("settings.{first}"))
+            .chain(std::iter::once(format!("settings.integrator.{first}")))
+            .chain(
+                (0..IntegratorKind::ALL.len())
+                    .map(|i| format!("settings.other_integrators[{i}].{first}")),
+            )
+            .find(|p| super::locate(self.src, p).is_some())
+            .map_or_else(|| path.to_string(), |p| format!("{p}{rest}"))
     }
 
     /// Where `path` is, or else its nearest enclosing value that the file writes (a default

@@ -28,7 +28,8 @@ pub use accel::{Accel, traversal_cost_image};
 pub use camera::{Camera, CameraConnection, Film};
 pub use desc::{
     AUTO_THRESHOLD, AdaptiveDesc, Antialiasing, FilterDesc, IntegratorKind, MisHeuristic,
-    OffsetDesc, OffsetStrategy, SamplerKind, SceneDesc, Settings, ShadowMode,
+    OffsetDesc, OffsetStrategy, PathSettings, SamplerKind, SceneDesc, Settings, ShadowMode,
+    WhittedSettings,
 };
 pub use error::SceneError;
 pub use generated::icosphere_scene;

@@ -82,7 +82,7 @@ mod tests {
         // The robust offset has no absolute epsilon, which would not scale with the scene.
         s.settings.offset.strategy = crate::scene::OffsetStrategy::Robust;
         // Roulette choices hash the hit points, which the transform moves: split everywhere.
-        s.settings.roulette_below = Some(0.0);
+        s.settings.whitted.roulette_below = Some(0.0);
         assert_eq!(transformed(&s, 1.0, DVec3::ZERO), s);
         // Scale by a power of two and translate by whole checker cells (2 x cell size):
         // every computation scales exactly, so the image matches closely.

@@ -266,7 +266,8 @@ pub struct RayTree {
     pub schema: String,
     /// Pixel coordinates.
     pub pixel: [u32; 2],
-    /// Settings used.
+    /// Settings used, as a flat record ([`crate::scene::desc::SettingsRecord`]).
+    #[serde(with = "crate::scene::desc::flat_settings")]
     pub settings: Settings,
     /// Pixel radiance: the mean of the samples (equals the rendered pixel bit for bit).
     pub radiance: Rgb,

@@ -6,7 +6,7 @@ use crate::integrator::bound::auto_min_weight;
 use crate::math::FresnelModel;
 use crate::math::{Rgb, linear_to_srgb};
 use crate::render::{Image, render};
-use crate::scene::{OffsetStrategy, Scene, Settings};
+use crate::scene::{OffsetStrategy, Scene, Settings, WhittedSettings};
 use serde::Serialize;
 use web_time::Instant;
 
@@ -69,6 +69,7 @@ pub struct CostRow {
     /// Its value.
     pub value: String,
     /// Full settings used.
+    #[serde(with = "crate::scene::desc::flat_settings")]
     pub settings: Settings,
     /// Median render time in milliseconds.
     pub median_ms: f64,
@@ -116,6 +117,7 @@ pub struct CostReport {
     /// Image size.
     pub size: [u32; 2],
     /// Settings of the spp = 1 reference (every axis but spp is compared with it).
+    #[serde(with = "crate::scene::desc::flat_settings")]
     pub reference: Settings,
     /// Reference samples per pixel for the spp and filter axes.
     pub reference_spp: u32,
@@ -124,6 +126,7 @@ pub struct CostReport {
     /// Reference glossy samples for the glossy-samples axis.
     pub reference_glossy_samples: u32,
     /// The base every row changes one setting of (min_weight `None`: the automatic cut).
+    #[serde(with = "crate::scene::desc::flat_settings")]
     pub base: Settings,
     /// The automatic cut at the base settings.
     pub base_min_weight: f64,
@@ -137,8 +140,11 @@ pub struct CostReport {
 pub fn reference_settings(base: &Settings, sweep: &Sweep) -> Settings {
     let mut s = Settings {
         max_depth: sweep.reference_depth,
-        fresnel: FresnelModel::Exact,
-        min_weight: Some(0.0),
+        whitted: WhittedSettings {
+            fresnel: FresnelModel::Exact,
+            min_weight: Some(0.0),
+            ..base.whitted
+        },
         spp: 1,
         ..*base
     };
@@ -165,12 +171,15 @@ pub fn run(scene: &Scene, sweep: &Sweep, progress: &dyn Fn(usize, usize)) -> Cos
     // axis keeps the scene's epsilon for the strategies that use one).
     let mut base = Settings {
         max_depth: 16,
-        fresnel: FresnelModel::Exact,
+        whitted: WhittedSettings {
+            fresnel: FresnelModel::Exact,
+            min_weight: None,
+            dielectric_roulette: None,
+            ..scene.settings.whitted
+        },
         spp: 1,
-        min_weight: None,
         adaptive: None,
         antialiasing: crate::scene::Antialiasing::Uniform,
-        dielectric_roulette: None,
         ..scene.settings
     };
     base.offset.strategy = OffsetStrategy::Robust;

@@ -9,7 +9,7 @@ use crate::math::FresnelModel;
 use crate::render::adaptive_plan;
 use crate::scene::{
     AdaptiveDesc, Antialiasing, FilterDesc, IntegratorKind, OffsetStrategy, SamplerKind, Scene,
-    Settings,
+    Settings, WhittedSettings,
 };
 
 /// The sweep: which values each axis takes.
@@ -64,6 +64,14 @@ pub struct Sweep {
     pub reference_spp: u32,
     /// Timed repeats per setting (median reported).
     pub repeats: u32,
+}
+
+/// One row of a sweep, and whether it changes the Whitted integrator's own settings.
+struct SweepRow {
+    axis: String,
+    label: String,
+    settings: Settings,
+    whitted: bool,
 }
 
 impl Sweep {
@@ -131,21 +139,25 @@ impl Sweep {
     /// The settings of every row, as `(axis, value label, settings)`, from `base`. The
     /// automatic min_weight row is labelled `auto (w)` with the cut it takes on `scene`.
     ///
-    /// Under the path integrator ([`Sweep::path_ignores`]) the axes it does not read are left
-    /// out (their rows would all equal the base), and the Russian-roulette depth and the
+    /// Under the path integrator the axes of the Whitted integrator's own settings
+    /// ([`crate::scene::WhittedSettings`]) are left out (their rows would all equal the base), and the Russian-roulette depth and the
     /// sampler are swept (at [`Sweep::filter_spp`] samples, against the spp reference).
     #[must_use]
     pub fn settings(&self, scene: &Scene, base: &Settings) -> Vec<(String, String, Settings)> {
         let path = base.integrator == IntegratorKind::Path;
-        let mut rows = self.rows(scene, base);
+        let mut rows: Vec<(String, String, Settings)> = self
+            .rows(scene, base)
+            .into_iter()
+            .filter(|r| !(path && r.whitted))
+            .map(|r| (r.axis, r.label, r.settings))
+            .collect();
         if path {
-            rows.retain(|(axis, _, _)| !Self::path_ignores(axis));
             for &d in &self.rr_depths {
-                let s = Settings {
-                    rr_depth: d,
+                let mut s = Settings {
                     spp: self.filter_spp,
                     ..*base
                 };
+                s.path.rr_depth = d;
                 let label = if d >= base.max_depth {
                     format!("off ({d} >= max depth)")
                 } else {
@@ -166,18 +178,17 @@ impl Sweep {
         rows
     }
 
-    /// Whether `axis` sweeps a setting the path integrator does not read
-    /// ([`IntegratorKind::WHITTED_ONLY`]; the axes are named after their settings).
-    #[must_use]
-    pub fn path_ignores(axis: &str) -> bool {
-        IntegratorKind::WHITTED_ONLY.contains(&axis)
-    }
-
     /// Every row of the Whitted sweep.
-    fn rows(&self, scene: &Scene, base: &Settings) -> Vec<(String, String, Settings)> {
+    fn rows(&self, scene: &Scene, base: &Settings) -> Vec<SweepRow> {
         let mut out = Vec::new();
-        let mut push =
-            |axis: &str, value: String, s: Settings| out.push((axis.to_string(), value, s));
+        let mut push = |axis: &str, label: String, settings: Settings, whitted: bool| {
+            out.push(SweepRow {
+                axis: axis.to_string(),
+                label,
+                settings,
+                whitted,
+            });
+        };
         for &d in &self.depths {
             push(
                 "max_depth",
@@ -186,6 +197,7 @@ impl Sweep {
                     max_depth: d,
                     ..*base
                 },
+                false,
             );
         }
         for &f in &self.fresnels {
@@ -193,13 +205,17 @@ impl Sweep {
                 "fresnel",
                 format!("{f:?}").to_lowercase(),
                 Settings {
-                    fresnel: f,
+                    whitted: WhittedSettings {
+                        fresnel: f,
+                        ..base.whitted
+                    },
                     ..*base
                 },
+                true,
             );
         }
         for &n in &self.spps {
-            push("spp", n.to_string(), Settings { spp: n, ..*base });
+            push("spp", n.to_string(), Settings { spp: n, ..*base }, false);
         }
         // Automatic antialiasing beside each uniform spp row, where the scene allows it.
         for &n in &self.spps {
@@ -210,73 +226,91 @@ impl Sweep {
             };
             let scene = with_settings(scene, s);
             if adaptive_plan(&SceneIntegrator::new(&scene)).is_some_and(|p| p.auto) {
-                push("antialiasing", format!("auto {n} spp"), s);
+                push("antialiasing", format!("auto {n} spp"), s, false);
             }
         }
         for &o in &self.offsets {
             let mut s = *base;
             s.offset.strategy = o;
-            push("offset", o.name().to_string(), s);
+            push("offset", o.name().to_string(), s, false);
         }
         for &w in &self.min_weights {
             // The cut alone: no roulette below a weight (an explicit min_weight has none).
             let s = Settings {
-                min_weight: w,
-                roulette_below: Some(0.0),
+                whitted: WhittedSettings {
+                    min_weight: w,
+                    roulette_below: Some(0.0),
+                    ..base.whitted
+                },
                 ..*base
             };
             let label = match w {
                 Some(w) => format!("{w:e}"),
                 None => format!("auto ({:.1e})", auto_min_weight(scene, &s)),
             };
-            push("min_weight", label, s);
+            push("min_weight", label, s, true);
         }
         let plan = |s: Settings| EffectPlan::for_scene(&with_settings(scene, s));
         let area = plan(Settings {
-            light_samples: Some(1),
+            whitted: WhittedSettings {
+                light_samples: Some(1),
+                ..base.whitted
+            },
             ..*base
         })
         .area_lights;
         for &n in self.light_samples.iter().filter(|_| area) {
             let s = Settings {
-                light_samples: Some(n),
+                whitted: WhittedSettings {
+                    light_samples: Some(n),
+                    ..base.whitted
+                },
                 ..*base
             };
-            push("light_samples", n.to_string(), s);
+            push("light_samples", n.to_string(), s, true);
         }
         let glossy = plan(*base).glossy;
         for &n in self.glossy_samples.iter().filter(|_| glossy) {
             let s = Settings {
-                glossy_samples: n,
+                whitted: WhittedSettings {
+                    glossy_samples: n,
+                    ..base.whitted
+                },
                 ..*base
             };
-            push("glossy_samples", n.to_string(), s);
+            push("glossy_samples", n.to_string(), s, true);
         }
         let glass = scene.materials.iter().any(|m| m.is_transmissive());
         for &d in self.dielectric_roulette.iter().filter(|_| glass) {
             let s = Settings {
-                dielectric_roulette: Some(d),
+                whitted: WhittedSettings {
+                    dielectric_roulette: Some(d),
+                    ..base.whitted
+                },
                 ..*base
             };
-            push("dielectric_roulette", format!("from depth {d}"), s);
+            push("dielectric_roulette", format!("from depth {d}"), s, true);
         }
         for &w in self.roulette_below.iter().filter(|_| glass) {
             // `None` is the weight suggested for the scene (opt-in: the default is off, which
             // the min_weight axis's automatic row measures).
             let mut s = Settings {
-                min_weight: None,
-                roulette_below: w,
+                whitted: WhittedSettings {
+                    min_weight: None,
+                    roulette_below: w,
+                    ..base.whitted
+                },
                 ..*base
             };
             let label = match w {
                 Some(w) => format!("{w:e}"),
                 None => {
                     let auto = crate::integrator::bound::carried::auto_roulette_below(scene, &s);
-                    s.roulette_below = Some(auto);
+                    s.whitted.roulette_below = Some(auto);
                     format!("suggested ({auto:.1e})")
                 }
             };
-            push("roulette_below", label, s);
+            push("roulette_below", label, s, true);
         }
         for &(threshold, max_spp) in &self.adaptive {
             let s = Settings {
@@ -287,7 +321,12 @@ impl Sweep {
                 }),
                 ..*base
             };
-            push("adaptive", format!("{threshold} to {max_spp} spp"), s);
+            push(
+                "adaptive",
+                format!("{threshold} to {max_spp} spp"),
+                s,
+                false,
+            );
         }
         for f in &self.filters {
             // The sweep's own strings; a bad one is a programming error, skipped.
@@ -297,7 +336,7 @@ impl Sweep {
                     spp: self.filter_spp,
                     ..*base
                 };
-                push("filter", f.clone(), s);
+                push("filter", f.clone(), s, false);
             }
         }
         out
@@ -319,11 +358,17 @@ impl Sweep {
                 ..r
             },
             "light_samples" => Settings {
-                light_samples: Some(self.reference_light_samples),
+                whitted: WhittedSettings {
+                    light_samples: Some(self.reference_light_samples),
+                    ..r.whitted
+                },
                 ..r
             },
             "glossy_samples" => Settings {
-                glossy_samples: self.reference_glossy_samples,
+                whitted: WhittedSettings {
+                    glossy_samples: self.reference_glossy_samples,
+                    ..r.whitted
+                },
                 ..r
             },
             "filter" => Settings {

@@ -39,8 +39,8 @@ fn the_sweep_has_an_auto_min_weight_row_and_an_exhaustive_reference() {
         ..Sweep::quick()
     };
     let r = run(&scene, &sweep, &|_, _| {});
-    assert_eq!(r.reference.min_weight, Some(0.0));
-    assert_eq!(r.base.min_weight, None);
+    assert_eq!(r.reference.whitted.min_weight, Some(0.0));
+    assert_eq!(r.base.whitted.min_weight, None);
     let auto = crate::integrator::bound::auto_min_weight(&scene, &r.base);
     assert!(auto > 0.0 && auto == r.base_min_weight);
     let values: Vec<&str> = r.rows.iter().map(|row| row.value.as_str()).collect();
@@ -48,7 +48,7 @@ fn the_sweep_has_an_auto_min_weight_row_and_an_exhaustive_reference() {
     let [exhaustive, auto_row, coarse] = &r.rows[..] else {
         unreachable!()
     };
-    assert_eq!(auto_row.settings.min_weight, None);
+    assert_eq!(auto_row.settings.whitted.min_weight, None);
     // The cut traces fewer rays than the exhaustive tree at depth 16, more than 1e-2.
     assert!(auto_row.rays.total < exhaustive.rays.total, "{r:?}");
     assert!(auto_row.rays.total > coarse.rays.total, "{r:?}");
@@ -211,7 +211,23 @@ fn a_path_traced_sweep_has_its_own_axes() {
     };
     let rows = sweep.settings(&scene, &base);
     let axes: Vec<&str> = rows.iter().map(|(a, _, _)| a.as_str()).collect();
-    assert!(axes.iter().all(|a| !Sweep::path_ignores(a)), "{axes:?}");
+    // No row changes what the path integrator does not read (the Whitted integrator's own
+    // settings), and the whole Whitted sweep would have.
+    assert!(
+        rows.iter().all(|(_, _, s)| s.whitted == base.whitted),
+        "{axes:?}"
+    );
+    let whitted = Settings {
+        integrator: crate::scene::IntegratorKind::Whitted,
+        ..base
+    };
+    assert!(
+        sweep
+            .settings(&scene, &whitted)
+            .iter()
+            .any(|(_, _, s)| s.whitted != base.whitted),
+        "the Whitted sweep changes the Whitted settings"
+    );
     assert!(
         axes.contains(&"max_depth") && axes.contains(&"offset"),
         "{axes:?}"
@@ -219,7 +235,7 @@ fn a_path_traced_sweep_has_its_own_axes() {
     let rr: Vec<(&str, u32, u32)> = rows
         .iter()
         .filter(|(a, _, _)| a == "rr_depth")
-        .map(|(_, v, s)| (v.as_str(), s.rr_depth, s.spp))
+        .map(|(_, v, s)| (v.as_str(), s.path.rr_depth, s.spp))
         .collect();
     assert_eq!(
         rr,

@@ -241,7 +241,7 @@ mod tests {
         let mut s = Scene::default_scene();
         s.settings.integrator = IntegratorKind::Path;
         s.settings.spp = 16;
-        s.settings.rr_depth = rr_depth;
+        s.settings.path.rr_depth = rr_depth;
         s
     }
 

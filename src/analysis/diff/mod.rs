@@ -261,8 +261,8 @@ fn settings_value(s: &crate::scene::Settings) -> Value {
     if let Value::Object(m) = &mut v {
         m.entry("antialiasing").or_insert_with(|| "auto".into());
         m.entry("roulette_below").or_insert_with(|| 0.0.into());
-        m.insert("rr_depth".into(), s.rr_depth.into());
-        m.insert("glossy_samples".into(), s.glossy_samples.into());
+        m.insert("rr_depth".into(), s.path.rr_depth.into());
+        m.insert("glossy_samples".into(), s.whitted.glossy_samples.into());
         if let Ok(f) = serde_json::to_value(s.filter) {
             m.insert("filter".into(), f);
         }
@@ -371,7 +371,7 @@ mod tests {
         let mut scene = Scene::default_scene();
         let a = trace_pixel(&scene, 400, 200).unwrap();
         scene.settings.antialiasing = crate::scene::Antialiasing::Uniform;
-        scene.settings.roulette_below = Some(0.25);
+        scene.settings.whitted.roulette_below = Some(0.25);
         let b = trace_pixel(&scene, 400, 200).unwrap();
         let d = diff(&a, &b);
         let text = |f: &str| {
@@ -394,7 +394,7 @@ mod tests {
         scene.settings.integrator = crate::scene::IntegratorKind::Path;
         let a = trace_pixel(&scene, 400, 200).unwrap();
         assert!(diff(&a, &a.clone()).settings.is_empty());
-        scene.settings.rr_depth = 2;
+        scene.settings.path.rr_depth = 2;
         let b = trace_pixel(&scene, 400, 200).unwrap();
         let d = diff(&a, &b);
         let c = d
@@ -412,7 +412,7 @@ mod tests {
     fn schlick_first_diverges_at_the_camera_rays_fresnel_r() {
         let mut scene = Scene::default_scene();
         let a = trace_pixel(&scene, 400, 200).unwrap();
-        scene.settings.fresnel = FresnelModel::Schlick;
+        scene.settings.whitted.fresnel = FresnelModel::Schlick;
         let b = trace_pixel(&scene, 400, 200).unwrap();
         let d = diff(&a, &b);
         assert_eq!(d.settings.len(), 1, "{:?}", d.settings);

@@ -227,8 +227,8 @@ pub fn explain(tree: &RayTree, scene: &Scene) -> Explanation {
         .collect();
     if !rouletted.is_empty() {
         let why = match (
-            tree.settings.roulette_below,
-            tree.settings.dielectric_roulette,
+            tree.settings.whitted.roulette_below,
+            tree.settings.whitted.dielectric_roulette,
         ) {
             (_, Some(d)) => format!("from depth {d} (settings.dielectric_roulette)"),
             (Some(w), None) => format!("where the throughput was below {w:.2e}"),
@@ -251,10 +251,10 @@ pub fn explain(tree: &RayTree, scene: &Scene) -> Explanation {
         (EndReason::MaxDepth, format!("max depth {}", st.max_depth)),
         (
             EndReason::MinWeight,
-            match scene.settings.min_weight {
+            match scene.settings.whitted.min_weight {
                 None => format!(
                     "the automatic min weight {:.2e}",
-                    st.min_weight.unwrap_or(0.0)
+                    st.whitted.min_weight.unwrap_or(0.0)
                 ),
                 Some(w) => format!("min weight {w:.2e}"),
             },

@@ -64,7 +64,8 @@ pub(super) fn branches(scene: &Scene, m: &Material) -> bool {
         return m.is_transmissive() && m.reflectivity.max_element() > 0.0;
     }
     m.is_transmissive()
-        && (scene.settings.fresnel != FresnelModel::None || m.reflectivity.max_element() > 0.0)
+        && (scene.settings.whitted.fresnel != FresnelModel::None
+            || m.reflectivity.max_element() > 0.0)
 }
 
 /// Region a ray is in: the world (`None`) or inside object `k`.

@@ -105,7 +105,7 @@ pub fn path_note(scene: &Scene) -> Option<String> {
              at each bounce, so its rays grow at most linearly with max depth (Russian \
              roulette from bounce {}); no split, no cut. The tree below is that of \
              --integrator whitted",
-            scene.settings.rr_depth
+            scene.settings.path.rr_depth
         )
     })
 }

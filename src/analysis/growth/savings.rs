@@ -101,8 +101,11 @@ pub fn cut_savings(
 ) -> Option<CutSavings> {
     let with = |min_weight, roulette_below| Scene {
         settings: Settings {
-            min_weight,
-            roulette_below,
+            whitted: crate::scene::WhittedSettings {
+                min_weight,
+                roulette_below,
+                ..scene.settings.whitted
+            },
             spp: 1,
             ..scene.settings
         },

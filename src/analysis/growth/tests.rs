@@ -24,7 +24,7 @@ fn nested_dielectrics_grow_exponentially() {
     );
     // Without Fresnel reflection every hit has one child: a chain, linear in depth.
     let mut s = fixture("nested.json");
-    s.settings.fresnel = FresnelModel::None;
+    s.settings.whitted.fresnel = FresnelModel::None;
     assert_eq!(tree_growth(&s).growth, Growth::Polynomial(1));
     s.settings.max_depth = 0;
     assert_eq!(tree_growth(&s).growth, Growth::Bounded);
@@ -83,7 +83,7 @@ fn the_cut_saves_rays_in_nested_glass_and_nothing_without_recursion() {
     assert!(c.ratio() > 4.0, "{c:?}");
     // The exhaustive count is the sum of the sampled pixels' trees with min_weight 0.
     let mut full = s.clone();
-    full.settings.min_weight = Some(0.0);
+    full.settings.whitted.min_weight = Some(0.0);
     let nodes: usize = grid_pixels(160, 90, 16, 9)
         .iter()
         .map(|&(x, y)| crate::render::trace_pixel(&full, x, y).unwrap().nodes.len())

@@ -86,7 +86,10 @@ impl Builder {
     pub fn new(vertex_limit: usize) -> Self {
         let settings = Settings {
             integrator: crate::scene::IntegratorKind::Path,
-            light_samples: Some(1),
+            whitted: crate::scene::WhittedSettings {
+                light_samples: Some(1),
+                ..crate::scene::WhittedSettings::default()
+            },
             ..Settings::default()
         };
         Self {

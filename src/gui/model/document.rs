@@ -133,9 +133,9 @@ pub fn tree_label(scene_label: &str, tree: &RayTree) -> String {
             .and_then(|v| v.as_str().map(str::to_string))
             .unwrap_or_default()
     };
-    let roulette = match (s.integrator, s.roulette_below) {
+    let roulette = match (s.integrator, s.whitted.roulette_below) {
         (crate::scene::IntegratorKind::Path, _) => {
-            format!(", roulette from bounce {}", s.rr_depth)
+            format!(", roulette from bounce {}", s.path.rr_depth)
         }
         (_, Some(w)) if w > 0.0 => format!(", roulette below {w}"),
         _ => String::new(),
@@ -149,8 +149,8 @@ pub fn tree_label(scene_label: &str, tree: &RayTree) -> String {
         s.spp,
         name(serde_json::to_value(s.offset.strategy)),
         s.offset.epsilon,
-        name(serde_json::to_value(s.fresnel)),
-        name(serde_json::to_value(s.shadows)),
+        name(serde_json::to_value(s.whitted.fresnel)),
+        name(serde_json::to_value(s.whitted.shadows)),
     )
 }
 

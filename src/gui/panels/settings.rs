@@ -75,7 +75,7 @@ pub fn settings_ui(ui: &mut egui::Ui, doc: &Document, cmds: &mut Vec<Command>) {
         });
     if s.integrator != IntegratorKind::Whitted {
         ui.add(
-            Slider::new(&mut s.rr_depth, 0..=64)
+            Slider::new(&mut s.path.rr_depth, 0..=64)
                 .clamping(egui::SliderClamping::Never)
                 .text("roulette from bounce"),
         );
@@ -134,27 +134,31 @@ pub fn settings_ui(ui: &mut egui::Ui, doc: &Document, cmds: &mut Vec<Command>) {
     // kept for a switch back) but disabled, as it does not read them.
     ui.add_enabled_ui(s.integrator == IntegratorKind::Whitted, |ui| {
         egui::ComboBox::from_label("Fresnel")
-            .selected_text(format!("{:?}", s.fresnel))
+            .selected_text(format!("{:?}", s.whitted.fresnel))
             .show_ui(ui, |ui| {
                 for m in [
                     FresnelModel::Exact,
                     FresnelModel::Schlick,
                     FresnelModel::None,
                 ] {
-                    ui.selectable_value(&mut s.fresnel, m, format!("{m:?}"));
+                    ui.selectable_value(&mut s.whitted.fresnel, m, format!("{m:?}"));
                 }
             });
         ui.horizontal(|ui| {
             ui.label("shadows");
-            ui.radio_value(&mut s.shadows, ShadowMode::Opaque, "opaque");
-            ui.radio_value(&mut s.shadows, ShadowMode::Translucent, "translucent");
+            ui.radio_value(&mut s.whitted.shadows, ShadowMode::Opaque, "opaque");
+            ui.radio_value(
+                &mut s.whitted.shadows,
+                ShadowMode::Translucent,
+                "translucent",
+            );
         });
         min_weight_ui(ui, doc, &mut s);
     })
     .response
     .on_disabled_hover_text(format!(
         "the path integrator does not read these: {}",
-        IntegratorKind::WHITTED_ONLY_WHY
+        crate::scene::WhittedSettings::WHY_OTHERS_IGNORE
     ));
     stochastic_ui(ui, doc, &mut s);
     roulette_ui(ui, doc, &mut s);
@@ -173,8 +177,8 @@ fn stochastic_ui(ui: &mut egui::Ui, doc: &Document, s: &mut crate::scene::Settin
         return;
     }
     if (0..scene.objects.len()).any(|i| scene.area_light(i).is_some()) {
-        let mut on = s.light_samples.is_some();
-        let mut n = s.light_samples.unwrap_or(1);
+        let mut on = s.whitted.light_samples.is_some();
+        let mut n = s.whitted.light_samples.unwrap_or(1);
         ui.horizontal(|ui| {
             ui.checkbox(&mut on, "area lights")
                 .on_hover_text("sample emissive objects with shadow rays (soft shadows)");
@@ -186,11 +190,11 @@ fn stochastic_ui(ui: &mut egui::Ui, doc: &Document, s: &mut crate::scene::Settin
                     .text("light samples"),
             );
         });
-        s.light_samples = on.then_some(n);
+        s.whitted.light_samples = on.then_some(n);
     }
     if scene.used_materials().any(|m| m.roughness > 0.0) {
         ui.add(
-            Slider::new(&mut s.glossy_samples, 1..=64)
+            Slider::new(&mut s.whitted.glossy_samples, 1..=64)
                 .clamping(egui::SliderClamping::Never)
                 .logarithmic(true)
                 .text("glossy samples"),
@@ -202,9 +206,9 @@ fn stochastic_ui(ui: &mut egui::Ui, doc: &Document, s: &mut crate::scene::Settin
 /// ([`crate::integrator::bound`]); unticking starts the slider there; 0 is the exhaustive tree.
 fn min_weight_ui(ui: &mut egui::Ui, doc: &Document, s: &mut crate::scene::Settings) {
     let auto_value = crate::integrator::bound::auto_min_weight(&doc.scene, s);
-    s.min_weight = auto_weight_ui(
+    s.whitted.min_weight = auto_weight_ui(
         ui,
-        s.min_weight,
+        s.whitted.min_weight,
         auto_value,
         "min weight",
         "cut branches that could add less than the tolerance (1/510)",
@@ -226,8 +230,8 @@ fn roulette_ui(ui: &mut egui::Ui, doc: &Document, s: &mut crate::scene::Settings
          hits weaker than the weight follow one of their two rays (Russian roulette, exact in \
          expectation, noisy); suggested for this scene: {suggested:.2e}"
     );
-    let mut default = s.roulette_below.is_none();
-    let mut w = s.roulette_below.unwrap_or(suggested);
+    let mut default = s.whitted.roulette_below.is_none();
+    let mut w = s.whitted.roulette_below.unwrap_or(suggested);
     ui.horizontal(|ui| {
         ui.add_enabled(
             !default,
@@ -239,7 +243,7 @@ fn roulette_ui(ui: &mut egui::Ui, doc: &Document, s: &mut crate::scene::Settings
         ui.checkbox(&mut default, "default (off)")
             .on_hover_text(hover);
     });
-    s.roulette_below = (!default).then_some(w);
+    s.whitted.roulette_below = (!default).then_some(w);
 }
 
 /// A weight in `[0, 1]` on a log slider beside an "auto" box: `None` (automatic, the slider

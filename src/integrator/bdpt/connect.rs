@@ -126,7 +126,7 @@ impl Bdpt<'_> {
                 lp[s - 2].1 = self.pdf(q, Some(p), m);
             }
         }
-        let heuristic = self.scene().settings.mis;
+        let heuristic = self.scene().settings.path.mis;
         let mut sum = 0.0;
         let mut ri = 1.0;
         for i in (1..t).rev() {

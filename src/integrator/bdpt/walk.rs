@@ -252,7 +252,7 @@ impl Bdpt<'_> {
             };
             let mut weight = f_cos_pdf;
             let bounce = path.len() as u32 - 1;
-            if bounce >= settings.rr_depth {
+            if bounce >= settings.path.rr_depth {
                 let q = (w.rel * weight).max_element().min(1.0);
                 let survived = sampler.next_1d() < q;
                 rec.update(id, |n| {
@@ -287,7 +287,7 @@ impl Bdpt<'_> {
                 path[n - 1].delta = true;
                 (bs.wi.dot(si.n).abs(), si.wo.dot(si.n).abs())
             } else {
-                (bs.pdf, bsdf.pdf(bs.wi, si.wo))
+                (bs.pdf, bsdf.pdf_rev(si.wo, bs.wi))
             };
             path[n - 1].event = event(bs.kind);
             let (last, before) = (path[n - 1], &mut path[n - 2]);

@@ -229,7 +229,7 @@ impl LightTracer<'_> {
         };
         let f_cos_pdf = adjoint_weight(&si, &bs);
         let mut weight = f_cos_pdf;
-        if w.depth + 1 >= settings.rr_depth {
+        if w.depth + 1 >= settings.path.rr_depth {
             let q = (w.rel * weight).max_element().min(1.0);
             let survived = sampler.next_1d() < q;
             rec.update(id, |n| {

@@ -343,7 +343,7 @@ impl PathTracer<'_> {
         rec: &mut R,
     ) -> Option<Rgb> {
         let mut weight = f_cos_pdf;
-        if w.depth + 1 >= self.scene().settings.rr_depth {
+        if w.depth + 1 >= self.scene().settings.path.rr_depth {
             let q = (w.beta * weight).max_element().min(1.0);
             let survived = sampler.next_1d() < q;
             rec.update(id, |n| {

@@ -111,7 +111,7 @@ impl Whitted<'_> {
     ) {
         let m = si.material;
         let count = match state.glossy {
-            None => self.core.scene.settings.glossy_samples.max(1),
+            None => self.core.scene.settings.whitted.glossy_samples.max(1),
             Some(_) => 1,
         };
         let split = state.glossy.unwrap_or(count);

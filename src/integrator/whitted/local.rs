@@ -146,7 +146,13 @@ impl Whitted<'_> {
         rec: &mut R,
         counts: &mut RayCounts,
     ) -> Rgb {
-        let n = self.scene().settings.light_samples.unwrap_or(1).max(1);
+        let n = self
+            .scene()
+            .settings
+            .whitted
+            .light_samples
+            .unwrap_or(1)
+            .max(1);
         let kernel = WhittedKernel {
             tracer: self,
             albedo,

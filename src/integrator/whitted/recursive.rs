@@ -159,6 +159,7 @@ impl Whitted<'_> {
             if let Some((dir, t)) = refraction
                 && (scene
                     .settings
+                    .whitted
                     .dielectric_roulette
                     .is_some_and(|from| state.depth >= from)
                     || throughput.max_element() < self.roulette_below)

@@ -420,9 +420,20 @@ pub enum LightDesc {
 }
 
 mod antialias;
+mod integrator;
+mod record;
 mod settings;
+mod spelling;
 pub use antialias::{ADAPTIVE_FACTOR, AUTO_THRESHOLD, AdaptiveDesc, Antialiasing};
+pub use integrator::{
+    DEFAULT_RR_DEPTH, DEFAULT_TOLERANCE, IntegratorKind, MisHeuristic, PathSettings,
+    WhittedSettings,
+};
+pub use record::{SettingsRecord, flat_settings};
 pub use settings::{
-    DEFAULT_MAX_RAYS, DEFAULT_RR_DEPTH, DEFAULT_TOLERANCE, FilterDesc, GAUSSIAN_RADIUS_SIGMAS,
-    IntegratorKind, MisHeuristic, OffsetDesc, OffsetStrategy, SamplerKind, Settings, ShadowMode,
+    DEFAULT_MAX_DEPTH, DEFAULT_MAX_RAYS, FilterDesc, GAUSSIAN_RADIUS_SIGMAS, OffsetDesc,
+    OffsetStrategy, SamplerKind, Settings, ShadowMode,
+};
+pub use spelling::{
+    BdptDesc, IntegratorDesc, RouletteDesc, WhittedDesc, new_spelling, old_spelling,
 };

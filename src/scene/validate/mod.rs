@@ -618,7 +618,7 @@ fn spot(
 }
 
 fn settings(ck: &Check, s: &Settings) -> Result<Settings, SceneError> {
-    check_settings(s).or_else(|(path, msg)| ck.fail(path, msg))
+    check_settings(s).or_else(|(path, msg)| ck.fail(ck.settings_key(&path), msg))
 }
 
 #[cfg(test)]

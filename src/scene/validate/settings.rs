@@ -10,6 +10,8 @@ pub const MAX_SPP: u32 = 65_536;
 pub const MAX_RAYS_LIMIT: u64 = 1 << 32;
 
 /// Validate settings (also used for command-line overrides): `(json path, message)` on error.
+/// An integrator's own setting is named by its key in the flat record (`settings.rr_depth`,
+/// [`crate::scene::desc::SettingsRecord`]): a scene file's check finds where the file writes it.
 pub fn check_settings(s: &Settings) -> Result<Settings, (String, String)> {
     if s.spp == 0 || s.spp > 65_536 {
         return Err((
@@ -30,7 +32,7 @@ pub fn check_settings(s: &Settings) -> Result<Settings, (String, String)> {
             format!("must be a finite number >= 0, got {eps}"),
         ));
     }
-    if let Some(w) = s.min_weight
+    if let Some(w) = s.whitted.min_weight
         && !(w.is_finite() && w >= 0.0)
     {
         return Err((
@@ -38,7 +40,7 @@ pub fn check_settings(s: &Settings) -> Result<Settings, (String, String)> {
             format!("must be a finite number >= 0, got {w}"),
         ));
     }
-    if let Some(w) = s.roulette_below
+    if let Some(w) = s.whitted.roulette_below
         && !(w.is_finite() && w >= 0.0)
     {
         return Err((
@@ -46,10 +48,10 @@ pub fn check_settings(s: &Settings) -> Result<Settings, (String, String)> {
             format!("must be a finite number >= 0, got {w}"),
         ));
     }
-    if !(s.tolerance.is_finite() && s.tolerance >= 0.0) {
+    if !(s.whitted.tolerance.is_finite() && s.whitted.tolerance >= 0.0) {
         return Err((
             "settings.tolerance".into(),
-            format!("must be a finite number >= 0, got {}", s.tolerance),
+            format!("must be a finite number >= 0, got {}", s.whitted.tolerance),
         ));
     }
     if s.max_rays == 0 || s.max_rays > MAX_RAYS_LIMIT {
@@ -58,7 +60,7 @@ pub fn check_settings(s: &Settings) -> Result<Settings, (String, String)> {
             format!("must be in 1..={MAX_RAYS_LIMIT}, got {}", s.max_rays),
         ));
     }
-    if let Some(n) = s.light_samples
+    if let Some(n) = s.whitted.light_samples
         && !(1..=MAX_LIGHT_SAMPLES).contains(&n)
     {
         return Err((
@@ -66,18 +68,18 @@ pub fn check_settings(s: &Settings) -> Result<Settings, (String, String)> {
             format!("must be in 1..={MAX_LIGHT_SAMPLES}, got {n}"),
         ));
     }
-    check_rr_depth(s.rr_depth).map_err(|m| ("settings.rr_depth".to_string(), m))?;
-    if !(1..=MAX_GLOSSY_SAMPLES).contains(&s.glossy_samples) {
+    check_rr_depth(s.path.rr_depth).map_err(|m| ("settings.rr_depth".to_string(), m))?;
+    if !(1..=MAX_GLOSSY_SAMPLES).contains(&s.whitted.glossy_samples) {
         return Err((
             "settings.glossy_samples".into(),
             format!(
                 "must be in 1..={MAX_GLOSSY_SAMPLES}, got {}",
-                s.glossy_samples
+                s.whitted.glossy_samples
             ),
         ));
     }
     check_filter(&s.filter)?;
-    if let Some(d) = s.dielectric_roulette
+    if let Some(d) = s.whitted.dielectric_roulette
         && d > 1024
     {
         return Err((

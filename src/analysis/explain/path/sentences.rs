@@ -79,7 +79,7 @@ pub(super) fn events_sentences(tree: &RayTree, sentences: &mut Vec<Sentence>) {
             kind: SentenceKind::Event,
             text: format!(
                 "Russian roulette from bounce {}: {} decision{}, {} path{} ended; survival probability down to {}, so a survivor's weight grew up to {:.2}x (unbiased: 1/q)",
-                tree.settings.rr_depth,
+                tree.settings.path.rr_depth,
                 decided.len(),
                 plural(decided.len()),
                 killed.len(),

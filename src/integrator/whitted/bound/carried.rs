@@ -91,7 +91,7 @@ pub fn carried_bound(scene: &Scene, max_depth: u32, shadows: ShadowMode) -> f64 
 /// effects` and `cost` suggest, opt-in.
 #[must_use]
 pub fn effective_roulette_below(scene: &Scene) -> f64 {
-    scene.settings.roulette_below.unwrap_or(0.0)
+    scene.settings.whitted.roulette_below.unwrap_or(0.0)
 }
 
 /// The automatic roulette weight for `s` (max depth, shadows and what turns it off) on `scene`:
@@ -102,13 +102,13 @@ pub fn effective_roulette_below(scene: &Scene) -> f64 {
 #[must_use]
 pub fn auto_roulette_below(scene: &Scene, s: &Settings) -> f64 {
     if s.integrator != IntegratorKind::Whitted
-        || s.min_weight.is_some()
-        || s.tolerance <= 0.0
-        || s.dielectric_roulette.is_some()
+        || s.whitted.min_weight.is_some()
+        || s.whitted.tolerance <= 0.0
+        || s.whitted.dielectric_roulette.is_some()
     {
         return 0.0;
     }
-    let bound = carried_bound(scene, s.max_depth, s.shadows);
+    let bound = carried_bound(scene, s.max_depth, s.whitted.shadows);
     if !bound.is_finite() {
         return 0.0;
     }
@@ -130,7 +130,7 @@ pub fn roulette_note(scene: &Scene) -> (bool, String) {
     if s.integrator != IntegratorKind::Whitted {
         return (false, "the path integrator samples one ray per hit".into());
     }
-    if let Some(d) = s.dielectric_roulette {
+    if let Some(d) = s.whitted.dielectric_roulette {
         return (
             true,
             format!(
@@ -144,7 +144,7 @@ pub fn roulette_note(scene: &Scene) -> (bool, String) {
          probability (exact in expectation)"
     );
     let suggested = auto_roulette_below(scene, s);
-    match s.roulette_below {
+    match s.whitted.roulette_below {
         Some(0.0) => (
             false,
             "settings.roulette_below 0: every glass hit splits".into(),
@@ -157,7 +157,7 @@ pub fn roulette_note(scene: &Scene) -> (bool, String) {
                  bounds the work); opt in with --roulette-below {suggested:.2e} ({ROULETTE_RADIANCE} \
                  / the radiance a ray can carry, {:.3}) to follow one ray below that weight, exact \
                  in expectation but noisy (`raytree cost` measures what it saves)",
-                carried_bound(scene, s.max_depth, s.shadows)
+                carried_bound(scene, s.max_depth, s.whitted.shadows)
             ),
         ),
         None => (false, "off (the default): every glass hit splits".into()),

@@ -51,6 +51,7 @@ pub const SRGB_MAX_SLOPE: f64 = 12.92;
 pub fn effective_min_weight(scene: &Scene) -> f64 {
     scene
         .settings
+        .whitted
         .min_weight
         .unwrap_or_else(|| auto_min_weight(scene, &scene.settings))
 }
@@ -59,8 +60,8 @@ pub fn effective_min_weight(scene: &Scene) -> f64 {
 /// the tolerance is 0 or the scene's radiance has no finite bound.
 #[must_use]
 pub fn auto_min_weight(scene: &Scene, settings: &Settings) -> f64 {
-    let bound = radiance_bound(scene, settings.max_depth, settings.shadows);
-    let tol = settings.tolerance;
+    let bound = radiance_bound(scene, settings.max_depth, settings.whitted.shadows);
+    let tol = settings.whitted.tolerance;
     if tol <= 0.0 || !bound.is_finite() {
         return 0.0;
     }
@@ -100,7 +101,7 @@ fn area_emission(scene: &Scene) -> Option<f64> {
         .used_materials()
         .map(|m| m.emission.max_element().max(0.0))
         .fold(0.0, f64::max);
-    (scene.settings.light_samples.is_some() && emission > 0.0).then_some(emission)
+    (scene.settings.whitted.light_samples.is_some() && emission > 0.0).then_some(emission)
 }
 
 /// The point and directional lights' irradiance bound `sum_l E_l` (max channels; infinite for a

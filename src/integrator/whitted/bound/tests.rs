@@ -24,9 +24,9 @@ fn scene(extra: &str) -> Scene {
 fn sampled_area_lights_raise_the_bound_by_their_direct_light() {
     let src = include_str!("../../../../fixtures/soft-shadows.json");
     let mut s = Scene::from_json(src).unwrap();
-    assert!(s.settings.light_samples.is_some());
+    assert!(s.settings.whitted.light_samples.is_some());
     let on = radiance_bound(&s, 0, ShadowMode::Opaque);
-    s.settings.light_samples = None;
+    s.settings.whitted.light_samples = None;
     let off = radiance_bound(&s, 0, ShadowMode::Opaque);
     // The fixture: emission 10 (max channel), albedo 0.8, specular 0.3.
     let expect = (0.8 + std::f64::consts::PI * 0.3) * 10.0;
@@ -183,7 +183,7 @@ mod nested_dielectrics {
     /// exhaustive tree (`min_weight` 0).
     fn against_exhaustive(s: &Scene) -> impl Iterator<Item = (u32, u32, RayTree, RayTree)> {
         let mut full = s.clone();
-        full.settings.min_weight = Some(0.0);
+        full.settings.whitted.min_weight = Some(0.0);
         (0..8).flat_map(move |y| {
             let full = full.clone();
             (0..12).map(move |x| {
@@ -214,8 +214,8 @@ mod nested_dielectrics {
         ) {
             let mut cut = scene(ior, t, r, depth);
             // The cut alone (the roulette below a weight has tests of its own).
-            cut.settings.roulette_below = Some(0.0);
-            let bound = radiance_bound(&cut, depth, cut.settings.shadows);
+            cut.settings.whitted.roulette_below = Some(0.0);
+            let bound = radiance_bound(&cut, depth, cut.settings.whitted.shadows);
             let w = effective_min_weight(&cut);
             prop_assert!(w > 0.0);
             for (x, y, a, b) in against_exhaustive(&cut) {
@@ -247,11 +247,11 @@ mod nested_dielectrics {
             use super::super::carried::{auto_roulette_below, carried_bound};
             let mut default = scene(ior, t, r, depth);
             let weight = auto_roulette_below(&default, &default.settings);
-            default.settings.roulette_below = Some(weight);
+            default.settings.whitted.roulette_below = Some(weight);
             prop_assert!(weight > 0.0);
-            let carried = carried_bound(&default, depth, default.settings.shadows);
+            let carried = carried_bound(&default, depth, default.settings.whitted.shadows);
             prop_assert!((weight * carried - 0.01).abs() < 1e-12);
-            let bound = radiance_bound(&default, depth, default.settings.shadows);
+            let bound = radiance_bound(&default, depth, default.settings.whitted.shadows);
             for (x, y, a, b) in against_exhaustive(&default) {
                 prop_assert!(tree_violations(&a, default.background).is_empty());
                 let played = |n: &crate::tree::RayNode| {
