@@ -240,19 +240,28 @@ fn bad_roughness_and_glossy_samples_are_refused() {
             "\"roughness\": \"x\"",
             "materials.brushed.roughness",
         ),
+        // The fixture writes its settings in the new spelling: the error is where it writes
+        // the key (a type error inside the tagged value names the key in its message).
         (
             "\"glossy_samples\": 4",
             "\"glossy_samples\": 0",
-            "settings.glossy_samples",
+            "settings.integrator.glossy_samples",
         ),
         (
             "\"glossy_samples\": 4",
             "\"glossy_samples\": -2",
-            "settings.glossy_samples",
+            "settings.integrator",
         ),
     ] {
         let e = Scene::from_json(&GLOSSY.replace(from, to)).unwrap_err();
         assert_eq!(e.path, path, "{e}");
+        if to.ends_with("-2") {
+            assert!(
+                e.message
+                    .starts_with("glossy_samples: invalid value: integer `-2`"),
+                "{e}"
+            );
+        }
         assert!(e.line.is_some() && e.column.is_some(), "{e}");
     }
     let dir = tempfile::tempdir().unwrap();

@@ -15,11 +15,18 @@ use std::time::Duration;
 
 /// The classic scene under the path integrator, small.
 fn path_scene(dir: &Path) {
-    let s = classic().replace(
-        "\"settings\": {",
-        "\"settings\": {\"integrator\": \"path\", ",
+    std::fs::write(dir.join("p.json"), under_path(&classic())).unwrap();
+}
+
+/// The classic scene's text (or one made from it) under the path integrator: its
+/// `settings.integrator` (the Whitted integrator's default Fresnel and shadows) replaced.
+fn under_path(classic: &str) -> String {
+    let whitted = r#""integrator": {"type": "whitted", "fresnel": "exact", "shadows": "opaque"}"#;
+    assert!(
+        classic.contains(whitted),
+        "the classic fixture's integrator moved"
     );
-    std::fs::write(dir.join("p.json"), s).unwrap();
+    classic.replace(whitted, r#""integrator": {"type": "path"}"#)
 }
 
 fn refused_naming(r: &Run, what: &[&str]) {
@@ -334,15 +341,10 @@ fn images_must_be_regular_files_so_a_fifo_cannot_block() {
 
 /// A scene whose samples are finite but near f64::MAX: 4 samples sum to infinity.
 fn overflow_scene(dir: &Path) {
-    let s = classic()
-        .replace(
-            "\"intensity\": [120.0, 120.0, 120.0]",
-            "\"intensity\": [1.7e308, 1.7e308, 1.7e308]",
-        )
-        .replace(
-            "\"settings\": {",
-            "\"settings\": {\"integrator\": \"path\", ",
-        );
+    let s = under_path(&classic().replace(
+        "\"intensity\": [120.0, 120.0, 120.0]",
+        "\"intensity\": [1.7e308, 1.7e308, 1.7e308]",
+    ));
     std::fs::write(dir.join("hot.json"), s).unwrap();
 }
 
@@ -510,10 +512,7 @@ fn flag_errors_escape_control_characters_and_are_cut() {
 fn aov_renders_say_what_plain_renders_say() {
     let d = tempfile::tempdir().unwrap();
     let dir = d.path();
-    let s = super::outputs::hot("1e42").replace(
-        "\"settings\": {",
-        "\"settings\": {\"integrator\": \"path\", ",
-    );
+    let s = under_path(&super::outputs::hot("1e42"));
     std::fs::write(dir.join("hot.json"), s).unwrap();
     let plain = run(
         &["render", "hot.json", "--size", "32x18", "-o", "a.exr"],

@@ -251,13 +251,14 @@ pub fn matched_children(
     out
 }
 
-/// A tree's settings as JSON, with the defaults its serialization leaves out written in:
+/// A tree's settings as JSON (its flat record, `SettingsRecord`), with the defaults its serialization leaves out written in:
 /// `antialiasing` "auto", `roulette_below` 0 (a tree records the weight whenever the
 /// roulette was on), and the values in force of `rr_depth`, `glossy_samples` and `filter`
 /// (issue 32: the default `rr_depth` 5 read as "none -> 2"), so that a diff does not read an
 /// omitted default as "none".
 fn settings_value(s: &crate::scene::Settings) -> Value {
-    let mut v = serde_json::to_value(s).unwrap_or(Value::Null);
+    let record = crate::scene::desc::SettingsRecord::from(s);
+    let mut v = serde_json::to_value(record).unwrap_or(Value::Null);
     if let Value::Object(m) = &mut v {
         m.entry("antialiasing").or_insert_with(|| "auto".into());
         m.entry("roulette_below").or_insert_with(|| 0.0.into());

@@ -4,11 +4,11 @@
 
 use super::Bdpt;
 use super::vertex::{Kind, Vertex};
-use crate::bsdf::{Bsdf, LobeKind};
+use crate::bsdf::{Bsdf, BsdfSample, LobeKind};
 use crate::integrator::light::{adjoint_weight, emitted_ray};
 use crate::integrator::path::{event, transmits};
 use crate::integrator::{RayCounts, Recorder};
-use crate::interaction::SurfaceId;
+use crate::interaction::{SurfaceId, SurfaceInteraction};
 use crate::math::{Ray, Rgb};
 use crate::media::MediaStack;
 use crate::sampling::PixelSampler;
@@ -42,6 +42,34 @@ struct Step {
     sampled: (Option<LobeKind>, Option<Pdf>, Option<Rgb>),
     lpe: String,
     depth: u32,
+    /// Whether the walk carries importance (a light subpath).
+    importance: bool,
+}
+
+impl Step {
+    /// The state before the first ray of a walk from `start`.
+    fn first(start: &Start) -> Self {
+        let importance = start.importance;
+        Self {
+            ray: start.ray,
+            spawn_point: start.ray.origin,
+            from: start.from,
+            kind: if importance {
+                RayKind::Light
+            } else {
+                RayKind::Camera
+            },
+            parent: start.parent,
+            beta: start.beta,
+            rel: Rgb::ONE,
+            weight: start.beta,
+            pdf_fwd: start.pdf_dir,
+            sampled: (None, None, None),
+            lpe: String::from(if importance { "L" } else { "C" }),
+            depth: 0,
+            importance,
+        }
+    }
 }
 
 impl Bdpt<'_> {
@@ -147,27 +175,10 @@ impl Bdpt<'_> {
         rec: &mut R,
         counts: &mut RayCounts,
     ) -> (Rgb, Option<NodeId>) {
-        let settings = &self.scene().settings;
-        let ray_limit = counts.total().saturating_add(settings.max_rays);
-        let importance = start.importance;
-        let mut w = Step {
-            ray: start.ray,
-            spawn_point: start.ray.origin,
-            from: start.from,
-            kind: if importance {
-                RayKind::Light
-            } else {
-                RayKind::Camera
-            },
-            parent: start.parent,
-            beta: start.beta,
-            rel: Rgb::ONE,
-            weight: start.beta,
-            pdf_fwd: start.pdf_dir,
-            sampled: (None, None, None),
-            lpe: String::from(if importance { "L" } else { "C" }),
-            depth: 0,
-        };
+        let ray_limit = counts
+            .total()
+            .saturating_add(self.scene().settings.max_rays);
+        let mut w = Step::first(&start);
         let mut media = MediaStack::AIR;
         let mut bsdf = Bsdf::EMPTY;
         let mut root = None;
@@ -186,149 +197,220 @@ impl Bdpt<'_> {
                 w.beta *= seg.atten;
             }
             let Some(hit) = seg.hit else {
-                rec.update(id, |n| n.end = EndReason::Miss);
-                if importance {
-                    return (Rgb::ZERO, root);
-                }
-                let c = w.beta * self.scene().background;
-                rec.update(id, |n| {
-                    if let Some(p) = n.path.as_mut() {
-                        p.contribution = c;
-                        p.mis_weight = Some(1.0);
-                        p.strategy = Some([0, path.len() as u32 + 1]);
-                        p.lpe.push('B');
-                    }
-                });
-                return (c, root);
+                return (self.escape(&w, path.len(), id, rec), root);
             };
             let si = self.core.surface(&w.ray, &hit, &media);
             self.core.record_hit(&si, &hit, id, rec);
             bsdf.reset_at(&si, si.material.roughness);
-            let mut v = Vertex::at(Kind::Surface, si.p);
-            v.ng = si.n;
-            v.ns = si.ns;
-            v.wo = si.wo;
-            v.beta = w.beta;
-            v.smooth = si.smooth.is_some();
-            v.bsdf = bsdf;
-            v.from = Some(si.from());
-            v.id = id;
-            if !importance && si.entering && si.material.emission != Rgb::ZERO {
-                v.le = si.material.emission;
-                v.emitter = Some(hit.object);
-            }
             let Some(prev) = path.last() else {
                 return (Rgb::ZERO, root);
             };
-            v.pdf_fwd = prev.convert_density(w.pdf_fwd, &v);
+            let v = surface_vertex(&si, &w, bsdf, id);
+            let v = Vertex {
+                pdf_fwd: prev.convert_density(w.pdf_fwd, &v),
+                ..v
+            };
             path.push(v);
-            if path.len() >= max {
-                end(rec, id, EndReason::MaxDepth);
-                return (Rgb::ZERO, root);
-            }
-            if bsdf.lobes().next().is_none() {
-                end(rec, id, EndReason::Surface);
-                return (Rgb::ZERO, root);
-            }
-            if counts.total() >= ray_limit {
+            let ended = if path.len() >= max {
+                Some(EndReason::MaxDepth)
+            } else if bsdf.lobes().next().is_none() {
+                Some(EndReason::Surface)
+            } else if counts.total() >= ray_limit {
                 counts.budget_cuts += 1;
-                end(rec, id, EndReason::RayBudget);
-                return (Rgb::ZERO, root);
-            }
-            let uc = sampler.next_1d();
-            let u = sampler.next_2d();
-            let sample = bsdf.sample(si.wo, uc, DVec2::new(u.0, u.1)).filter(|s| {
-                let below = s.wi.dot(si.n) < 0.0;
-                below == transmits(s.kind) && s.value.is_finite()
-            });
-            let Some(bs) = sample else {
-                end(rec, id, EndReason::Absorbed);
-                return (Rgb::ZERO, root);
-            };
-            let f_cos_pdf = if importance {
-                adjoint_weight(&si, &bs)
+                Some(EndReason::RayBudget)
             } else {
-                bs.weight(bs.wi.dot(si.ns))
+                None
             };
-            let mut weight = f_cos_pdf;
-            let bounce = path.len() as u32 - 1;
-            if bounce >= settings.path.rr_depth {
-                let q = (w.rel * weight).max_element().min(1.0);
-                let survived = sampler.next_1d() < q;
-                rec.update(id, |n| {
-                    if let Some(p) = n.path.as_mut() {
-                        p.roulette = Some(Roulette {
-                            probability: q,
-                            survived,
-                        });
-                    }
-                });
-                if !survived {
-                    end(rec, id, EndReason::RussianRoulette);
-                    return (Rgb::ZERO, root);
-                }
-                weight /= q;
-            }
-            if weight == Rgb::ZERO || !weight.is_finite() {
-                end(rec, id, EndReason::Absorbed);
+            if let Some(reason) = ended {
+                end(rec, id, reason);
                 return (Rgb::ZERO, root);
             }
+            let Some(next) = self.scatter(&si, &bsdf, &w, path.len(), sampler, id, rec) else {
+                return (Rgb::ZERO, root);
+            };
             end(rec, id, EndReason::Continued);
-            let (p, n_geo, from, entering, ior) =
-                (si.p, si.n, si.from(), si.entering, si.material.ior);
-            // The densities of this step in both directions. Through a delta lobe the densities
-            // are deltas in projected solid angle, which cancel between strategies, times the
-            // cosines that turn them into area densities: `|cos|` here, the far end's cosine
-            // and distance by `convert_density`. Leaving the cosines out (pbrt-v3's 0, read as
-            // 1) left the geometry factors of the specular chain in the MIS ratios: a caustic
-            // seen on a floor near its glass ball gave the light strategy 2-8% of the weight.
-            let n = path.len();
-            let (fwd, rev) = if bs.delta {
-                path[n - 1].delta = true;
-                (bs.wi.dot(si.n).abs(), si.wo.dot(si.n).abs())
-            } else {
-                (bs.pdf, bsdf.pdf_rev(si.wo, bs.wi))
-            };
-            path[n - 1].event = event(bs.kind);
-            let (last, before) = (path[n - 1], &mut path[n - 2]);
-            before.pdf_rev = last.convert_density(rev, before);
-            w.pdf_fwd = fwd;
-            w.beta *= weight;
-            w.rel *= weight;
-            if transmits(bs.kind) {
+            let crossing = transmits(next.bs.kind).then_some((si.entering, si.material.ior));
+            self.advance::<R>(&mut w, path, &si, &bsdf, next, id);
+            if let Some((entering, ior)) = crossing {
                 media = media.crossed(hit.object, entering, ior);
-            }
-            let side = if bs.wi.dot(n_geo) < 0.0 {
-                -n_geo
-            } else {
-                n_geo
-            };
-            w.ray = self.core.spawn_ray(from, p, side, bs.wi);
-            w.spawn_point = p;
-            w.from = Some(from);
-            w.parent = id;
-            w.weight = weight;
-            w.depth += 1;
-            w.kind = if importance {
-                RayKind::Light
-            } else {
-                match bs.kind {
-                    LobeKind::Diffuse => RayKind::Diffuse,
-                    LobeKind::SpecularReflection | LobeKind::GlossyReflection => RayKind::Reflected,
-                    _ => RayKind::Refracted,
-                }
-            };
-            let pdf = if bs.delta {
-                Pdf::Delta(DeltaTag::Delta)
-            } else {
-                Pdf::Density(bs.pdf)
-            };
-            w.sampled = (Some(bs.kind), Some(pdf), Some(f_cos_pdf));
-            if R::RECORDS {
-                w.lpe.push_str(event(bs.kind));
             }
         }
     }
+
+    /// What an escaping ray sees: nothing for a light subpath; for a camera subpath the
+    /// background through its throughput, recorded as the `s = 0` strategy's contribution
+    /// (weight 1: no light subpath starts on the background).
+    fn escape<R: Recorder>(
+        &self,
+        w: &Step,
+        vertices: usize,
+        id: Option<NodeId>,
+        rec: &mut R,
+    ) -> Rgb {
+        rec.update(id, |n| n.end = EndReason::Miss);
+        if w.importance {
+            return Rgb::ZERO;
+        }
+        let c = w.beta * self.scene().background;
+        rec.update(id, |n| {
+            if let Some(p) = n.path.as_mut() {
+                p.contribution = c;
+                p.mis_weight = Some(1.0);
+                p.strategy = Some([0, vertices as u32 + 1]);
+                p.lpe.push('B');
+            }
+        });
+        c
+    }
+
+    /// The BSDF sample that continues the walk from the vertex at `si` (the `vertices`-th),
+    /// after Russian roulette from `rr_depth` on; `None` (its end recorded on node `id`) when
+    /// the sample fails, lands on the wrong side, or roulette or a zero weight ends the walk.
+    // The hit, its BSDF and the walk's state and length, plus the sampler, node and recorder.
+    #[allow(clippy::too_many_arguments)]
+    fn scatter<R: Recorder, S: PixelSampler>(
+        &self,
+        si: &SurfaceInteraction,
+        bsdf: &Bsdf,
+        w: &Step,
+        vertices: usize,
+        sampler: &mut S,
+        id: Option<NodeId>,
+        rec: &mut R,
+    ) -> Option<Scatter> {
+        let uc = sampler.next_1d();
+        let u = sampler.next_2d();
+        let sample = bsdf.sample(si.wo, uc, DVec2::new(u.0, u.1)).filter(|s| {
+            let below = s.wi.dot(si.n) < 0.0;
+            below == transmits(s.kind) && s.value.is_finite()
+        });
+        let Some(bs) = sample else {
+            end(rec, id, EndReason::Absorbed);
+            return None;
+        };
+        let f_cos_pdf = if w.importance {
+            adjoint_weight(si, &bs)
+        } else {
+            bs.weight(bs.wi.dot(si.ns))
+        };
+        let mut weight = f_cos_pdf;
+        let bounce = vertices as u32 - 1;
+        if bounce >= self.scene().settings.path.rr_depth {
+            let q = (w.rel * weight).max_element().min(1.0);
+            let survived = sampler.next_1d() < q;
+            rec.update(id, |n| {
+                if let Some(p) = n.path.as_mut() {
+                    p.roulette = Some(Roulette {
+                        probability: q,
+                        survived,
+                    });
+                }
+            });
+            if !survived {
+                end(rec, id, EndReason::RussianRoulette);
+                return None;
+            }
+            weight /= q;
+        }
+        if weight == Rgb::ZERO || !weight.is_finite() {
+            end(rec, id, EndReason::Absorbed);
+            return None;
+        }
+        Some(Scatter {
+            bs,
+            weight,
+            f_cos_pdf,
+        })
+    }
+
+    /// The walk's next ray from the last vertex of `path` (at `si`, node `id`) along the
+    /// sampled direction: the step's densities in both directions (the forward one for the
+    /// next vertex, the reverse one onto the vertex before), the throughput, the ray and
+    /// what its node records.
+    fn advance<R: Recorder>(
+        &self,
+        w: &mut Step,
+        path: &mut [Vertex],
+        si: &SurfaceInteraction,
+        bsdf: &Bsdf,
+        next: Scatter,
+        id: Option<NodeId>,
+    ) {
+        let Scatter {
+            bs,
+            weight,
+            f_cos_pdf,
+        } = next;
+        // The densities of this step in both directions. Through a delta lobe the densities
+        // are deltas in projected solid angle, which cancel between strategies, times the
+        // cosines that turn them into area densities: `|cos|` here, the far end's cosine
+        // and distance by `convert_density`. Leaving the cosines out (pbrt-v3's 0, read as
+        // 1) left the geometry factors of the specular chain in the MIS ratios: a caustic
+        // seen on a floor near its glass ball gave the light strategy 2-8% of the weight.
+        let n = path.len();
+        let (fwd, rev) = if bs.delta {
+            path[n - 1].delta = true;
+            (bs.wi.dot(si.n).abs(), si.wo.dot(si.n).abs())
+        } else {
+            (bs.pdf, bsdf.pdf_rev(si.wo, bs.wi))
+        };
+        path[n - 1].event = event(bs.kind);
+        let (last, before) = (path[n - 1], &mut path[n - 2]);
+        before.pdf_rev = last.convert_density(rev, before);
+        w.pdf_fwd = fwd;
+        w.beta *= weight;
+        w.rel *= weight;
+        let side = if bs.wi.dot(si.n) < 0.0 { -si.n } else { si.n };
+        w.ray = self.core.spawn_ray(si.from(), si.p, side, bs.wi);
+        w.spawn_point = si.p;
+        w.from = Some(si.from());
+        w.parent = id;
+        w.weight = weight;
+        w.depth += 1;
+        if !w.importance {
+            w.kind = match bs.kind {
+                LobeKind::Diffuse => RayKind::Diffuse,
+                LobeKind::SpecularReflection | LobeKind::GlossyReflection => RayKind::Reflected,
+                _ => RayKind::Refracted,
+            };
+        }
+        let pdf = if bs.delta {
+            Pdf::Delta(DeltaTag::Delta)
+        } else {
+            Pdf::Density(bs.pdf)
+        };
+        w.sampled = (Some(bs.kind), Some(pdf), Some(f_cos_pdf));
+        if R::RECORDS {
+            w.lpe.push_str(event(bs.kind));
+        }
+    }
+}
+
+/// A BSDF sample that continues a walk: the sample, its weight after roulette, and
+/// `f |cos| / pdf` before it (what the ray's node records).
+struct Scatter {
+    bs: BsdfSample,
+    weight: Rgb,
+    f_cos_pdf: Rgb,
+}
+
+/// The vertex a walk finds at `si` (node `id`): where, its normals and BSDF, the walk's
+/// throughput, and for a camera subpath the emission it sees (`le`, the `s = 0` strategy).
+fn surface_vertex(si: &SurfaceInteraction, w: &Step, bsdf: Bsdf, id: Option<NodeId>) -> Vertex {
+    let mut v = Vertex::at(Kind::Surface, si.p);
+    v.ng = si.n;
+    v.ns = si.ns;
+    v.wo = si.wo;
+    v.beta = w.beta;
+    v.smooth = si.smooth.is_some();
+    v.bsdf = bsdf;
+    v.from = Some(si.from());
+    v.id = id;
+    if !w.importance && si.entering && si.material.emission != Rgb::ZERO {
+        v.le = si.material.emission;
+        v.emitter = Some(si.from().object);
+    }
+    v
 }
 
 /// Record why the walk ends (or `Continued`) at the hit of node `id`.

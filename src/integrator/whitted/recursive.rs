@@ -10,7 +10,7 @@ use crate::interaction::{SurfaceId, SurfaceInteraction};
 use crate::math::{Ray, Rgb, reflect};
 use crate::sampling::PixelSampler;
 use crate::scene::Hit;
-use crate::tree::{EndReason, HitInfo, Interface, NodeId, RayKind, RayNode};
+use crate::tree::{EndReason, Interface, NodeId, RayKind, RayNode};
 use glam::DVec3;
 
 impl Whitted<'_> {
@@ -84,33 +84,8 @@ impl Whitted<'_> {
         rec: &mut R,
         counts: &mut RayCounts,
     ) -> Rgb {
-        let scene = self.core.scene;
-        let d = ray.direction;
         let si = self.core.surface(ray, hit, state.media);
-        let SurfaceInteraction {
-            p,
-            entering,
-            n,
-            ns,
-            smooth,
-            cos_i,
-            material: m,
-            ..
-        } = si;
-        rec.update(id, |node| {
-            node.hit = Some(HitInfo {
-                t: hit.t,
-                point: p,
-                normal: hit.normal,
-                object: hit.object,
-                object_name: scene.objects[hit.object].name.clone(),
-                material: m.name.clone(),
-                entering,
-                cos_i,
-                triangle: scene.source_triangle(hit),
-                shading_normal: smooth.map(|_| if entering { ns } else { -ns }),
-            });
-        });
+        self.core.record_hit(&si, hit, id, rec);
         let Local {
             emitted,
             ambient,
@@ -133,21 +108,81 @@ impl Whitted<'_> {
         // Rough lobes are sampled (glossy.rs); the smooth ones split as the lecture's. An
         // index-matched rough interface stays a smooth pass-through (every microfacet sends
         // light straight on).
+        let m = si.material;
         let rough = self.core.plan.glossy && m.is_rough();
-        let rough_dielectric = rough && m.is_transmissive() && super::glossy::refracts(&si);
+        let split = self.split(&si, rough, throughput, state.depth, id, rec, counts);
+        let at = Spawn {
+            kind: RayKind::Reflected,
+            parent: id,
+            point: si.p,
+            from: Some(SurfaceId {
+                object: hit.object,
+                triangle: hit.triangle,
+            }),
+            weight: Rgb::ZERO,
+        };
+        let mut acc = Secondary {
+            total: local,
+            end: EndReason::Surface,
+            truncated: Rgb::ZERO,
+        };
+        let state = PathState {
+            throughput,
+            ..state
+        };
+        self.children(
+            &mut acc,
+            &si,
+            ray.direction,
+            split,
+            at,
+            state,
+            sampler,
+            rec,
+            counts,
+        );
+        if rough {
+            self.glossy_rays(&mut acc, &si, at, state, sampler, rec, counts);
+        }
+        rec.update(id, |node| {
+            node.end = acc.end;
+            node.truncated = acc.truncated;
+        });
+        acc.total
+    }
+
+    /// The smooth lobes' split at a hit: the mirror weight (the material's reflectivity, plus
+    /// the Fresnel reflection of a transmissive one) and the refracted ray's direction and
+    /// weight (none under total internal reflection, or where the dielectric is rough and
+    /// sampled instead), each possibly chosen by Russian roulette; the interface's event is
+    /// recorded on node `id`.
+    // The hit, its roughness, the throughput and depth the roulettes read, plus the node, recorder and counts.
+    #[allow(clippy::too_many_arguments)]
+    fn split<R: Recorder>(
+        &self,
+        si: &SurfaceInteraction,
+        rough: bool,
+        throughput: Rgb,
+        depth: u32,
+        id: Option<NodeId>,
+        rec: &mut R,
+        counts: &mut RayCounts,
+    ) -> Split {
+        let m = si.material;
+        let rough_dielectric = rough && m.is_transmissive() && super::glossy::refracts(si);
         let mut reflect_w = if rough {
             Rgb::ZERO
         } else {
-            mirror_weight(m, cos_i)
+            mirror_weight(m, si.cos_i)
         };
         let mut refraction = None;
         // Dielectric split (only where the material transmits).
         if self.core.plan.refraction && m.is_transmissive() && !rough_dielectric {
-            let (mut event, dir) = self.core.interface(&si, ns, cos_i);
+            let (mut event, dir) = self.core.interface(si, si.ns, si.cos_i);
             if let Some(eta) = m.thin {
                 // A thin sheet: the index-matched interface passes the ray straight on, with
                 // the sheet's total Fresnel instead (recorded as the event's fractions).
-                event.fresnel = thin_fresnel(event.fresnel.model, cos_i, eta);
+                event.fresnel = thin_fresnel(event.fresnel.model, si.cos_i, eta);
             }
             let f = event.fresnel;
             reflect_w += m.transmissivity * f.r;
@@ -156,15 +191,16 @@ impl Whitted<'_> {
             }
             let mut choice = None;
             // Russian roulette instead of the split: from a depth, or below a weight.
+            let scene = self.core.scene;
             if let Some((dir, t)) = refraction
                 && (scene
                     .settings
                     .whitted
                     .dielectric_roulette
-                    .is_some_and(|from| state.depth >= from)
+                    .is_some_and(|from| depth >= from)
                     || throughput.max_element() < self.roulette_below)
             {
-                let u = super::roulette::choice(scene.settings.seed, p, d);
+                let u = super::roulette::choice(scene.settings.seed, si.p, -si.wo);
                 let (r, t, c) = super::roulette::decide(reflect_w, t, u);
                 reflect_w = r;
                 refraction = Some((dir, t));
@@ -178,48 +214,52 @@ impl Whitted<'_> {
                 });
             });
         }
-        let at = Spawn {
-            kind: RayKind::Reflected,
-            parent: id,
-            point: p,
-            from: Some(SurfaceId {
-                object: hit.object,
-                triangle: hit.triangle,
-            }),
-            weight: Rgb::ZERO,
-        };
-        let mut acc = Secondary {
-            total: local,
-            end: EndReason::Surface,
-            truncated: Rgb::ZERO,
-        };
-        if reflect_w.max_element() > 0.0 {
+        Split {
+            reflect_w,
+            refraction,
+        }
+    }
+
+    /// The mirror and refracted rays of a smooth split (`d` the incoming direction), each
+    /// traced into `acc` where its weight is above zero.
+    // The accumulator, the hit, the incoming direction, the split and the spawn template and path state, plus the sampler, recorder and counts.
+    #[allow(clippy::too_many_arguments)]
+    fn children<R: Recorder, S: PixelSampler>(
+        &self,
+        acc: &mut Secondary,
+        si: &SurfaceInteraction,
+        d: DVec3,
+        split: Split,
+        at: Spawn,
+        state: PathState,
+        sampler: &mut S,
+        rec: &mut R,
+        counts: &mut RayCounts,
+    ) {
+        let (hit_object, m) = (si.from().object, si.material);
+        if split.reflect_w.max_element() > 0.0 {
             let spawn = Spawn {
-                weight: reflect_w,
+                weight: split.reflect_w,
                 ..at
             };
-            let state = PathState {
-                throughput,
-                ..state
-            };
             self.secondary(
-                &mut acc,
+                acc,
                 spawn,
-                reflect(d, ns),
-                n,
+                reflect(d, si.ns),
+                si.n,
                 state,
                 sampler,
                 rec,
                 counts,
             );
         }
-        if let Some((dir, weight)) = refraction.filter(|r| r.1.max_element() > 0.0) {
-            let media = if entering {
+        if let Some((dir, weight)) = split.refraction.filter(|r| r.1.max_element() > 0.0) {
+            let media = if si.entering {
                 state
                     .media
-                    .entered(hit.object, m.ior.unwrap_or(state.media.ior()))
+                    .entered(hit_object, m.ior.unwrap_or(state.media.ior()))
             } else {
-                state.media.left(hit.object)
+                state.media.left(hit_object)
             };
             let spawn = Spawn {
                 kind: RayKind::Refracted,
@@ -227,29 +267,11 @@ impl Whitted<'_> {
                 ..at
             };
             let state = PathState {
-                throughput,
                 media: &media,
                 ..state
             };
-            self.secondary(&mut acc, spawn, dir, -n, state, sampler, rec, counts);
+            self.secondary(acc, spawn, dir, -si.n, state, sampler, rec, counts);
         }
-        if rough {
-            let state = PathState {
-                throughput,
-                ..state
-            };
-            self.glossy_rays(&mut acc, &si, at, state, sampler, rec, counts);
-        }
-        let Secondary {
-            total,
-            end,
-            truncated,
-        } = acc;
-        rec.update(id, |node| {
-            node.end = end;
-            node.truncated = truncated;
-        });
-        total
     }
 
     /// Trace one secondary ray (or record why it was cut) and add its weighted radiance;
@@ -320,6 +342,13 @@ fn thin_fresnel(model: crate::math::FresnelModel, cos_i: f64, eta: f64) -> crate
         r,
         t: 1.0 - r,
     }
+}
+
+/// A smooth split: the mirror ray's weight and the refracted ray's direction and weight.
+#[derive(Clone, Copy)]
+struct Split {
+    reflect_w: Rgb,
+    refraction: Option<(DVec3, Rgb)>,
 }
 
 /// The smooth mirror ray's weight: `reflectivity`, times the conductor Fresnel per channel for

@@ -221,12 +221,47 @@ impl<'de> Deserialize<'de> for IntegratorSpelling {
                 self,
                 m: A,
             ) -> Result<Self::Value, A::Error> {
-                IntegratorDesc::deserialize(serde::de::value::MapAccessDeserializer::new(m))
+                use serde::de::Error;
+                let value = serde_json::Map::<String, serde_json::Value>::deserialize(
+                    serde::de::value::MapAccessDeserializer::new(m),
+                )?;
+                tagged(value)
                     .map(IntegratorSpelling::Tagged)
+                    .map_err(A::Error::custom)
             }
         }
         d.deserialize_any(V)
     }
+}
+
+/// The tagged value `{"type": ..., keys}`: read by hand rather than as serde's internally
+/// tagged enum, which buffers the keys and loses their path, so that an error names its key
+/// (`glossy_samples: invalid value: integer -2, expected u32`).
+fn tagged(mut keys: serde_json::Map<String, serde_json::Value>) -> Result<IntegratorDesc, String> {
+    let kind = match keys.remove("type") {
+        Some(serde_json::Value::String(name)) => IntegratorKind::from_name(&name)?,
+        Some(other) => return Err(format!("type: expected an integrator's name, got {other}")),
+        None => return Err(
+            "missing field `type` (the integrator: \"whitted\", \"path\", \"light\" or \"bdpt\")"
+                .into(),
+        ),
+    };
+    fn part<T: serde::de::DeserializeOwned>(
+        keys: serde_json::Map<String, serde_json::Value>,
+    ) -> Result<T, String> {
+        serde_path_to_error::deserialize(serde_json::Value::Object(keys)).map_err(|e| {
+            match e.path().to_string().as_str() {
+                "." => e.into_inner().to_string(),
+                key => format!("{key}: {}", e.into_inner()),
+            }
+        })
+    }
+    Ok(match kind {
+        IntegratorKind::Whitted => IntegratorDesc::Whitted(part(keys)?),
+        IntegratorKind::Path => IntegratorDesc::Path(part(keys)?),
+        IntegratorKind::Light => IntegratorDesc::Light(part(keys)?),
+        IntegratorKind::Bdpt => IntegratorDesc::Bdpt(part(keys)?),
+    })
 }
 
 /// The settings block as written, in either spelling.

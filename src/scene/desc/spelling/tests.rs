@@ -108,7 +108,15 @@ fn keys_of_another_integrator_and_keys_given_twice_are_refused() {
     );
     refused(
         r#"{"integrator": {"type": "metropolis"}}"#,
-        "unknown variant `metropolis`",
+        r#"unknown integrator "metropolis""#,
+    );
+    refused(
+        r#"{"integrator": {"type": "path", "rr_depth": -1}}"#,
+        "rr_depth: invalid value: integer `-1`",
+    );
+    refused(
+        r#"{"integrator": {"type": "bdpt", "mis": "max"}}"#,
+        "mis: unknown MIS heuristic",
     );
     refused(
         r#"{"integrator": {"fresnel": "exact"}}"#,
