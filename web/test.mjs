@@ -262,6 +262,51 @@ try {
   const depth = Math.max(...deep.nodes.map((n) => n.depth ?? 0));
   assert.equal(depth, MIRROR_DEPTH, 'the recursion reaches max_depth');
   log(`deep recursion: ${deep.nodes.length} rays to depth ${depth}, equal to the CLI's`);
+
+  // 8. pbrt-v4 and Mitsuba 3 scenes opened with their companions, selected together (the
+  // browser gives no folders: a pbrt scene's `geometry/panel.ply` is found by its name): the
+  // CLI's tree from the same files.
+  const formats = join(out, 'formats');
+  mkdirSync(join(formats, 'geometry'), { recursive: true });
+  const fixtureText = (f) => readFileSync(join(root, 'fixtures/formats', f)).toString();
+  const pbrt = fixtureText('cornell-box.pbrt')
+    .replace('"integer xresolution" 256 "integer yresolution" 256', '"integer xresolution" 32 "integer yresolution" 32')
+    .replace('"integer pixelsamples" 64', '"integer pixelsamples" 4')
+    + '\nAttributeBegin\nMaterial "diffuse" "rgb reflectance" [0.2 0.3 0.9]\nShape "plymesh" "string filename" "geometry/panel.ply"\nAttributeEnd\n';
+  writeFileSync(join(formats, 'scene.pbrt'), pbrt);
+  writeFileSync(join(formats, 'box-tall.pbrt'), fixtureText('box-tall.pbrt'));
+  // A binary PLY: a quad (two triangles) in front of the back wall.
+  const header = 'ply\nformat binary_little_endian 1.0\nelement vertex 4\nproperty float x\nproperty float y\nproperty float z\nelement face 2\nproperty list uchar int vertex_indices\nend_header\n';
+  const body = Buffer.alloc(4 * 12 + 2 * 13);
+  [[-0.9, 1.1, -0.6], [-0.3, 1.1, -0.6], [-0.3, 1.7, -0.6], [-0.9, 1.7, -0.6]].flat().forEach((v, i) => body.writeFloatLE(v, 4 * i));
+  [[0, 1, 2], [0, 2, 3]].forEach((f, i) => {
+    body.writeUInt8(3, 48 + 13 * i);
+    f.forEach((v, j) => body.writeInt32LE(v, 48 + 13 * i + 1 + 4 * j));
+  });
+  writeFileSync(join(formats, 'geometry', 'panel.ply'), Buffer.concat([Buffer.from(header), body]));
+  await upload([join(formats, 'box-tall.pbrt'), join(formats, 'geometry', 'panel.ply'), join(formats, 'scene.pbrt')]);
+  await waitFor('the pbrt scene', (s) => s.rendered && s.scene === 'uploads/scene.pbrt');
+  for (const px of [[12, 14], [20, 24]]) {
+    await clickPixel(px);
+    close(await tree(), cliJson('trace', '--json', '--pixel', px.join(','), join(formats, 'scene.pbrt')));
+  }
+  await shot('pbrt-upload');
+  const xml = fixtureText('cornell-box.xml')
+    .replace('<default name="spp" value="64"/>', '<default name="spp" value="4"/>')
+    .replace('<integer name="width" value="256"/>', '<integer name="width" value="32"/>')
+    .replace('<integer name="height" value="256"/>', '<integer name="height" value="32"/>');
+  writeFileSync(join(formats, 'scene.xml'), xml);
+  for (const f of ['box-tall.obj', 'box-short.obj']) writeFileSync(join(formats, f), fixtureText(f));
+  await upload([join(formats, 'box-short.obj'), join(formats, 'scene.xml'), join(formats, 'box-tall.obj')]);
+  await waitFor('the Mitsuba scene', (s) => s.rendered && s.scene === 'uploads/scene.xml');
+  await clickPixel([16, 20]);
+  close(await tree(), cliJson('trace', '--json', '--pixel', '16,20', join(formats, 'scene.xml')));
+  // A pbrt scene whose mesh was not selected with it (nor before): named, the page goes on.
+  writeFileSync(join(formats, 'lost.pbrt'), pbrt.replace('geometry/panel.ply', 'geometry/lost.ply'));
+  await upload([join(formats, 'lost.pbrt')]);
+  s = await waitFor('the missing companion', (s) => s.error?.includes('lost.ply'));
+  assert.equal(s.scene, 'uploads/scene.xml', 'the page keeps the scene it had');
+  log(`pbrt and Mitsuba uploads with companions: trees equal the CLI's; a missing one: ${s.error.split('\n')[0]}`);
   log(`numbers that differ from the CLI's in the last bits: ${ulpStats.count}, largest relative difference ${ulpStats.worst.toExponential(2)}`);
 } catch (e) {
   failures.push(e.stack ?? String(e));

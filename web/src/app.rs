@@ -147,29 +147,36 @@ impl WebApp {
         }
     }
 
-    /// Take uploaded (or dropped) files in: each as text, then open the first scene among them
-    /// (a `.json`, else the first file). Refused files are named in the message; the page goes
+    /// Take uploaded (or dropped) files in, then open the scene among them
+    /// ([`files::scene_among`]: a raytree JSON, glTF, Mitsuba or pbrt scene, with its meshes
+    /// and includes opened together). Refused files are named in the message; the page goes
     /// on with what it had.
     pub fn open_uploads(&mut self, uploads: Vec<(String, Vec<u8>)>) {
         let mut errors = Vec::new();
-        let mut scene = None;
+        let mut taken = Vec::new();
         for (name, bytes) in uploads {
             // Only the name: a dropped path's directories mean nothing here.
             let name = name.rsplit(['/', '\\']).next().unwrap_or(&name).to_owned();
-            match files::upload_text(&name, bytes, files::limit_for(&name)) {
-                Ok(text) => {
-                    let path = PathBuf::from(format!("uploads/{name}"));
-                    self.files.insert(path.clone(), text);
-                    let is_scene = name.to_ascii_lowercase().ends_with(".json");
-                    if scene.as_ref().is_none_or(|(s, _)| !s && is_scene) {
-                        scene = Some((is_scene, path));
-                    }
-                }
+            match files::upload(&name, bytes, files::limit_for(&name)) {
+                Ok(bytes) => taken.push((name, bytes)),
                 Err(e) => errors.push(e),
             }
         }
+        let scene = files::scene_among(&taken).map(|i| taken[i].0.clone());
+        for (name, bytes) in taken {
+            self.files
+                .insert(PathBuf::from(format!("{}/{name}", files::UPLOADS)), bytes);
+        }
+        if scene.is_none() && errors.is_empty() {
+            errors.push(
+                "no scene among the files opened (a .json, .gltf, .glb, .xml or .pbrt); their \
+                 meshes are kept for the scene opened next"
+                    .to_string(),
+            );
+        }
         self.message = (!errors.is_empty()).then(|| errors.join("\n"));
-        if let Some((_, path)) = scene {
+        if let Some(name) = scene {
+            let path = PathBuf::from(format!("{}/{name}", files::UPLOADS));
             self.inner.session.apply(Command::Open(path));
         }
     }

@@ -11,10 +11,11 @@ use std::time::SystemTime;
 /// Where a write goes: the file's name (no directory) and its bytes.
 pub type Sink = fn(&str, &[u8]) -> std::io::Result<()>;
 
-/// The files the page knows, shared between the hook and the app (which adds uploads).
+/// The files the page knows, shared between the hook and the app (which adds uploads): text
+/// (scenes, OBJ meshes, pbrt includes) and bytes (PLY meshes, glTF buffers).
 #[derive(Clone)]
 pub struct MemFiles {
-    files: Arc<Mutex<HashMap<PathBuf, String>>>,
+    files: Arc<Mutex<HashMap<PathBuf, Vec<u8>>>>,
     sink: Sink,
 }
 
@@ -27,7 +28,7 @@ impl MemFiles {
             .map(|(name, json)| {
                 (
                     PathBuf::from(crate::fixtures::path_of(name)),
-                    (*json).into(),
+                    json.as_bytes().to_vec(),
                 )
             })
             .collect();
@@ -38,24 +39,55 @@ impl MemFiles {
     }
 
     /// Add (or replace) `path`.
-    pub fn insert(&self, path: PathBuf, text: String) {
+    pub fn insert(&self, path: PathBuf, bytes: Vec<u8>) {
         self.files
             .lock()
             .unwrap_or_else(PoisonError::into_inner)
-            .insert(path, text);
+            .insert(path, bytes);
+    }
+
+    /// The bytes of `path`. A browser hands over files without their folders, so an upload's
+    /// companion named with folders (a pbrt scene's `geometry/mesh.ply`, opened as
+    /// `uploads/geometry/mesh.ply`) is found by its name among the uploads.
+    fn get(&self, path: &Path) -> std::io::Result<Vec<u8>> {
+        let files = self.files.lock().unwrap_or_else(PoisonError::into_inner);
+        let flat = || {
+            let name = path.file_name()?;
+            path.starts_with(UPLOADS)
+                .then(|| Path::new(UPLOADS).join(name))
+        };
+        files
+            .get(path)
+            .or_else(|| flat().and_then(|p| files.get(&p)))
+            .cloned()
+            .ok_or_else(|| {
+                std::io::Error::new(
+                    std::io::ErrorKind::NotFound,
+                    "not among the built-in scenes or the files opened in this page \
+                     (open it together with the scene)",
+                )
+            })
     }
 }
 
+/// The folder the page files uploads under.
+pub const UPLOADS: &str = "uploads";
+
 impl Files for MemFiles {
     fn read(&self, path: &Path) -> std::io::Result<String> {
-        let files = self.files.lock().unwrap_or_else(PoisonError::into_inner);
-        files.get(path).cloned().ok_or_else(|| {
+        String::from_utf8(self.get(path)?).map_err(|e| {
             std::io::Error::new(
-                std::io::ErrorKind::NotFound,
-                "not among the built-in scenes or the files opened in this page \
-                 (open it together with the scene)",
+                std::io::ErrorKind::InvalidData,
+                format!(
+                    "not UTF-8 text (byte {} is not; a binary file?)",
+                    e.utf8_error().valid_up_to()
+                ),
             )
         })
+    }
+
+    fn read_bytes(&self, path: &Path) -> std::io::Result<Vec<u8>> {
+        self.get(path)
     }
 
     /// Files in memory do not change behind the page's back.
@@ -109,19 +141,71 @@ pub fn depth_error(depth: u32) -> String {
     )
 }
 
-/// An uploaded file as text, or why not: too large for a scene (as the desktop refuses) or not
-/// UTF-8 (an image, an archive, ... opened by mistake). `limit` is in bytes.
-pub fn upload_text(name: &str, bytes: Vec<u8>, limit: u64) -> Result<String, String> {
+/// Extensions of files the page opens as binary: PLY meshes (pbrt, Mitsuba), a glTF's
+/// buffers and binary glTF. Every other upload must be UTF-8 text.
+const BINARY: [&str; 3] = ["ply", "bin", "glb"];
+
+/// Extensions of scenes, in the order the page prefers one when several are opened together:
+/// raytree JSON, glTF, Mitsuba 3, pbrt-v4.
+const SCENES: [&str; 5] = ["json", "gltf", "glb", "xml", "pbrt"];
+
+/// The lower-case extension of `name`.
+fn extension(name: &str) -> String {
+    name.rsplit_once('.')
+        .map(|(_, e)| e.to_ascii_lowercase())
+        .unwrap_or_default()
+}
+
+/// An uploaded file's bytes, or why not: too large (as the desktop refuses), or not UTF-8
+/// where the file must be text (an image, an archive, ... opened by mistake). `limit` is in
+/// bytes.
+pub fn upload(name: &str, bytes: Vec<u8>, limit: u64) -> Result<Vec<u8>, String> {
     if bytes.len() as u64 > limit {
         return Err(too_large(name, bytes.len() as u64, limit));
     }
-    String::from_utf8(bytes).map_err(|e| {
-        format!(
+    if BINARY.contains(&extension(name).as_str()) {
+        return Ok(bytes);
+    }
+    match std::str::from_utf8(&bytes) {
+        Ok(_) => Ok(bytes),
+        Err(e) => Err(format!(
             "cannot open {name}: not UTF-8 text (byte {} is not; a binary file?): a scene is \
-             JSON and a mesh OBJ text",
-            e.utf8_error().valid_up_to()
-        )
-    })
+             JSON, pbrt, Mitsuba XML or glTF, a mesh OBJ text or PLY",
+            e.valid_up_to()
+        )),
+    }
+}
+
+/// Which of the uploaded files (names and bytes) to open as the scene: by [`SCENES`]' order
+/// of extensions, and among pbrt files the first that no other one includes (`Include` or
+/// `Import` of its name); else the first file that is not a mesh or buffer (its format is
+/// then told from its content). `None` when all are meshes or buffers.
+#[must_use]
+pub fn scene_among(files: &[(String, Vec<u8>)]) -> Option<usize> {
+    let included = |name: &str| {
+        files.iter().any(|(other, bytes)| {
+            other != name
+                && extension(other) == "pbrt"
+                && String::from_utf8_lossy(bytes).lines().any(|l| {
+                    let l = l.trim_start();
+                    (l.starts_with("Include") || l.starts_with("Import"))
+                        && l.contains(&format!("\"{name}\""))
+                        || l.contains(&format!("/{name}\""))
+                })
+        })
+    };
+    SCENES
+        .iter()
+        .find_map(|ext| {
+            files.iter().position(|(name, _)| {
+                extension(name) == *ext && !(*ext == "pbrt" && included(name))
+            })
+        })
+        .or_else(|| {
+            files
+                .iter()
+                .position(|(name, _)| !["obj", "ply", "bin"].contains(&extension(name).as_str()))
+        })
 }
 
 /// The message for a file over `limit` bytes.
@@ -134,10 +218,11 @@ pub fn too_large(name: &str, size: u64, limit: u64) -> String {
     )
 }
 
-/// Bytes an uploaded file may have: a mesh's limit for `.obj`, a scene's otherwise.
+/// Bytes an uploaded file may have: a mesh's limit for meshes and buffers (`.obj`, `.ply`,
+/// `.bin`), a scene's otherwise.
 #[must_use]
 pub fn limit_for(name: &str) -> u64 {
-    if name.to_ascii_lowercase().ends_with(".obj") {
+    if ["obj", "ply", "bin"].contains(&extension(name).as_str()) {
         // In memory, in the page: a quarter of the desktop's limit.
         raytree::input::MAX_OBJ_BYTES / 4
     } else {
@@ -163,8 +248,28 @@ mod tests {
         files
             .write(Path::new("fixtures/classic-tree-1-2.json"), b"{}")
             .unwrap();
-        files.insert("uploads/a.json".into(), "{}".into());
+        files.insert("uploads/a.json".into(), b"{}".to_vec());
         assert_eq!(files.read(Path::new("uploads/a.json")).unwrap(), "{}");
+        // A companion named with folders is found by its name among the uploads.
+        files.insert("uploads/m.ply".into(), vec![0xff, 0]);
+        assert_eq!(
+            files
+                .read_bytes(Path::new("uploads/geometry/m.ply"))
+                .unwrap(),
+            [0xff, 0]
+        );
+        assert!(
+            files
+                .read(Path::new("uploads/m.ply"))
+                .unwrap_err()
+                .to_string()
+                .contains("not UTF-8")
+        );
+        assert!(
+            files
+                .read_bytes(Path::new("fixtures/geometry/m.ply"))
+                .is_err()
+        );
 
         let mut scene = raytree::Scene::default_scene();
         assert!(check_size(&mut scene).is_ok());
@@ -181,11 +286,42 @@ mod tests {
                 .contains("deeper than the web page")
         );
 
-        let e = upload_text("big.json", vec![b' '; 2048], 1024).unwrap_err();
+        let e = upload("big.json", vec![b' '; 2048], 1024).unwrap_err();
         assert!(e.contains("larger than the limit"), "{e}");
-        let e = upload_text("a.png", vec![0x89, b'P', b'N', b'G', 0xff], 1024).unwrap_err();
+        let e = upload("a.png", vec![0x89, b'P', b'N', b'G', 0xff], 1024).unwrap_err();
         assert!(e.contains("not UTF-8 text (byte 0 is not"), "{e}");
-        assert_eq!(upload_text("a.json", b"{}".to_vec(), 1024).unwrap(), "{}");
+        assert_eq!(upload("a.json", b"{}".to_vec(), 1024).unwrap(), b"{}");
+        assert_eq!(upload("m.PLY", vec![0xff], 1024).unwrap(), [0xff]);
+        assert!(upload("m.ply", vec![0; 2048], 1024).is_err());
         assert_eq!(limit_for("S.JSON"), raytree::input::MAX_SCENE_BYTES);
+        assert_eq!(limit_for("m.ply"), raytree::input::MAX_OBJ_BYTES / 4);
+    }
+
+    #[test]
+    fn the_scene_among_uploads_is_the_json_else_the_format_that_is_not_a_companion() {
+        let f = |names: &[(&str, &str)]| -> Vec<(String, Vec<u8>)> {
+            names
+                .iter()
+                .map(|(n, t)| (n.to_string(), t.as_bytes().to_vec()))
+                .collect()
+        };
+        assert_eq!(scene_among(&f(&[("m.obj", ""), ("s.json", "{}")])), Some(1));
+        assert_eq!(scene_among(&f(&[("m.obj", ""), ("n.ply", "")])), None);
+        assert_eq!(
+            scene_among(&f(&[("m.obj", ""), ("scene.txt", "{}")])),
+            Some(1)
+        );
+        let pbrt = f(&[
+            ("box.pbrt", "Shape \"trianglemesh\""),
+            ("cornell.pbrt", "WorldBegin\nInclude \"box.pbrt\"\n"),
+            ("m.ply", ""),
+        ]);
+        assert_eq!(scene_among(&pbrt), Some(1));
+        let nested = f(&[("b.pbrt", ""), ("a.pbrt", "Import \"parts/b.pbrt\"")]);
+        assert_eq!(scene_among(&nested), Some(1));
+        assert_eq!(
+            scene_among(&f(&[("m.obj", ""), ("c.xml", "<scene/>"), ("x.pbrt", "")])),
+            Some(1)
+        );
     }
 }
