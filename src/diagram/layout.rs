@@ -322,21 +322,62 @@ pub fn plural(n: usize) -> &'static str {
     if n == 1 { "" } else { "s" }
 }
 
-/// The legend strip at the bottom: its labels, swatches and box.
-// The legend reads the segments, their plane, the kept set and the options: one call, one place.
-#[allow(clippy::too_many_arguments)]
-pub(super) fn legend(
-    segs: &[Seg3],
-    frame: &PlaneFrame,
-    extent3: f64,
-    plane_text: &str,
-    others_note: Option<&str>,
-    kept: &Kept,
-    opts: &DiagramOptions,
-    (w, h, fs): (f64, f64, f64),
-) -> (Vec<Pending>, Vec<LegendEntry>, Rect) {
-    let size = fs * 0.9;
-    let mut items: Vec<(LegendKey, String)> = Vec::new();
+/// What the legend describes: the drawn segments of the chosen sample, their plane, the size of
+/// the scene they touch, the plane's description, the note on other samples left out, the
+/// kept set and the options.
+pub(super) struct LegendSource<'a> {
+    pub segs: &'a [Seg3<'a>],
+    pub frame: &'a PlaneFrame,
+    pub extent3: f64,
+    pub plane_text: &'a str,
+    pub others_note: Option<&'a str>,
+    pub kept: &'a Kept,
+    pub opts: &'a DiagramOptions,
+}
+
+/// The legend strip: its labels (to place with the others), its entries and its box.
+pub(super) struct Legend {
+    pub pending: Vec<Pending>,
+    pub entries: Vec<LegendEntry>,
+    pub rect: Rect,
+}
+
+/// One item of the legend: a swatch (or none, for a note) and its text.
+struct LegendItem {
+    key: LegendKey,
+    text: String,
+}
+
+impl LegendItem {
+    fn note(text: String) -> Self {
+        Self {
+            key: LegendKey::Note,
+            text,
+        }
+    }
+}
+
+/// An item flowed into a row, `x` from the row's start.
+struct RowItem {
+    key: LegendKey,
+    text: String,
+    x: f64,
+}
+
+/// The legend strip at the bottom of a `w` x `h` canvas with font size `fs`: its labels,
+/// swatches and box.
+pub(super) fn legend(source: &LegendSource, (w, h, fs): (f64, f64, f64)) -> Legend {
+    let mut items = swatch_items(source.segs);
+    items.extend(off_plane_item(source.segs, source.frame, source.extent3));
+    items.extend(note_items(source));
+    let rows = flow_rows(items, w, fs);
+    lay_out_rows(rows, w, h, fs)
+}
+
+/// A swatch for each ray kind drawn, the normal, and the blocked shadow ray's cross if one is
+/// drawn.
+fn swatch_items(segs: &[Seg3]) -> Vec<LegendItem> {
+    let mut items: Vec<LegendItem> = Vec::new();
     for kind in RayKind::ALL {
         if segs.iter().any(|s| s.node.kind == kind) {
             let text = if kind == RayKind::Shadow {
@@ -344,16 +385,30 @@ pub(super) fn legend(
             } else {
                 kind.name()
             };
-            items.push((LegendKey::Ray(kind), text.to_string()));
+            items.push(LegendItem {
+                key: LegendKey::Ray(kind),
+                text: text.to_string(),
+            });
         }
     }
-    items.push((LegendKey::Normal, "normal".to_string()));
+    items.push(LegendItem {
+        key: LegendKey::Normal,
+        text: "normal".to_string(),
+    });
     if segs
         .iter()
         .any(|s| s.end_kind == super::model::RayEnd::Blocked)
     {
-        items.push((LegendKey::Blocked, "blocked shadow ray".to_string()));
+        items.push(LegendItem {
+            key: LegendKey::Blocked,
+            text: "blocked shadow ray".to_string(),
+        });
     }
+    items
+}
+
+/// How many rays leave the plane (and how far the farthest does), if any do.
+fn off_plane_item(segs: &[Seg3], frame: &PlaneFrame, extent3: f64) -> Option<LegendItem> {
     let mut off = 0;
     let mut max_d: f64 = 0.0;
     for s in segs {
@@ -364,57 +419,64 @@ pub(super) fn legend(
             max_d = max_d.max(d);
         }
     }
-    if off > 0 {
-        items.push((
-            LegendKey::OffPlane,
-            format!("{off} ray{} leave{} the plane: projected, dotted, fainter with distance (up to {max_d:.2})", plural(off), if off == 1 { "s" } else { "" }),
-        ));
-    }
-    let rouletted = segs
+    (off > 0).then(|| LegendItem {
+        key: LegendKey::OffPlane,
+        text: format!("{off} ray{} leave{} the plane: projected, dotted, fainter with distance (up to {max_d:.2})", plural(off), if off == 1 { "s" } else { "" }),
+    })
+}
+
+/// The notes: Russian roulette at glass, the rays and samples left out, the plane, and what
+/// widths and labels show.
+fn note_items(source: &LegendSource) -> Vec<LegendItem> {
+    let mut items = Vec::new();
+    let rouletted = source
+        .segs
         .iter()
         .filter(|s| (s.node.interface.as_ref()).is_some_and(|i| i.roulette.is_some()))
         .count();
     if rouletted > 0 {
-        items.push((
-            LegendKey::Note,
-            format!(
-                "{rouletted} weak glass hit{} followed one ray (Russian roulette, weight / probability).",
-                if rouletted == 1 { "" } else { "s" }
-            ),
-        ));
+        items.push(LegendItem::note(format!(
+            "{rouletted} weak glass hit{} followed one ray (Russian roulette, weight / probability).",
+            if rouletted == 1 { "" } else { "s" }
+        )));
     }
+    let kept = source.kept;
     if kept.dropped > 0 {
-        items.push((
-            LegendKey::Note,
-            format!(
-                "{} ray{} under {} of the pixel each left out ({} of it in all).",
-                kept.dropped,
-                plural(kept.dropped),
-                percent(kept.min_share),
-                percent(kept.dropped_share)
-            ),
-        ));
+        items.push(LegendItem::note(format!(
+            "{} ray{} under {} of the pixel each left out ({} of it in all).",
+            kept.dropped,
+            plural(kept.dropped),
+            percent(kept.min_share),
+            percent(kept.dropped_share)
+        )));
     }
-    if let Some(note) = others_note {
-        items.push((LegendKey::Note, note.to_string()));
+    if let Some(note) = source.others_note {
+        items.push(LegendItem::note(note.to_string()));
     }
-    items.push((LegendKey::Note, format!("Plane: {plane_text}.")));
-    items.push((
-        LegendKey::Note,
-        format!(
-            "Width ~ throughput; angles, n, R/T, Beer shown to depth {}.",
-            opts.label_depth
-        ),
-    ));
-    // Flow the items into rows.
+    items.push(LegendItem::note(format!("Plane: {}.", source.plane_text)));
+    items.push(LegendItem::note(format!(
+        "Width ~ throughput; angles, n, R/T, Beer shown to depth {}.",
+        source.opts.label_depth
+    )));
+    items
+}
+
+/// The legend's text size for font size `fs`.
+fn legend_text_size(fs: f64) -> f64 {
+    fs * 0.9
+}
+
+/// The items flowed into rows that fit a `w` wide canvas; a note wider than the strip is
+/// broken at spaces into lines that fit.
+fn flow_rows(items: Vec<LegendItem>, w: f64, fs: f64) -> Vec<Vec<RowItem>> {
+    let size = legend_text_size(fs);
     let swatch = 2.0 * fs;
     let gap = 0.4 * fs;
     let spacing = 1.3 * fs;
     let avail = w - 2.0 * fs;
-    let mut rows: Vec<Vec<(LegendKey, String, f64)>> = vec![Vec::new()];
+    let mut rows: Vec<Vec<RowItem>> = vec![Vec::new()];
     let mut x = 0.0;
-    // A note wider than the strip is broken at spaces into lines that fit.
-    let items = items.into_iter().flat_map(|(key, text)| {
+    let items = items.into_iter().flat_map(|LegendItem { key, text }| {
         let lines = if key == LegendKey::Note && text_width(&text, size) > avail {
             wrap_words(&text, avail, |t| text_width(t, size))
         } else {
@@ -433,9 +495,20 @@ pub(super) fn legend(
             rows.push(Vec::new());
             x = 0.0;
         }
-        rows.last_mut().expect("one row").push((key, text, x));
+        rows.last_mut()
+            .expect("one row")
+            .push(RowItem { key, text, x });
         x += iw + spacing;
     }
+    rows
+}
+
+/// The legend's box at the bottom of the `w` x `h` canvas, holding `rows`, and each item's
+/// label and entry.
+fn lay_out_rows(rows: Vec<Vec<RowItem>>, w: f64, h: f64, fs: f64) -> Legend {
+    let size = legend_text_size(fs);
+    let swatch = 2.0 * fs;
+    let gap = 0.4 * fs;
     let line = 1.45 * fs;
     let height = rows.len() as f64 * line + 0.5 * fs;
     let rect = Rect::new(
@@ -446,7 +519,7 @@ pub(super) fn legend(
     let mut entries = Vec::new();
     for (r, row) in rows.into_iter().enumerate() {
         let baseline = rect.min.y + 0.25 * fs + (r as f64 + 1.0) * line - 0.45 * fs;
-        for (key, text, x) in row {
+        for RowItem { key, text, x } in row {
             let x0 = fs + x;
             let tx = if key == LegendKey::Note {
                 x0
@@ -467,7 +540,11 @@ pub(super) fn legend(
             });
         }
     }
-    (pending, entries, rect)
+    Legend {
+        pending,
+        entries,
+        rect,
+    }
 }
 
 /// `text` broken at spaces into lines no wider than `avail` by `width` (a word wider than
