@@ -3,7 +3,8 @@
 use super::all_samples::Others;
 use super::framing::Fit;
 use super::layout::plural;
-use super::layout::{self, Legend, LegendSource, Pending};
+use super::layout::{self, Pending};
+use super::legend::{self, Legend, LegendSource};
 use super::marks::{camera_mark, light_marks};
 use super::model::{
     Anchor, CameraMark, Diagram, HitMark, Inset, LabelRole, LightMark, ObjectSlice, RayEnd,
@@ -162,7 +163,7 @@ impl<'a> Selection<'a> {
         // The other samples (all_samples) under the chosen one, faded by their value.
         let others = super::all_samples::other_segs(scene, tree, opts);
         let others_note = others_note(&others);
-        let legend = layout::legend(
+        let legend = legend::legend(
             &LegendSource {
                 segs,
                 frame: &frame,
