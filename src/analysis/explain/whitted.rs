@@ -135,7 +135,7 @@ pub(super) fn roulette(tree: &RayTree, sentences: &mut Vec<Sentence>) {
         return;
     }
     let why = match (
-        tree.settings.roulette_below,
+        tree.settings.whitted.roulette_below,
         tree.settings.whitted.dielectric_roulette,
     ) {
         (_, Some(d)) => format!("from depth {d} (settings.dielectric_roulette)"),
@@ -161,10 +161,10 @@ pub(super) fn cuts(tree: &RayTree, scene: &Scene, sentences: &mut Vec<Sentence>)
         (EndReason::MaxDepth, format!("max depth {}", st.max_depth)),
         (
             EndReason::MinWeight,
-            match scene.settings.min_weight {
+            match scene.settings.whitted.min_weight {
                 None => format!(
                     "the automatic min weight {:.2e}",
-                    st.min_weight.unwrap_or(0.0)
+                    st.whitted.min_weight.unwrap_or(0.0)
                 ),
                 Some(w) => format!("min weight {w:.2e}"),
             },
