@@ -1,7 +1,7 @@
 //! A readable, indented rendering of a ray tree (the `trace` command's default output).
 
 use crate::math::Rgb;
-use crate::tree::{EndReason, NodeId, RayKind, RayNode, RayTree};
+use crate::tree::{EndReason, Interface, NodeId, RayKind, RayNode, RayTree, ShadowInfo};
 use std::fmt::Write;
 
 /// How a NaN or an infinity is written in the text form: words, never a token a program would
@@ -214,58 +214,113 @@ pub fn path_text(n: &RayNode) -> String {
     s
 }
 
+/// One line about node `n`: its kind and id, where it went and every number recorded on it.
 fn node_summary(n: &RayNode) -> String {
     let mut s = format!("{} #{}", n.kind.name(), n.id.0);
     if n.kind == RayKind::Shadow {
         if let Some(sh) = &n.shadow {
-            let _ = write!(s, " -> {}", sh.light_name);
-            match n.end {
-                EndReason::LightBehind => {
-                    let _ = write!(s, ": {}", end_text(n.end));
-                    return s;
-                }
-                EndReason::Blocked => {
-                    let names: Vec<&str> =
-                        sh.blockers.iter().map(|b| b.object_name.as_str()).collect();
-                    let _ = write!(s, ": blocked by {}", names.join(", "));
-                }
-                EndReason::Attenuated => {
-                    let _ = write!(s, ": transmittance {}", w(sh.transmittance));
-                    for b in &sh.blockers {
-                        let _ = write!(
-                            s,
-                            " ({} chord {} passes {})",
-                            b.object_name,
-                            num(b.chord, 4),
-                            w(b.factor)
-                        );
-                    }
-                }
-                _ => s.push_str(": unblocked"),
-            }
-            // A point or directional light delivers an irradiance E; an area-light sample a
-            // Monte Carlo estimate L / pdf (its radiance over its solid-angle pdf).
-            let arrives = match &sh.area {
-                Some(a) => format!(
-                    "L {}  pdf {}  L/pdf {}",
-                    w(a.radiance),
-                    num(a.pdf, 4),
-                    w(sh.irradiance)
-                ),
-                None => format!("E {}", w(sh.irradiance)),
-            };
-            // What this light adds to its hit's radiance ("adds ... at the hit"), not to the
-            // pixel: a path-traced line's own `contribution` after `|` is the pixel's share.
-            let _ = write!(
-                s,
-                "  theta {} deg  {arrives}  brdf*cos {}  adds {} at the hit",
-                deg(sh.cos_theta),
-                w(n.weight),
-                rgb(n.weight * n.radiance)
-            );
+            shadow_summary(n, sh, &mut s);
         }
         return s;
     }
+    target_summary(n, &mut s);
+    if n.kind != RayKind::Camera {
+        let _ = write!(s, "  weight {}", w(n.weight));
+    }
+    if let Some(g) = &n.glossy {
+        let _ = write!(
+            s,
+            "  sampled {} {}/{}{}  pdf {}  bsdf {}  cos {}",
+            g.lobe.name(),
+            g.sample + 1,
+            g.count,
+            if g.transmitted { " (through)" } else { "" },
+            num(g.pdf, 4),
+            w(g.bsdf),
+            num(g.cos, 4)
+        );
+    }
+    if let Some(i) = &n.interface {
+        interface_summary(i, &mut s);
+    }
+    if let Some(a) = &n.attenuation {
+        let _ = write!(
+            s,
+            "  Beer: {} inside -> {}",
+            num(a.distance, 4),
+            w(a.factor)
+        );
+    }
+    // A light subpath carries flux from the light, not radiance back to the camera.
+    if matches!(n.kind, RayKind::Light | RayKind::Connection) {
+        let _ = write!(s, "  flux {}", rgb(n.throughput));
+    } else {
+        let _ = write!(s, "  local {}  L {}", rgb(n.local), rgb(n.radiance));
+    }
+    if n.truncated != Rgb::ZERO {
+        let _ = write!(s, "  cut weight {}", w(n.truncated));
+    }
+    if matches!(
+        n.end,
+        EndReason::MaxDepth | EndReason::MinWeight | EndReason::RayBudget
+    ) {
+        let _ = write!(s, "  ({})", end_text(n.end));
+    }
+    s
+}
+
+/// A shadow ray `n` with its record `sh`: its light, whether it got through, and what
+/// arrives.
+fn shadow_summary(n: &RayNode, sh: &ShadowInfo, s: &mut String) {
+    let _ = write!(s, " -> {}", sh.light_name);
+    match n.end {
+        EndReason::LightBehind => {
+            let _ = write!(s, ": {}", end_text(n.end));
+            return;
+        }
+        EndReason::Blocked => {
+            let names: Vec<&str> = sh.blockers.iter().map(|b| b.object_name.as_str()).collect();
+            let _ = write!(s, ": blocked by {}", names.join(", "));
+        }
+        EndReason::Attenuated => {
+            let _ = write!(s, ": transmittance {}", w(sh.transmittance));
+            for b in &sh.blockers {
+                let _ = write!(
+                    s,
+                    " ({} chord {} passes {})",
+                    b.object_name,
+                    num(b.chord, 4),
+                    w(b.factor)
+                );
+            }
+        }
+        _ => s.push_str(": unblocked"),
+    }
+    // A point or directional light delivers an irradiance E; an area-light sample a
+    // Monte Carlo estimate L / pdf (its radiance over its solid-angle pdf).
+    let arrives = match &sh.area {
+        Some(a) => format!(
+            "L {}  pdf {}  L/pdf {}",
+            w(a.radiance),
+            num(a.pdf, 4),
+            w(sh.irradiance)
+        ),
+        None => format!("E {}", w(sh.irradiance)),
+    };
+    // What this light adds to its hit's radiance ("adds ... at the hit"), not to the
+    // pixel: a path-traced line's own `contribution` after `|` is the pixel's share.
+    let _ = write!(
+        s,
+        "  theta {} deg  {arrives}  brdf*cos {}  adds {} at the hit",
+        deg(sh.cos_theta),
+        w(n.weight),
+        rgb(n.weight * n.radiance)
+    );
+}
+
+/// Where a ray other than a shadow ray went: what it hit, or the miss, or where a connection
+/// ends.
+fn target_summary(n: &RayNode, s: &mut String) {
     match &n.hit {
         None if n.kind == RayKind::Connection => {
             let seen = if n.end == EndReason::Blocked {
@@ -298,64 +353,27 @@ fn node_summary(n: &RayNode) -> String {
             }
         }
     }
-    if n.kind != RayKind::Camera {
-        let _ = write!(s, "  weight {}", w(n.weight));
+}
+
+/// An interface crossed: the indices, the angle of transmission (or TIR), Fresnel's R and T
+/// and the roulette that chose one ray.
+fn interface_summary(i: &Interface, s: &mut String) {
+    let _ = write!(s, "  n1 {} -> n2 {}", num(i.n1, 3), num(i.n2, 3));
+    match i.cos_t {
+        Some(ct) => {
+            let _ = write!(s, " theta_t={} deg", deg(ct));
+        }
+        None => s.push_str(" TIR"),
     }
-    if let Some(g) = &n.glossy {
+    let _ = write!(s, " R={} T={}", num(i.fresnel.r, 4), num(i.fresnel.t, 4));
+    if let Some(c) = i.roulette {
         let _ = write!(
             s,
-            "  sampled {} {}/{}{}  pdf {}  bsdf {}  cos {}",
-            g.lobe.name(),
-            g.sample + 1,
-            g.count,
-            if g.transmitted { " (through)" } else { "" },
-            num(g.pdf, 4),
-            w(g.bsdf),
-            num(g.cos, 4)
+            "  roulette: the {} ray only (p {}, weight / p)",
+            c.ray(),
+            num(c.probability, 4)
         );
     }
-    if let Some(i) = &n.interface {
-        let _ = write!(s, "  n1 {} -> n2 {}", num(i.n1, 3), num(i.n2, 3));
-        match i.cos_t {
-            Some(ct) => {
-                let _ = write!(s, " theta_t={} deg", deg(ct));
-            }
-            None => s.push_str(" TIR"),
-        }
-        let _ = write!(s, " R={} T={}", num(i.fresnel.r, 4), num(i.fresnel.t, 4));
-        if let Some(c) = i.roulette {
-            let _ = write!(
-                s,
-                "  roulette: the {} ray only (p {}, weight / p)",
-                c.ray(),
-                num(c.probability, 4)
-            );
-        }
-    }
-    if let Some(a) = &n.attenuation {
-        let _ = write!(
-            s,
-            "  Beer: {} inside -> {}",
-            num(a.distance, 4),
-            w(a.factor)
-        );
-    }
-    // A light subpath carries flux from the light, not radiance back to the camera.
-    if matches!(n.kind, RayKind::Light | RayKind::Connection) {
-        let _ = write!(s, "  flux {}", rgb(n.throughput));
-    } else {
-        let _ = write!(s, "  local {}  L {}", rgb(n.local), rgb(n.radiance));
-    }
-    if n.truncated != Rgb::ZERO {
-        let _ = write!(s, "  cut weight {}", w(n.truncated));
-    }
-    if matches!(
-        n.end,
-        EndReason::MaxDepth | EndReason::MinWeight | EndReason::RayBudget
-    ) {
-        let _ = write!(s, "  ({})", end_text(n.end));
-    }
-    s
 }
 
 /// Light tracing's splats of the pixel, each with the light path that made it.

@@ -1,7 +1,7 @@
 //! Invariants every recorded tree must satisfy; used by tests on every fixture.
 
 use crate::math::Rgb;
-use crate::tree::{RayKind, RayTree};
+use crate::tree::{Interface, RayKind, RayNode, RayTree};
 
 /// Relative tolerance for recomputed sums (the tracer adds in the same order, so differences
 /// are rounding at most).
@@ -28,16 +28,9 @@ fn close(a: Rgb, b: Rgb) -> bool {
 pub fn tree_violations(tree: &RayTree, background: Rgb) -> Vec<String> {
     let mut v = Vec::new();
     let bidirectional = tree.settings.integrator == crate::scene::IntegratorKind::Bdpt;
-    let spp = tree.samples.len().max(1) as f64;
     // The path integrator drops a sample that is not finite (black in the pixel's mean).
     let path = tree.nodes.iter().any(|n| n.path.is_some());
-    let mean = tree.samples.iter().fold(Rgb::ZERO, |s, x| {
-        if path && !x.radiance.is_finite() {
-            s
-        } else {
-            s + x.radiance
-        }
-    }) / spp;
+    let mean = sample_mean(tree, path);
     if tree.splats.is_empty() && mean != tree.radiance {
         v.push(format!(
             "pixel radiance {} != sample mean {}",
@@ -51,18 +44,7 @@ pub fn tree_violations(tree: &RayTree, background: Rgb) -> Vec<String> {
         path_violations(tree, &mut v);
     }
     for n in &tree.nodes {
-        let id = n.id.0;
-        for (what, x) in [
-            ("radiance", n.radiance),
-            ("weight", n.weight),
-            ("throughput", n.throughput),
-            ("local", n.local),
-        ] {
-            if !x.is_finite() {
-                v.push(format!("node {id}: {what} {x} is not finite"));
-            }
-        }
-        let atten = n.attenuation.as_ref().map_or(Rgb::ONE, |a| a.factor);
+        finite_violations(n, &mut v);
         // A light subpath carries flux forwards: its nodes answer to the splat checks. Under
         // bidirectional path tracing a camera vertex's light arrives by weighted strategies,
         // not as Whitted-shaped sums: its samples answer to the contribution sums.
@@ -73,52 +55,93 @@ pub fn tree_violations(tree: &RayTree, background: Rgb) -> Vec<String> {
         {
             continue;
         }
-        let mut local = n.emitted + n.ambient;
-        let mut secondary = Rgb::ZERO;
-        for c in &n.children {
-            let c = tree.node(*c);
-            if c.kind == RayKind::Shadow {
-                local += c.weight * c.radiance;
-            } else {
-                secondary += c.weight * c.radiance;
-                let expect = n.throughput * atten * c.weight;
-                if !close(c.throughput, expect) {
-                    v.push(format!(
-                        "node {}: throughput {} != {}",
-                        c.id.0, c.throughput, expect
-                    ));
-                }
-            }
-        }
-        let expect = if n.hit.is_some() {
-            if !close(n.local, local) {
-                v.push(format!(
-                    "node {id}: local {} != sum of parts {}",
-                    n.local, local
-                ));
-            }
-            atten * (n.local + secondary)
-        } else {
-            atten * background
-        };
-        if !close(n.radiance, expect) {
-            v.push(format!("node {id}: radiance {} != {}", n.radiance, expect));
-        }
+        sum_violations(tree, n, background, &mut v);
         if let Some(i) = &n.interface {
-            let f = &i.fresnel;
-            if (f.r + f.t - 1.0).abs() > TOL || !(0.0..=1.0).contains(&f.r) {
-                v.push(format!("node {id}: R {} + T {} != 1", f.r, f.t));
-            }
-            let refracted = n
-                .children
-                .iter()
-                .any(|c| tree.node(*c).kind == RayKind::Refracted);
-            if i.tir && refracted {
-                v.push(format!("node {id}: TIR but a refracted ray was spawned"));
-            }
+            interface_violations(tree, n, i, &mut v);
         }
     }
     v
+}
+
+/// The mean of the sample radiances (a sample that is not finite counts as black when `path`).
+fn sample_mean(tree: &RayTree, path: bool) -> Rgb {
+    let spp = tree.samples.len().max(1) as f64;
+    tree.samples.iter().fold(Rgb::ZERO, |s, x| {
+        if path && !x.radiance.is_finite() {
+            s
+        } else {
+            s + x.radiance
+        }
+    }) / spp
+}
+
+/// Every value of node `n` is finite.
+fn finite_violations(n: &RayNode, v: &mut Vec<String>) {
+    let id = n.id.0;
+    for (what, x) in [
+        ("radiance", n.radiance),
+        ("weight", n.weight),
+        ("throughput", n.throughput),
+        ("local", n.local),
+    ] {
+        if !x.is_finite() {
+            v.push(format!("node {id}: {what} {x} is not finite"));
+        }
+    }
+}
+
+/// The sums at a Whitted-shaped node `n`: its children's throughputs, its local term and its
+/// radiance (a miss: the attenuated `background`).
+fn sum_violations(tree: &RayTree, n: &RayNode, background: Rgb, v: &mut Vec<String>) {
+    let id = n.id.0;
+    let atten = n.attenuation.as_ref().map_or(Rgb::ONE, |a| a.factor);
+    let mut local = n.emitted + n.ambient;
+    let mut secondary = Rgb::ZERO;
+    for c in &n.children {
+        let c = tree.node(*c);
+        if c.kind == RayKind::Shadow {
+            local += c.weight * c.radiance;
+        } else {
+            secondary += c.weight * c.radiance;
+            let expect = n.throughput * atten * c.weight;
+            if !close(c.throughput, expect) {
+                v.push(format!(
+                    "node {}: throughput {} != {}",
+                    c.id.0, c.throughput, expect
+                ));
+            }
+        }
+    }
+    let expect = if n.hit.is_some() {
+        if !close(n.local, local) {
+            v.push(format!(
+                "node {id}: local {} != sum of parts {}",
+                n.local, local
+            ));
+        }
+        atten * (n.local + secondary)
+    } else {
+        atten * background
+    };
+    if !close(n.radiance, expect) {
+        v.push(format!("node {id}: radiance {} != {}", n.radiance, expect));
+    }
+}
+
+/// Fresnel at node `n`'s interface `i`: `R + T = 1`, `0 <= R <= 1`, no refracted ray under TIR.
+fn interface_violations(tree: &RayTree, n: &RayNode, i: &Interface, v: &mut Vec<String>) {
+    let id = n.id.0;
+    let f = &i.fresnel;
+    if (f.r + f.t - 1.0).abs() > TOL || !(0.0..=1.0).contains(&f.r) {
+        v.push(format!("node {id}: R {} + T {} != 1", f.r, f.t));
+    }
+    let refracted = n
+        .children
+        .iter()
+        .any(|c| tree.node(*c).kind == RayKind::Refracted);
+    if i.tir && refracted {
+        v.push(format!("node {id}: TIR but a refracted ray was spawned"));
+    }
 }
 
 /// Light tracing's invariants ([`tree_violations`]): the pixel is the sample mean plus the

@@ -6,7 +6,7 @@ use super::model::{Anchor, AngleArc, HitMark, LabelRole, Point, RayEnd, RaySegme
 use super::plane::PlaneFrame;
 use super::segments::Seg3;
 use crate::math::Rgb;
-use crate::tree::{EndReason, RayKind, RayTree};
+use crate::tree::{EndReason, HitInfo, Interface, RayKind, RayNode, RayTree};
 use glam::DVec2;
 
 /// A factor as text: one number when the channels agree, else three.
@@ -62,13 +62,19 @@ pub(super) fn hits(
     opts: &DiagramOptions,
     pending: &mut Vec<Pending>,
 ) -> Vec<HitMark> {
+    let annotator = Annotator {
+        tree,
+        segs,
+        rays,
+        frame,
+        fs,
+    };
     let mut out = Vec::new();
     for (s, r) in segs.iter().zip(rays) {
         let n = s.node;
         let labelled = n.depth <= opts.label_depth;
-        let prio = 1 + n.depth;
         if labelled {
-            segment_labels(s, r, fs, prio, pending);
+            segment_labels(s, r, fs, 1 + n.depth, pending);
         }
         let Some(hit) = &n.hit else { continue };
         if n.kind == RayKind::Shadow {
@@ -80,11 +86,78 @@ pub(super) fn hits(
         {
             continue;
         }
+        out.push(annotator.hit_mark(s, r, hit, labelled, pending));
+    }
+    out
+}
+
+/// What marking the hits of one figure reads: the drawn segments of the chosen sample and
+/// their rays on the canvas (in the same order), the plane and the font size.
+struct Annotator<'a> {
+    tree: &'a RayTree,
+    segs: &'a [Seg3<'a>],
+    rays: &'a [RaySegment],
+    frame: &'a PlaneFrame,
+    fs: f64,
+}
+
+/// A hit on the canvas, for its labels.
+struct Vertex<'a> {
+    node: &'a RayNode,
+    /// The hit point.
+    at: Point,
+    /// The unit normal on the side the ray came from (zero if it is perpendicular to the
+    /// plane).
+    normal: DVec2,
+    /// `normal` turned a quarter.
+    tangent: DVec2,
+    fs: f64,
+}
+
+impl Vertex<'_> {
+    /// A label of this vertex, tried at `spots` in order.
+    fn label(&self, spots: Vec<(Point, Anchor)>, text: &str, role: LabelRole) -> Pending {
+        Pending::new(spots, text, self.fs, role, 1 + self.node.depth)
+            .for_node(self.node.id, self.node.kind)
+            .owned_by(Owner::Vertex(self.at))
+    }
+
+    /// An angle's label: beyond the middle of its arc `a`, or at `fallback` without one.
+    fn angle_label(&self, a: Option<&AngleArc>, text: &str, fallback: Point) -> Pending {
+        let fs = self.fs;
+        let spot = a.map_or(fallback, |a| {
+            let mid = a.start + a.sweep * 0.5;
+            a.center + (a.radius + 0.9 * fs) * DVec2::new(mid.cos(), mid.sin())
+        });
+        let alt = spot + (spot - self.at).normalize_or_zero() * 1.2 * fs;
+        self.label(
+            vec![
+                (centred(spot, fs), Anchor::Middle),
+                (centred(alt, fs), Anchor::Middle),
+            ],
+            text,
+            LabelRole::Angle,
+        )
+    }
+}
+
+impl Annotator<'_> {
+    /// The mark of the hit of segment `s` (drawn as `r`), and with `labelled` its angles and
+    /// interface labels.
+    fn hit_mark(
+        &self,
+        s: &Seg3,
+        r: &RaySegment,
+        hit: &HitInfo,
+        labelled: bool,
+        pending: &mut Vec<Pending>,
+    ) -> HitMark {
+        let (n, fs, frame) = (s.node, self.fs, self.frame);
         let h = r.to;
         // Marks no longer than a fraction of the shortest ray drawn at this vertex, so a short
         // ray is not hidden under its normal and arcs (issue 32: the caustic's diffuse bounce,
         // 5 px long, lay under 40 px of marks).
-        let shortest = shortest_at(n.id, r, segs, rays);
+        let shortest = shortest_at(n.id, r, self.segs, self.rays);
         let normal_cap = shortest.max(0.6 * fs);
         let ni = if hit.entering {
             hit.normal
@@ -100,113 +173,23 @@ pub(super) fn hits(
             .try_normalize()
             .unwrap_or(DVec2::ZERO);
         let mut arcs = Vec::new();
-        let tangent = DVec2::new(-nc.y, nc.x);
-        let side = if w.dot(tangent) >= 0.0 { 1.0 } else { -1.0 };
+        let v = Vertex {
+            node: n,
+            at: h,
+            normal: nc,
+            tangent: DVec2::new(-nc.y, nc.x),
+            fs,
+        };
         if labelled {
-            let theta_i = hit.cos_i.clamp(-1.0, 1.0).acos().to_degrees();
             let in_plane = !r.off_plane && proj.length() > 0.9 && w != DVec2::ZERO;
             let radius = (1.9 * fs).min((0.6 * shortest).max(0.3 * fs));
-            let mut angle_label = |a: Option<&AngleArc>, text: String, fallback: Point| {
-                let spot = a.map_or(fallback, |a| {
-                    let mid = a.start + a.sweep * 0.5;
-                    a.center + (a.radius + 0.9 * fs) * DVec2::new(mid.cos(), mid.sin())
-                });
-                let alt = spot + (spot - h).normalize_or_zero() * 1.2 * fs;
-                pending.push(
-                    Pending::new(
-                        vec![
-                            (centred(spot, fs), Anchor::Middle),
-                            (centred(alt, fs), Anchor::Middle),
-                        ],
-                        &text,
-                        fs,
-                        LabelRole::Angle,
-                        prio,
-                    )
-                    .for_node(n.id, n.kind)
-                    .owned_by(Owner::Vertex(h)),
-                );
-            };
-            if in_plane {
-                arcs.push(arc(h, nc, w, radius, theta_i));
-            }
-            angle_label(
-                arcs.last(),
-                format!("θi = {theta_i:.1}°"),
-                h + DVec2::new(fs, -fs),
-            );
-            let refracted = n
-                .children
-                .iter()
-                .map(|c| tree.node(*c))
-                .find(|c| c.kind == RayKind::Refracted);
-            if let (Some(i), Some(t)) = (&n.interface, refracted)
-                && i.cos_t.is_none_or(f64::is_finite)
-            {
-                let theta_t = i.cos_t.unwrap_or(1.0).clamp(-1.0, 1.0).acos().to_degrees();
-                let tc = frame.dir_to_canvas(t.direction).try_normalize();
-                let before = arcs.len();
-                if let (true, Some(tc)) = (in_plane, tc) {
-                    arcs.push(arc(h, -nc, tc, radius, theta_t));
-                }
-                let a = (arcs.len() > before).then(|| arcs.last()).flatten();
-                angle_label(
-                    a,
-                    format!("θt = {theta_t:.1}°"),
-                    h + DVec2::new(fs, 2.0 * fs),
-                );
-            }
+            self.angles(&v, hit, w, in_plane.then_some(radius), &mut arcs, pending);
             if let Some(i) = &n.interface {
-                let tip = normal_len + 0.6 * fs;
-                let n1 = h + nc * tip;
-                let n2 = h - nc * tip;
-                for (p, text) in [
-                    (n1, format!("n1 = {:.2}", i.n1)),
-                    (n2, format!("n2 = {:.2}", i.n2)),
-                ] {
-                    let off = tangent * 0.8 * fs;
-                    pending.push(
-                        Pending::new(
-                            vec![
-                                (centred(p, fs), Anchor::Middle),
-                                (centred(p + off, fs), Anchor::Start),
-                                (centred(p - off, fs), Anchor::End),
-                            ],
-                            &text,
-                            fs,
-                            LabelRole::Interface,
-                            prio,
-                        )
-                        .for_node(n.id, n.kind)
-                        .owned_by(Owner::Vertex(h)),
-                    );
-                }
-                let rt = if i.tir {
-                    format!("TIR: θi > θc, R = {:.2}", i.fresnel.r)
-                } else {
-                    format!("R = {:.3}  T = {:.3}", i.fresnel.r, i.fresnel.t)
-                };
-                let d = tangent * side;
-                let spot = h - nc * 1.3 * fs + d * 0.8 * fs;
-                let spot2 = h + nc * 1.3 * fs - d * 2.5 * fs;
-                pending.push(
-                    Pending::new(
-                        vec![
-                            (centred(spot, fs), anchor_for(d)),
-                            (centred(spot2, fs), anchor_for(-d)),
-                            (centred(h - nc * 2.0 * fs, fs), Anchor::Middle),
-                        ],
-                        &rt,
-                        fs,
-                        LabelRole::Interface,
-                        prio,
-                    )
-                    .for_node(n.id, n.kind)
-                    .owned_by(Owner::Vertex(h)),
-                );
+                let side = if w.dot(v.tangent) >= 0.0 { 1.0 } else { -1.0 };
+                interface_labels(&v, i, normal_len, side, pending);
             }
         }
-        out.push(HitMark {
+        HitMark {
             node: n.id,
             point: h,
             normal: nc,
@@ -218,9 +201,100 @@ pub(super) fn hits(
             ),
             arcs,
             fade: r.fade,
-        });
+        }
     }
-    out
+
+    /// The angle of incidence at `v` and, where the ray refracts, the angle of transmission:
+    /// their labels, and their arcs (of `arc_radius`, when the angles lie in the plane) pushed
+    /// onto `arcs`. `w` is the unit direction back along the ray on the canvas.
+    fn angles(
+        &self,
+        v: &Vertex,
+        hit: &HitInfo,
+        w: DVec2,
+        arc_radius: Option<f64>,
+        arcs: &mut Vec<AngleArc>,
+        pending: &mut Vec<Pending>,
+    ) {
+        let (n, h, nc, fs) = (v.node, v.at, v.normal, self.fs);
+        let theta_i = hit.cos_i.clamp(-1.0, 1.0).acos().to_degrees();
+        if let Some(radius) = arc_radius {
+            arcs.push(arc(h, nc, w, radius, theta_i));
+        }
+        pending.push(v.angle_label(
+            arcs.last(),
+            &format!("θi = {theta_i:.1}°"),
+            h + DVec2::new(fs, -fs),
+        ));
+        let refracted = n
+            .children
+            .iter()
+            .map(|c| self.tree.node(*c))
+            .find(|c| c.kind == RayKind::Refracted);
+        if let (Some(i), Some(t)) = (&n.interface, refracted)
+            && i.cos_t.is_none_or(f64::is_finite)
+        {
+            let theta_t = i.cos_t.unwrap_or(1.0).clamp(-1.0, 1.0).acos().to_degrees();
+            let tc = self.frame.dir_to_canvas(t.direction).try_normalize();
+            let before = arcs.len();
+            if let (Some(radius), Some(tc)) = (arc_radius, tc) {
+                arcs.push(arc(h, -nc, tc, radius, theta_t));
+            }
+            let a = (arcs.len() > before).then(|| arcs.last()).flatten();
+            pending.push(v.angle_label(
+                a,
+                &format!("θt = {theta_t:.1}°"),
+                h + DVec2::new(fs, 2.0 * fs),
+            ));
+        }
+    }
+}
+
+/// The labels of an interface at `v`: n1 and n2 at the ends of the normal (`normal_len`
+/// long), and R and T (or TIR) on the side of the tangent given by `side` (+1 or -1).
+fn interface_labels(
+    v: &Vertex,
+    i: &Interface,
+    normal_len: f64,
+    side: f64,
+    pending: &mut Vec<Pending>,
+) {
+    let (h, nc, fs) = (v.at, v.normal, v.fs);
+    let tip = normal_len + 0.6 * fs;
+    let n1 = h + nc * tip;
+    let n2 = h - nc * tip;
+    for (p, text) in [
+        (n1, format!("n1 = {:.2}", i.n1)),
+        (n2, format!("n2 = {:.2}", i.n2)),
+    ] {
+        let off = v.tangent * 0.8 * fs;
+        pending.push(v.label(
+            vec![
+                (centred(p, fs), Anchor::Middle),
+                (centred(p + off, fs), Anchor::Start),
+                (centred(p - off, fs), Anchor::End),
+            ],
+            &text,
+            LabelRole::Interface,
+        ));
+    }
+    let rt = if i.tir {
+        format!("TIR: θi > θc, R = {:.2}", i.fresnel.r)
+    } else {
+        format!("R = {:.3}  T = {:.3}", i.fresnel.r, i.fresnel.t)
+    };
+    let d = v.tangent * side;
+    let spot = h - nc * 1.3 * fs + d * 0.8 * fs;
+    let spot2 = h + nc * 1.3 * fs - d * 2.5 * fs;
+    pending.push(v.label(
+        vec![
+            (centred(spot, fs), anchor_for(d)),
+            (centred(spot2, fs), anchor_for(-d)),
+            (centred(h - nc * 2.0 * fs, fs), Anchor::Middle),
+        ],
+        &rt,
+        LabelRole::Interface,
+    ));
 }
 
 /// The length in pixels of the shortest ray drawn at the hit of ray `id` (drawn as `r`): `r`

@@ -52,27 +52,46 @@ impl Box2 {
     }
 }
 
+/// Where a drawn ray interacts with the scene.
+#[derive(Clone, Copy, Debug)]
+struct Interaction {
+    /// The ray's depth.
+    depth: u32,
+    /// The point, in world space.
+    point: DVec3,
+    /// The object it lies on, if known.
+    object: Option<usize>,
+    /// The ray.
+    node: NodeId,
+}
+
 /// The interaction points of the drawn rays with their depths and the objects they are on:
 /// spawn points, hits, opaque blockers, and where shadow rays cross translucent blockers.
-fn interactions(segs: &[Seg3]) -> Vec<(u32, DVec3, Option<usize>, NodeId)> {
+fn interactions(segs: &[Seg3]) -> Vec<Interaction> {
     let mut out = Vec::new();
     for s in segs {
         let n = s.node;
+        let at = |point: DVec3, object: Option<usize>| Interaction {
+            depth: n.depth,
+            point,
+            object,
+            node: n.id,
+        };
         if n.kind != RayKind::Camera {
-            out.push((n.depth, s.start, None, n.id));
+            out.push(at(s.start, None));
         }
         if let Some(e) = s
             .end
             .filter(|_| matches!(s.end_kind, RayEnd::Hit | RayEnd::Blocked))
         {
             let on = n.hit.as_ref().map(|h| h.object);
-            out.push((n.depth, e, on, n.id));
+            out.push(at(e, on));
         }
         if let Some(sh) = &n.shadow {
             for b in &sh.blockers {
                 for t in [b.t, b.t + b.chord] {
                     if t.is_finite() {
-                        out.push((n.depth, n.origin + t * n.direction, Some(b.object), n.id));
+                        out.push(at(n.origin + t * n.direction, Some(b.object)));
                     }
                 }
             }
@@ -133,16 +152,74 @@ pub(super) fn choose(
     shares: &[f64],
     extent3: f64,
 ) -> Fit {
-    let q = |p: DVec3| frame.plane_coords(p);
+    let framer = Framer { scene, frame };
     let mut pts = interactions(segs);
-    let first = segs
-        .first()
+    let first = first_hit(segs);
+    let first_object = first
+        .and_then(|f| f.seg.node.hit.as_ref())
+        .map(|h| h.object);
+    let mut core = Box2::EMPTY;
+    if let Some(f) = first {
+        core.add(framer.q(f.point));
+    }
+    // Depth by depth, nearest first.
+    let origin = first.map_or(DVec3::ZERO, |f| f.point);
+    pts.sort_by(|a, b| {
+        a.depth.cmp(&b.depth).then(
+            (a.point - origin)
+                .length()
+                .total_cmp(&(b.point - origin).length()),
+        )
+    });
+    let seed_size = framer.seed_size(first_object, &pts, origin, extent3);
+    let seed = framer.seed(core, first_object, seed_size);
+    let mut touched: Vec<usize> = first_object.into_iter().collect();
+    for i in &pts {
+        let near = if shares.get(i.node.index()).is_some_and(|s| *s >= MAJOR) {
+            NEAR_MAJOR
+        } else {
+            NEAR
+        };
+        if seed.is_empty() || seed.distance(framer.q(i.point)) <= near * seed_size {
+            core.add(framer.q(i.point));
+            touched.extend(i.object);
+        }
+    }
+    let core = framer.with_objects(core, touched, seed_size);
+    let fit = framer.fit(core, first, seed_size, extras);
+    framer.reach(fit, segs, extent3)
+}
+
+/// The camera ray's first hit, if the first drawn segment is a hit: the segment and the point.
+#[derive(Clone, Copy)]
+struct FirstHit<'a, 's> {
+    seg: &'s Seg3<'a>,
+    point: DVec3,
+}
+
+fn first_hit<'a, 's>(segs: &'s [Seg3<'a>]) -> Option<FirstHit<'a, 's>> {
+    segs.first()
         .filter(|s| s.end_kind == RayEnd::Hit)
-        .and_then(|s| s.end.map(|e| (s, e)));
-    // An object's size in the figure: its slice's, else its bounds' (planes have none).
-    let object_size = |o: usize| {
-        let b = slice_box(scene, frame, o);
-        let bounds = scene
+        .and_then(|s| s.end.map(|point| FirstHit { seg: s, point }))
+}
+
+/// The scene and the plane a region is framed in.
+struct Framer<'a> {
+    scene: &'a Scene,
+    frame: &'a PlaneFrame,
+}
+
+impl Framer<'_> {
+    /// `p` in plane coordinates.
+    fn q(&self, p: DVec3) -> DVec2 {
+        self.frame.plane_coords(p)
+    }
+
+    /// An object's size in the figure: its slice's, else its bounds' (planes have none).
+    fn object_size(&self, o: usize) -> Option<f64> {
+        let b = slice_box(self.scene, self.frame, o);
+        let bounds = self
+            .scene
             .objects
             .get(o)
             .and_then(|o| o.shape.bounds())
@@ -153,107 +230,118 @@ pub(super) fn choose(
             bounds.map(|_| b.size())
         };
         size.filter(|v| v.is_finite() && *v > 0.0)
-    };
-    let first_object = first
-        .and_then(|(s, _)| s.node.hit.as_ref())
-        .map(|h| h.object);
-    let mut core = Box2::EMPTY;
-    if let Some((_, e)) = first {
-        core.add(q(e));
     }
-    // Depth by depth, nearest first.
-    let origin = first.map_or(DVec3::ZERO, |(_, e)| e);
-    pts.sort_by(|a, b| {
-        a.0.cmp(&b.0)
-            .then((a.1 - origin).length().total_cmp(&(b.1 - origin).length()))
-    });
-    // The first object's size sets the scale; an unbounded one (a floor) hands over to the
-    // first bounded object met next (a ball the shadow ray crosses), else to the distance to
-    // the nearest interaction.
-    let seed_size = first_object
-        .and_then(object_size)
-        .or_else(|| pts.iter().find_map(|(_, _, o, _)| o.and_then(object_size)))
-        .unwrap_or_else(|| {
-            pts.iter()
-                .map(|(_, p, _, _)| (*p - origin).length())
-                .filter(|d| *d > 1e-9 * extent3)
-                .fold(f64::INFINITY, f64::min)
-        });
-    let seed_size = if seed_size.is_finite() {
-        seed_size
-    } else {
-        extent3 * 0.1
-    };
-    let seed_size = seed_size.max(extent3 * 1e-3);
-    // Measured from the first hit and its object's slice, not from the growing region: a
-    // chain of bounces must not walk the frame out to the far floor.
-    let mut seed = core;
-    if let Some(b) = first_object.map(|o| slice_box(scene, frame, o))
-        && !b.is_empty()
-        && b.size() <= 3.0 * seed_size
-    {
-        seed.add(b.lo);
-        seed.add(b.hi);
-    }
-    let mut touched: Vec<usize> = first_object.into_iter().collect();
-    for (_, p, o, id) in &pts {
-        let near = if shares.get(id.index()).is_some_and(|s| *s >= MAJOR) {
-            NEAR_MAJOR
+
+    /// The scale distances are measured in. The first object's size sets it; an unbounded one
+    /// (a floor) hands over to the first bounded object met next (a ball the shadow ray
+    /// crosses), else to the distance from `origin` to the nearest interaction.
+    fn seed_size(
+        &self,
+        first_object: Option<usize>,
+        pts: &[Interaction],
+        origin: DVec3,
+        extent3: f64,
+    ) -> f64 {
+        let seed_size = first_object
+            .and_then(|o| self.object_size(o))
+            .or_else(|| {
+                pts.iter()
+                    .find_map(|i| i.object.and_then(|o| self.object_size(o)))
+            })
+            .unwrap_or_else(|| {
+                pts.iter()
+                    .map(|i| (i.point - origin).length())
+                    .filter(|d| *d > 1e-9 * extent3)
+                    .fold(f64::INFINITY, f64::min)
+            });
+        let seed_size = if seed_size.is_finite() {
+            seed_size
         } else {
-            NEAR
+            extent3 * 0.1
         };
-        if seed.is_empty() || seed.distance(q(*p)) <= near * seed_size {
-            core.add(q(*p));
-            touched.extend(*o);
+        seed_size.max(extent3 * 1e-3)
+    }
+
+    /// What interactions are measured from: the first hit (`core`) and its object's slice,
+    /// not the growing region, so that a chain of bounces does not walk the frame out to the
+    /// far floor.
+    fn seed(&self, core: Box2, first_object: Option<usize>, seed_size: f64) -> Box2 {
+        let mut seed = core;
+        if let Some(b) = first_object.map(|o| slice_box(self.scene, self.frame, o))
+            && !b.is_empty()
+            && b.size() <= 3.0 * seed_size
+        {
+            seed.add(b.lo);
+            seed.add(b.hi);
         }
+        seed
     }
-    // The whole slice of the bounded objects the rays meet (a ball, not just its chord),
-    // unless one is much larger than the region (a room's walls).
-    let limit = 3.0 * core.size().max(seed_size);
-    let mut objects = core;
-    touched.sort_unstable();
-    touched.dedup();
-    for o in touched {
-        let b = slice_box(scene, frame, o);
-        if !b.is_empty() && b.size() <= limit {
-            objects.add(b.lo);
-            objects.add(b.hi);
-        }
-    }
-    let core = objects;
-    let mut fit = core;
-    // The camera ray comes in over at least half the first object's size.
-    if let Some((s, e)) = first {
-        let back = (e - s.start).length().min(0.5 * seed_size);
-        fit.add(q(e - s.node.direction * back));
-    }
-    // Measured in sizes of the first object, like the interactions.
-    let size = seed_size;
-    for (p, near) in extras {
-        if core.is_empty() || core.distance(q(*p)) <= near * size {
-            fit.add(q(*p));
-        }
-    }
-    let mut reach = fit;
-    let far = 10.0 * fit.size().max(extent3 * 1e-3);
-    for s in segs {
-        reach.add(q(s.start));
-        match s.end {
-            Some(e) => reach.add(q(e)),
-            None if s.end_kind != RayEnd::LightBehind => {
-                reach.add(q(s.start + s.node.direction * far));
+
+    /// `core` with the whole slice of the bounded objects the rays meet (`touched`: a ball, not
+    /// just its chord), unless one is much larger than the region (a room's walls).
+    fn with_objects(&self, core: Box2, mut touched: Vec<usize>, seed_size: f64) -> Box2 {
+        let limit = 3.0 * core.size().max(seed_size);
+        let mut objects = core;
+        touched.sort_unstable();
+        touched.dedup();
+        for o in touched {
+            let b = slice_box(self.scene, self.frame, o);
+            if !b.is_empty() && b.size() <= limit {
+                objects.add(b.lo);
+                objects.add(b.hi);
             }
-            None => {}
         }
+        objects
     }
-    if fit.is_empty() {
-        fit = Box2 {
-            lo: DVec2::splat(-1.0),
-            hi: DVec2::ONE,
-        };
-        reach = fit;
+
+    /// What to fit: `core`, the camera ray coming in over at least half the first object's
+    /// size, and the `extras` near enough, measured in sizes of the first object like the
+    /// interactions.
+    fn fit(
+        &self,
+        core: Box2,
+        first: Option<FirstHit>,
+        seed_size: f64,
+        extras: &[(DVec3, f64)],
+    ) -> Box2 {
+        let mut fit = core;
+        if let Some(f) = first {
+            let back = (f.point - f.seg.start).length().min(0.5 * seed_size);
+            fit.add(self.q(f.point - f.seg.node.direction * back));
+        }
+        let size = seed_size;
+        for (p, near) in extras {
+            if core.is_empty() || core.distance(self.q(*p)) <= near * size {
+                fit.add(self.q(*p));
+            }
+        }
+        fit
     }
-    Fit { fit, reach }
+
+    /// `fit` and where the rays reach (a ray that leaves the scene, ten times the fit's size);
+    /// a unit box around the origin for both if nothing is to fit.
+    fn reach(&self, mut fit: Box2, segs: &[Seg3], extent3: f64) -> Fit {
+        let mut reach = fit;
+        let far = 10.0 * fit.size().max(extent3 * 1e-3);
+        for s in segs {
+            reach.add(self.q(s.start));
+            match s.end {
+                Some(e) => reach.add(self.q(e)),
+                None if s.end_kind != RayEnd::LightBehind => {
+                    reach.add(self.q(s.start + s.node.direction * far));
+                }
+                None => {}
+            }
+        }
+        if fit.is_empty() {
+            fit = Box2 {
+                lo: DVec2::splat(-1.0),
+                hi: DVec2::ONE,
+            };
+            reach = fit;
+        }
+        Fit { fit, reach }
+    }
 }
 
 /// The plane point to put at the view's centre: `fit` stays inside the window of size `win`

@@ -1,15 +1,11 @@
-//! Text layout: greedy collision-free label placement and the legend strip.
+//! Text layout: greedy collision-free label placement (the legend strip is in `legend`).
 //!
 //! Labels come with candidate positions and a priority (0 = must show: object names, lights,
 //! camera). They are placed in priority order; a label whose every candidate overlaps an
 //! already placed label, the legend or an inset is dropped. This keeps deep trees readable.
 
-use super::DiagramOptions;
 use super::font::text_width;
-use super::model::{Anchor, Label, LabelRole, LegendEntry, LegendKey, Point, Rect};
-use super::plane::PlaneFrame;
-use super::segments::{Seg3, is_off};
-use super::share::Kept;
+use super::model::{Anchor, Label, LabelRole, Point, Rect};
 use crate::tree::{NodeId, RayKind};
 use glam::DVec2;
 
@@ -322,175 +318,6 @@ pub fn plural(n: usize) -> &'static str {
     if n == 1 { "" } else { "s" }
 }
 
-/// The legend strip at the bottom: its labels, swatches and box.
-// The legend reads the segments, their plane, the kept set and the options: one call, one place.
-#[allow(clippy::too_many_arguments)]
-pub(super) fn legend(
-    segs: &[Seg3],
-    frame: &PlaneFrame,
-    extent3: f64,
-    plane_text: &str,
-    others_note: Option<&str>,
-    kept: &Kept,
-    opts: &DiagramOptions,
-    (w, h, fs): (f64, f64, f64),
-) -> (Vec<Pending>, Vec<LegendEntry>, Rect) {
-    let size = fs * 0.9;
-    let mut items: Vec<(LegendKey, String)> = Vec::new();
-    for kind in RayKind::ALL {
-        if segs.iter().any(|s| s.node.kind == kind) {
-            let text = if kind == RayKind::Shadow {
-                "shadow (to light)"
-            } else {
-                kind.name()
-            };
-            items.push((LegendKey::Ray(kind), text.to_string()));
-        }
-    }
-    items.push((LegendKey::Normal, "normal".to_string()));
-    if segs
-        .iter()
-        .any(|s| s.end_kind == super::model::RayEnd::Blocked)
-    {
-        items.push((LegendKey::Blocked, "blocked shadow ray".to_string()));
-    }
-    let mut off = 0;
-    let mut max_d: f64 = 0.0;
-    for s in segs {
-        let end = s.end.unwrap_or(s.start + s.node.direction * extent3);
-        let d = frame.distance(s.start).abs().max(frame.distance(end).abs());
-        if is_off(d, extent3) {
-            off += 1;
-            max_d = max_d.max(d);
-        }
-    }
-    if off > 0 {
-        items.push((
-            LegendKey::OffPlane,
-            format!("{off} ray{} leave{} the plane: projected, dotted, fainter with distance (up to {max_d:.2})", plural(off), if off == 1 { "s" } else { "" }),
-        ));
-    }
-    let rouletted = segs
-        .iter()
-        .filter(|s| (s.node.interface.as_ref()).is_some_and(|i| i.roulette.is_some()))
-        .count();
-    if rouletted > 0 {
-        items.push((
-            LegendKey::Note,
-            format!(
-                "{rouletted} weak glass hit{} followed one ray (Russian roulette, weight / probability).",
-                if rouletted == 1 { "" } else { "s" }
-            ),
-        ));
-    }
-    if kept.dropped > 0 {
-        items.push((
-            LegendKey::Note,
-            format!(
-                "{} ray{} under {} of the pixel each left out ({} of it in all).",
-                kept.dropped,
-                plural(kept.dropped),
-                percent(kept.min_share),
-                percent(kept.dropped_share)
-            ),
-        ));
-    }
-    if let Some(note) = others_note {
-        items.push((LegendKey::Note, note.to_string()));
-    }
-    items.push((LegendKey::Note, format!("Plane: {plane_text}.")));
-    items.push((
-        LegendKey::Note,
-        format!(
-            "Width ~ throughput; angles, n, R/T, Beer shown to depth {}.",
-            opts.label_depth
-        ),
-    ));
-    // Flow the items into rows.
-    let swatch = 2.0 * fs;
-    let gap = 0.4 * fs;
-    let spacing = 1.3 * fs;
-    let avail = w - 2.0 * fs;
-    let mut rows: Vec<Vec<(LegendKey, String, f64)>> = vec![Vec::new()];
-    let mut x = 0.0;
-    // A note wider than the strip is broken at spaces into lines that fit.
-    let items = items.into_iter().flat_map(|(key, text)| {
-        let lines = if key == LegendKey::Note && text_width(&text, size) > avail {
-            wrap_words(&text, avail, |t| text_width(t, size))
-        } else {
-            vec![text]
-        };
-        lines.into_iter().map(move |t| (key.clone(), t))
-    });
-    for (key, text) in items {
-        let lead = if key == LegendKey::Note {
-            0.0
-        } else {
-            swatch + gap
-        };
-        let iw = lead + text_width(&text, size);
-        if x > 0.0 && x + iw > avail {
-            rows.push(Vec::new());
-            x = 0.0;
-        }
-        rows.last_mut().expect("one row").push((key, text, x));
-        x += iw + spacing;
-    }
-    let line = 1.45 * fs;
-    let height = rows.len() as f64 * line + 0.5 * fs;
-    let rect = Rect::new(
-        DVec2::new(fs * 0.5, h - fs * 0.4 - height),
-        DVec2::new(w - fs * 0.5, h - fs * 0.4),
-    );
-    let mut pending = Vec::new();
-    let mut entries = Vec::new();
-    for (r, row) in rows.into_iter().enumerate() {
-        let baseline = rect.min.y + 0.25 * fs + (r as f64 + 1.0) * line - 0.45 * fs;
-        for (key, text, x) in row {
-            let x0 = fs + x;
-            let tx = if key == LegendKey::Note {
-                x0
-            } else {
-                x0 + swatch + gap
-            };
-            pending.push(Pending::fixed(
-                DVec2::new(tx, baseline),
-                Anchor::Start,
-                &text,
-                size,
-                LabelRole::Legend,
-            ));
-            entries.push(LegendEntry {
-                key,
-                pos: DVec2::new(x0, baseline - 0.3 * size),
-                text,
-            });
-        }
-    }
-    (pending, entries, rect)
-}
-
-/// `text` broken at spaces into lines no wider than `avail` by `width` (a word wider than
-/// `avail` keeps a line of its own).
-fn wrap_words(text: &str, avail: f64, width: impl Fn(&str) -> f64) -> Vec<String> {
-    let mut lines: Vec<String> = Vec::new();
-    let mut line = String::new();
-    for word in text.split(' ') {
-        let candidate = if line.is_empty() {
-            word.to_string()
-        } else {
-            format!("{line} {word}")
-        };
-        if !line.is_empty() && width(&candidate) > avail {
-            lines.push(std::mem::replace(&mut line, word.to_string()));
-        } else {
-            line = candidate;
-        }
-    }
-    lines.push(line);
-    lines
-}
-
 /// A fraction as a percentage with as many decimals as it needs (at least two significant
 /// digits below 1 %).
 #[must_use]
@@ -503,22 +330,4 @@ pub fn percent(f: f64) -> String {
     let s = format!("{p:.digits$}");
     let s = s.trim_end_matches('0').trim_end_matches('.');
     format!("{s}%")
-}
-
-#[cfg(test)]
-mod tests {
-    use super::wrap_words;
-
-    #[test]
-    fn a_long_note_breaks_at_spaces_into_lines_that_fit() {
-        let width = |t: &str| t.chars().count() as f64;
-        let text = "Plane: through the connection ray #6 and its parent #0, chosen over the plane";
-        let lines = wrap_words(text, 20.0, width);
-        assert!(lines.len() > 3, "{lines:?}");
-        assert!(lines.iter().all(|l| width(l) <= 20.0), "{lines:?}");
-        assert_eq!(lines.join(" "), text);
-        let long = wrap_words("a incomprehensibilities b", 5.0, width);
-        assert_eq!(long, ["a", "incomprehensibilities", "b"]);
-        assert_eq!(wrap_words("short", 20.0, width), ["short"]);
-    }
 }

@@ -11,6 +11,7 @@ pub mod font;
 mod framing;
 mod inset;
 mod layout;
+mod legend;
 mod marks;
 pub mod model;
 mod objects;

@@ -90,93 +90,128 @@ pub fn to_svg_counting(d: &Diagram, style: &Style) -> (String, usize) {
             dropped += 1;
             continue;
         }
-        match p {
-            Prim::Fill {
-                points: pts,
-                color: c,
-            } => {
-                let _ = writeln!(
-                    s,
-                    r#"<polygon points="{}" fill="{}" fill-opacity="{:.3}"/>"#,
-                    points(&pts),
-                    color(c),
-                    opacity(c)
-                );
-            }
-            Prim::Stroke {
-                points: pts,
-                color: c,
-                width,
-                dash,
-                closed,
-            } => {
-                let tag = if closed { "polygon" } else { "polyline" };
-                let dash = dash.map_or(String::new(), |[a, b]| {
-                    format!(r#" stroke-dasharray="{a:.2} {b:.2}""#)
-                });
-                let _ = writeln!(
-                    s,
-                    r#"<{tag} points="{}" fill="none" stroke="{}" stroke-opacity="{:.3}" stroke-width="{width:.2}" stroke-linecap="round" stroke-linejoin="round"{dash}/>"#,
-                    points(&pts),
-                    color(c),
-                    opacity(c)
-                );
-            }
-            Prim::Circle {
-                center,
-                radius,
-                fill,
-                stroke,
-            } => {
-                let f = fill.map_or("fill=\"none\"".to_string(), |c| {
-                    format!(r#"fill="{}" fill-opacity="{:.3}""#, color(c), opacity(c))
-                });
-                let st = stroke.map_or(String::new(), |(c, w)| {
-                    format!(
-                        r#" stroke="{}" stroke-opacity="{:.3}" stroke-width="{w:.2}""#,
-                        color(c),
-                        opacity(c)
-                    )
-                });
-                let _ = writeln!(
-                    s,
-                    r#"<circle cx="{:.2}" cy="{:.2}" r="{radius:.2}" {f}{st}/>"#,
-                    center.x, center.y
-                );
-            }
-            Prim::Text {
-                pos,
-                text,
-                size,
-                color: c,
-                anchor,
-                halo,
-            } => {
-                let anchor = match anchor {
-                    Anchor::Start => "start",
-                    Anchor::Middle => "middle",
-                    Anchor::End => "end",
-                };
-                let halo = halo.map_or(String::new(), |h| {
-                    format!(
-                        r#" stroke="{}" stroke-width="{:.2}" stroke-linejoin="round" paint-order="stroke""#,
-                        color(h),
-                        size * 0.22
-                    )
-                });
-                let _ = writeln!(
-                    s,
-                    r#"<text x="{:.2}" y="{:.2}" font-size="{size:.2}" fill="{}" text-anchor="{anchor}"{halo}>{}</text>"#,
-                    pos.x,
-                    pos.y,
-                    color(c),
-                    escape(&text)
-                );
-            }
-        }
+        write_prim(&mut s, p);
     }
     s.push_str("</svg>\n");
     (s, dropped)
+}
+
+/// One SVG element for `p` (all of whose numbers are finite), on a line of its own.
+fn write_prim(s: &mut String, p: Prim) {
+    match p {
+        Prim::Fill {
+            points: pts,
+            color: c,
+        } => {
+            let _ = writeln!(
+                s,
+                r#"<polygon points="{}" fill="{}" fill-opacity="{:.3}"/>"#,
+                points(&pts),
+                color(c),
+                opacity(c)
+            );
+        }
+        Prim::Stroke {
+            points: pts,
+            color: c,
+            width,
+            dash,
+            closed,
+        } => write_stroke(s, &pts, c, width, dash, closed),
+        Prim::Circle {
+            center,
+            radius,
+            fill,
+            stroke,
+        } => write_circle(s, center, radius, fill, stroke),
+        Prim::Text {
+            pos,
+            text,
+            size,
+            color: c,
+            anchor,
+            halo,
+        } => write_text(s, pos, &text, size, c, anchor, halo),
+    }
+}
+
+/// A polyline (or a closed polygon) stroked `width` wide, dashed if `dash` is given.
+fn write_stroke(
+    s: &mut String,
+    pts: &[Point],
+    c: Rgba,
+    width: f64,
+    dash: Option<[f64; 2]>,
+    closed: bool,
+) {
+    let tag = if closed { "polygon" } else { "polyline" };
+    let dash = dash.map_or(String::new(), |[a, b]| {
+        format!(r#" stroke-dasharray="{a:.2} {b:.2}""#)
+    });
+    let _ = writeln!(
+        s,
+        r#"<{tag} points="{}" fill="none" stroke="{}" stroke-opacity="{:.3}" stroke-width="{width:.2}" stroke-linecap="round" stroke-linejoin="round"{dash}/>"#,
+        points(pts),
+        color(c),
+        opacity(c)
+    );
+}
+
+/// A circle, filled and stroked as given.
+fn write_circle(
+    s: &mut String,
+    center: Point,
+    radius: f64,
+    fill: Option<Rgba>,
+    stroke: Option<(Rgba, f64)>,
+) {
+    let f = fill.map_or("fill=\"none\"".to_string(), |c| {
+        format!(r#"fill="{}" fill-opacity="{:.3}""#, color(c), opacity(c))
+    });
+    let st = stroke.map_or(String::new(), |(c, w)| {
+        format!(
+            r#" stroke="{}" stroke-opacity="{:.3}" stroke-width="{w:.2}""#,
+            color(c),
+            opacity(c)
+        )
+    });
+    let _ = writeln!(
+        s,
+        r#"<circle cx="{:.2}" cy="{:.2}" r="{radius:.2}" {f}{st}/>"#,
+        center.x, center.y
+    );
+}
+
+/// A text (escaped) at `pos`, with a halo of colour `halo` if given.
+fn write_text(
+    s: &mut String,
+    pos: Point,
+    text: &str,
+    size: f64,
+    c: Rgba,
+    anchor: Anchor,
+    halo: Option<Rgba>,
+) {
+    let anchor = match anchor {
+        Anchor::Start => "start",
+        Anchor::Middle => "middle",
+        Anchor::End => "end",
+    };
+    let halo = halo.map_or(String::new(), |h| {
+        format!(
+            r#" stroke="{}" stroke-width="{:.2}" stroke-linejoin="round" paint-order="stroke""#,
+            color(h),
+            size * 0.22
+        )
+    });
+    let _ = writeln!(
+        s,
+        r#"<text x="{:.2}" y="{:.2}" font-size="{size:.2}" fill="{}" text-anchor="{anchor}"{halo}>{}</text>"#,
+        pos.x,
+        pos.y,
+        color(c),
+        escape(text)
+    );
 }
 
 #[cfg(test)]

@@ -151,100 +151,22 @@ impl InspectorApp {
     /// Draw one frame and apply the commands it produced.
     pub fn show(&mut self, ui: &mut egui::Ui) {
         let ctx = ui.ctx().clone();
-        self.session.pump();
-        let now = ui.input(|i| i.time);
-        if now - self.last_poll >= POLL_SECONDS {
-            self.last_poll = now;
-            self.session.poll_reload();
-        }
-        if self.session.doc.source.path.is_some() {
-            ctx.request_repaint_after(std::time::Duration::from_secs_f64(POLL_SECONDS));
-        }
+        self.pump(ui, &ctx);
         self.update_texture(&ctx);
         let doc = &self.session.doc;
-        let denoise_state = self.denoise_state.as_ref();
         let mut cmds = Vec::new();
-        let mut edit = false;
         egui::Panel::top("title").show(ui, |ui| title_ui(ui, doc));
         // Fixed limits on every panel: content never widens them (long rows are cut or wrapped
         // inside), so the image does not move under the cursor.
-        egui::Panel::left("controls")
-            .resizable(true)
-            .default_size(290.0)
-            .size_range(240.0..=420.0)
-            .show(ui, |ui| {
-                egui::ScrollArea::vertical().show(ui, |ui| {
-                    section(ui, "Scene", |ui| {
-                        edit = settings::scene_ui(ui, doc, &mut cmds);
-                    });
-                    section(ui, "Settings", |ui| {
-                        settings::settings_ui(ui, doc, &mut cmds)
-                    });
-                    section(ui, "View", |ui| {
-                        settings::view_ui(ui, doc, &mut cmds);
-                        if let Some(state) = denoise_state {
-                            ui.small(denoise_words(state));
-                        }
-                    });
-                    section(ui, "Export", |ui| settings::export_ui(ui, doc, &mut cmds));
-                    egui::CollapsingHeader::new(RichText::new("Acne lab").strong())
-                        .default_open(false)
-                        .show(ui, |ui| {
-                            crate::gui::panels::acne::acne_ui(ui, doc, &mut cmds)
-                        });
-                });
-            });
-        let tree_view = &mut self.tree_view;
-        let explain = &mut self.explain;
-        let samples = &mut self.samples;
-        let versus = &mut self.versus;
-        let strategies = &mut self.strategies;
-        egui::Panel::right("tree")
-            .resizable(true)
-            .default_size(470.0)
-            .size_range(380.0..=640.0)
-            .show(ui, |ui| {
-                ui.style_mut().wrap_mode = Some(egui::TextWrapMode::Wrap);
-                ui.heading("Ray tree");
-                pin_bar(ui, doc, &mut cmds);
-                tree::tree_ui(ui, doc, tree_view, &mut cmds);
-                ui.separator();
-                egui::ScrollArea::vertical()
-                    .id_salt("details-scroll")
-                    .show(ui, |ui| {
-                        egui::CollapsingHeader::new("Samples")
-                            .default_open(true)
-                            .show(ui, |ui| {
-                                crate::gui::panels::samples::samples_ui(
-                                    ui, doc, samples, &mut cmds,
-                                );
-                            });
-                        egui::CollapsingHeader::new("Explain")
-                            .default_open(true)
-                            .show(ui, |ui| explain_ui(ui, doc, explain, &mut cmds));
-                        egui::CollapsingHeader::new("Details")
-                            .default_open(true)
-                            .show(ui, |ui| {
-                                details::details_ui(ui, doc);
-                            });
-                        egui::CollapsingHeader::new("Step along a ray")
-                            .default_open(false)
-                            .show(ui, |ui| {
-                                crate::gui::panels::step::step_ui(ui, doc, &mut cmds)
-                            });
-                        egui::CollapsingHeader::new("Contribution breakdown")
-                            .default_open(true)
-                            .show(ui, |ui| {
-                                details::breakdown_ui(ui, doc, tree_view, &mut cmds);
-                            });
-                        egui::CollapsingHeader::new("Compare integrators")
-                            .default_open(false)
-                            .show(ui, |ui| versus.ui(ui, doc));
-                        egui::CollapsingHeader::new("Strategies (bdpt)")
-                            .default_open(false)
-                            .show(ui, |ui| strategies.ui(ui, doc));
-                    });
-            });
+        let edit = controls_panel(ui, doc, self.denoise_state.as_ref(), &mut cmds);
+        let panels = TreePanels {
+            tree_view: &mut self.tree_view,
+            explain: &mut self.explain,
+            samples: &mut self.samples,
+            versus: &mut self.versus,
+            strategies: &mut self.strategies,
+        };
+        tree_panel(ui, doc, panels, &mut cmds);
         let cache = &mut self.diagram;
         // Tall enough by default that the figure is not squeezed under its three rows of
         // controls (at 330 px a glass ball was 20-80 px across).
@@ -275,6 +197,20 @@ impl InspectorApp {
         // one per frame; natively they have threads and this does nothing.
         if crate::gui::jobs::background::run_pending() {
             ctx.request_repaint();
+        }
+    }
+
+    /// Fold in the worker's deliveries, and check the scene file for changes every
+    /// [`POLL_SECONDS`] (asking for a frame then while there is a file).
+    fn pump(&mut self, ui: &egui::Ui, ctx: &egui::Context) {
+        self.session.pump();
+        let now = ui.input(|i| i.time);
+        if now - self.last_poll >= POLL_SECONDS {
+            self.last_poll = now;
+            self.session.poll_reload();
+        }
+        if self.session.doc.source.path.is_some() {
+            ctx.request_repaint_after(std::time::Duration::from_secs_f64(POLL_SECONDS));
         }
     }
 
@@ -312,6 +248,101 @@ impl eframe::App for InspectorApp {
     fn ui(&mut self, ui: &mut egui::Ui, _frame: &mut eframe::Frame) {
         self.show(ui);
     }
+}
+
+/// The left panel: the scene, settings, view (with the denoiser's state), export and the acne
+/// lab. Whether the scene text was asked for.
+fn controls_panel(
+    ui: &mut egui::Ui,
+    doc: &Document,
+    denoise_state: Option<&crate::gui::jobs::denoise::DenoiseState>,
+    cmds: &mut Vec<Command>,
+) -> bool {
+    let mut edit = false;
+    egui::Panel::left("controls")
+        .resizable(true)
+        .default_size(290.0)
+        .size_range(240.0..=420.0)
+        .show(ui, |ui| {
+            egui::ScrollArea::vertical().show(ui, |ui| {
+                section(ui, "Scene", |ui| {
+                    edit = settings::scene_ui(ui, doc, cmds);
+                });
+                section(ui, "Settings", |ui| settings::settings_ui(ui, doc, cmds));
+                section(ui, "View", |ui| {
+                    settings::view_ui(ui, doc, cmds);
+                    if let Some(state) = denoise_state {
+                        ui.small(denoise_words(state));
+                    }
+                });
+                section(ui, "Export", |ui| settings::export_ui(ui, doc, cmds));
+                egui::CollapsingHeader::new(RichText::new("Acne lab").strong())
+                    .default_open(false)
+                    .show(ui, |ui| crate::gui::panels::acne::acne_ui(ui, doc, cmds));
+            });
+        });
+    edit
+}
+
+/// The right panel's own state, borrowed for one frame.
+struct TreePanels<'a> {
+    tree_view: &'a mut TreeView,
+    explain: &'a mut ExplainCache,
+    samples: &'a mut crate::gui::panels::samples::SamplesView,
+    versus: &'a mut crate::gui::panels::versus::VersusPanel,
+    strategies: &'a mut crate::gui::panels::strategies::StrategiesPanel,
+}
+
+/// The right panel: the pin bar, the ray tree, and under it the sections about the selection.
+fn tree_panel(ui: &mut egui::Ui, doc: &Document, mut panels: TreePanels, cmds: &mut Vec<Command>) {
+    egui::Panel::right("tree")
+        .resizable(true)
+        .default_size(470.0)
+        .size_range(380.0..=640.0)
+        .show(ui, |ui| {
+            ui.style_mut().wrap_mode = Some(egui::TextWrapMode::Wrap);
+            ui.heading("Ray tree");
+            pin_bar(ui, doc, cmds);
+            tree::tree_ui(ui, doc, panels.tree_view, cmds);
+            ui.separator();
+            egui::ScrollArea::vertical()
+                .id_salt("details-scroll")
+                .show(ui, |ui| {
+                    sections_ui(ui, doc, &mut panels, cmds);
+                });
+        });
+}
+
+/// The sections under the ray tree: samples, explanation, details, stepping, the breakdown,
+/// integrators compared and the BDPT strategies.
+fn sections_ui(ui: &mut egui::Ui, doc: &Document, p: &mut TreePanels, cmds: &mut Vec<Command>) {
+    egui::CollapsingHeader::new("Samples")
+        .default_open(true)
+        .show(ui, |ui| {
+            crate::gui::panels::samples::samples_ui(ui, doc, p.samples, cmds);
+        });
+    egui::CollapsingHeader::new("Explain")
+        .default_open(true)
+        .show(ui, |ui| explain_ui(ui, doc, p.explain, cmds));
+    egui::CollapsingHeader::new("Details")
+        .default_open(true)
+        .show(ui, |ui| {
+            details::details_ui(ui, doc);
+        });
+    egui::CollapsingHeader::new("Step along a ray")
+        .default_open(false)
+        .show(ui, |ui| crate::gui::panels::step::step_ui(ui, doc, cmds));
+    egui::CollapsingHeader::new("Contribution breakdown")
+        .default_open(true)
+        .show(ui, |ui| {
+            details::breakdown_ui(ui, doc, p.tree_view, cmds);
+        });
+    egui::CollapsingHeader::new("Compare integrators")
+        .default_open(false)
+        .show(ui, |ui| p.versus.ui(ui, doc));
+    egui::CollapsingHeader::new("Strategies (bdpt)")
+        .default_open(false)
+        .show(ui, |ui| p.strategies.ui(ui, doc));
 }
 
 /// The denoised image's state in words, under the View section's toggle.

@@ -1,6 +1,6 @@
 //! [`diff_text`]: a [`TreeDiff`] as text, one changed field a line.
 
-use super::{FieldChange, TreeDiff};
+use super::{FieldChange, NodeChange, TreeDiff};
 use crate::math::Rgb;
 use crate::tree::{NodeId, RayTree};
 use serde_json::Value;
@@ -93,6 +93,8 @@ pub fn diff_full_text(d: &TreeDiff, a: &RayTree, b: &RayTree) -> String {
     s
 }
 
+/// The diff's summary: the settings changed, how the trees differ, the pixels and their
+/// strategies.
 fn summary(d: &TreeDiff, a: &RayTree, b: &RayTree) -> String {
     let mut s = String::new();
     for f in &d.settings {
@@ -105,66 +107,7 @@ fn summary(d: &TreeDiff, a: &RayTree, b: &RayTree) -> String {
             d.matched
         );
     } else {
-        let rays =
-            |t: &RayTree, l: &[NodeId]| l.iter().map(|id| subtree_len(t, *id)).sum::<usize>();
-        let _ = writeln!(
-            s,
-            "changed rays: {} of {} matched; only in a: {} ({} rays), only in b: {} ({} rays)",
-            d.changed.len(),
-            d.matched,
-            d.only_a.len(),
-            rays(a, &d.only_a),
-            d.only_b.len(),
-            rays(b, &d.only_b)
-        );
-        match &d.first_decision {
-            Some(c) => {
-                let _ = writeln!(
-                    s,
-                    "first differing decision: sample {}, {} {} (depth {}), {}: a {}; b {}",
-                    c.sample,
-                    c.kind.name(),
-                    ids(c.a, c.b),
-                    c.depth,
-                    c.decision,
-                    c.in_a,
-                    c.in_b
-                );
-                let _ = writeln!(
-                    s,
-                    "    decisions differ in {} of {} samples; below a differing decision the paths differ, so their values differ too",
-                    d.samples_with_decisions_changed, d.samples_matched
-                );
-            }
-            None => {
-                let _ = writeln!(
-                    s,
-                    "no sampling decision differs (lobes, roulette outcomes and spawned rays agree): the values below differ by the settings alone"
-                );
-            }
-        }
-        if let Some(f) = &d.first_divergence {
-            let head: Vec<String> = f
-                .fields
-                .iter()
-                .take(2)
-                .map(|c| format!("{} {} -> {}", c.field, value_text(&c.a), value_text(&c.b)))
-                .collect();
-            let more = f.fields.len().saturating_sub(2);
-            let _ = writeln!(
-                s,
-                "first divergence: {} {} (level {}): {}{}",
-                f.kind.name(),
-                ids(f.a, f.b),
-                f.level,
-                head.join("; "),
-                if more > 0 {
-                    format!(" (and {more} more fields)")
-                } else {
-                    String::new()
-                }
-            );
-        }
+        differences_text(d, a, b, &mut s);
     }
     let _ = writeln!(
         s,
@@ -176,6 +119,75 @@ fn summary(d: &TreeDiff, a: &RayTree, b: &RayTree) -> String {
     s += &pixel_text(d);
     s += &strategy_text(d);
     s
+}
+
+/// How trees `a` and `b` differ: the rays changed and only in one, the first differing
+/// decision and the first divergence.
+fn differences_text(d: &TreeDiff, a: &RayTree, b: &RayTree, s: &mut String) {
+    let rays = |t: &RayTree, l: &[NodeId]| l.iter().map(|id| subtree_len(t, *id)).sum::<usize>();
+    let _ = writeln!(
+        s,
+        "changed rays: {} of {} matched; only in a: {} ({} rays), only in b: {} ({} rays)",
+        d.changed.len(),
+        d.matched,
+        d.only_a.len(),
+        rays(a, &d.only_a),
+        d.only_b.len(),
+        rays(b, &d.only_b)
+    );
+    match &d.first_decision {
+        Some(c) => {
+            let _ = writeln!(
+                s,
+                "first differing decision: sample {}, {} {} (depth {}), {}: a {}; b {}",
+                c.sample,
+                c.kind.name(),
+                ids(c.a, c.b),
+                c.depth,
+                c.decision,
+                c.in_a,
+                c.in_b
+            );
+            let _ = writeln!(
+                s,
+                "    decisions differ in {} of {} samples; below a differing decision the paths differ, so their values differ too",
+                d.samples_with_decisions_changed, d.samples_matched
+            );
+        }
+        None => {
+            let _ = writeln!(
+                s,
+                "no sampling decision differs (lobes, roulette outcomes and spawned rays agree): the values below differ by the settings alone"
+            );
+        }
+    }
+    if let Some(f) = &d.first_divergence {
+        divergence_text(f, s);
+    }
+}
+
+/// The first divergence: the ray and its first two changed fields.
+fn divergence_text(f: &NodeChange, s: &mut String) {
+    let head: Vec<String> = f
+        .fields
+        .iter()
+        .take(2)
+        .map(|c| format!("{} {} -> {}", c.field, value_text(&c.a), value_text(&c.b)))
+        .collect();
+    let more = f.fields.len().saturating_sub(2);
+    let _ = writeln!(
+        s,
+        "first divergence: {} {} (level {}): {}{}",
+        f.kind.name(),
+        ids(f.a, f.b),
+        f.level,
+        head.join("; "),
+        if more > 0 {
+            format!(" (and {more} more fields)")
+        } else {
+            String::new()
+        }
+    );
 }
 
 /// Light tracing and BDPT: each strategy's part of the pixel in both trees (the parts of

@@ -4,15 +4,32 @@
 use super::{Sentence, SentenceKind, atten, luminance, num, rgb};
 use crate::tree::{EndReason, NodeId, RayKind, RayNode, RayTree};
 
+/// The suspicious sentences, in order: self-hits, leaks, trapped TIR chains, a clipped pixel
+/// value, non-finite values.
 pub(super) fn suspicious(tree: &RayTree, sentences: &mut Vec<Sentence>) {
+    let offset = offset_text(tree);
+    self_hits(tree, &offset, sentences);
+    leaks(tree, &offset, sentences);
+    trapped_tir(tree, sentences);
+    let roots: Vec<NodeId> = tree.samples.iter().map(|s| s.root).collect();
+    clipped(tree, &roots, sentences);
+    non_finite(tree, roots, sentences);
+}
+
+/// The offset settings, as the self-hit and leak sentences name them ("offset normal 1e-4").
+fn offset_text(tree: &RayTree) -> String {
     let st = &tree.settings;
-    let offset = format!(
+    format!(
         "offset {} {:e}",
         serde_json::to_string(&st.offset.strategy)
             .unwrap_or_default()
             .trim_matches('"'),
         st.offset.epsilon
-    );
+    )
+}
+
+/// Rays that re-hit the surface they left.
+fn self_hits(tree: &RayTree, offset: &str, sentences: &mut Vec<Sentence>) {
     let self_hits: Vec<NodeId> = tree
         .nodes
         .iter()
@@ -31,6 +48,10 @@ pub(super) fn suspicious(tree: &RayTree, sentences: &mut Vec<Sentence>) {
             nodes: self_hits,
         });
     }
+}
+
+/// Rays whose spawn offset skipped a surface.
+fn leaks(tree: &RayTree, offset: &str, sentences: &mut Vec<Sentence>) {
     let leaks: Vec<&RayNode> = tree.nodes.iter().filter(|n| n.leak.is_some()).collect();
     if let Some(l) = leaks.first().and_then(|n| n.leak.as_ref()) {
         sentences.push(Sentence {
@@ -45,7 +66,11 @@ pub(super) fn suspicious(tree: &RayTree, sentences: &mut Vec<Sentence>) {
             nodes: leaks.iter().map(|n| n.id).collect(),
         });
     }
-    // TIR chains whose last total reflection was cut by max depth: trapped light lost.
+}
+
+/// TIR chains whose last total reflection was cut by max depth: trapped light lost.
+fn trapped_tir(tree: &RayTree, sentences: &mut Vec<Sentence>) {
+    let st = &tree.settings;
     for n in tree
         .nodes
         .iter()
@@ -75,7 +100,11 @@ pub(super) fn suspicious(tree: &RayTree, sentences: &mut Vec<Sentence>) {
             nodes: chain,
         });
     }
-    let roots: Vec<NodeId> = tree.samples.iter().map(|s| s.root).collect();
+}
+
+/// A finite pixel value above 1 in some channel, which the display clips (about the sample
+/// roots `roots`).
+fn clipped(tree: &RayTree, roots: &[NodeId], sentences: &mut Vec<Sentence>) {
     if tree.radiance.is_finite() && tree.radiance.max_element() > 1.0 {
         let ch: Vec<&str> = [
             ("R", tree.radiance.x),
@@ -93,9 +122,14 @@ pub(super) fn suspicious(tree: &RayTree, sentences: &mut Vec<Sentence>) {
                 rgb(tree.radiance),
                 ch.join(", ")
             ),
-            nodes: roots.clone(),
+            nodes: roots.to_vec(),
         });
     }
+}
+
+/// Rays carrying a value that is not finite, or a pixel that is not (then about the sample
+/// roots `roots`).
+fn non_finite(tree: &RayTree, roots: Vec<NodeId>, sentences: &mut Vec<Sentence>) {
     let bad: Vec<NodeId> = tree
         .nodes
         .iter()

@@ -2,6 +2,7 @@
 
 use super::*;
 use crate::trace_pixel;
+use crate::tree::EndReason;
 
 fn fixture(name: &str) -> Scene {
     let path = format!("{}/fixtures/{name}", env!("CARGO_MANIFEST_DIR"));

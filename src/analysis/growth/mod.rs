@@ -135,42 +135,68 @@ pub fn tree_growth(scene: &Scene) -> TreeGrowth {
         .filter(|m| m.is_transmissive() || m.reflectivity.max_element() > 0.0)
         .count();
     if specular > MAX_ANALYSED {
-        // Without a split every hit has one child: the tree is a chain of at most max_depth.
-        let splits = scene.used_materials().any(|m| branches(scene, m));
-        return TreeGrowth {
-            growth: if splits {
-                Growth::Exponential
-            } else {
-                Growth::Polynomial(1)
-            },
-            reasons: vec![format!(
-                "{specular} reflective or transmissive objects: more than {MAX_ANALYSED}, not \
-                 analysed pair by pair ({})",
-                if splits {
-                    "some hit splits in two: assumed exponential"
-                } else {
-                    "no hit splits in two: each tree is a chain, at most linear"
-                }
-            )],
-        };
+        return not_analysed(scene, specular);
     }
     let g = Graph::new(scene);
     let comp = g.components();
     let n = g.states.len();
-    let in_comp = |v: usize, c: usize| comp[v] == c;
     // A component is cyclic when some edge stays inside it (a self-loop included).
     let cyclic = |c: usize| {
-        (0..n).any(|v| in_comp(v, c) && g.children[v].iter().flatten().any(|&w| in_comp(w, c)))
+        (0..n).any(|v| comp[v] == c && g.children[v].iter().flatten().any(|&w| comp[w] == c))
     };
+    let mut reasons = split_reasons(&g, &comp);
+    reasons.extend(relations(&g, &comp, &cyclic));
+    if reasons.iter().any(|r| r.starts_with("a ray at")) {
+        return TreeGrowth {
+            growth: Growth::Exponential,
+            reasons,
+        };
+    }
+    let degree = polynomial_degree(&g, &comp, &cyclic);
+    TreeGrowth {
+        growth: if degree == 0 {
+            Growth::Bounded
+        } else {
+            Growth::Polynomial(degree)
+        },
+        reasons,
+    }
+}
+
+/// The verdict for a scene with `specular` (more than [`MAX_ANALYSED`]) reflective or
+/// transmissive objects: exponential if some hit splits, else linear.
+fn not_analysed(scene: &Scene, specular: usize) -> TreeGrowth {
+    // Without a split every hit has one child: the tree is a chain of at most max_depth.
+    let splits = scene.used_materials().any(|m| branches(scene, m));
+    TreeGrowth {
+        growth: if splits {
+            Growth::Exponential
+        } else {
+            Growth::Polynomial(1)
+        },
+        reasons: vec![format!(
+            "{specular} reflective or transmissive objects: more than {MAX_ANALYSED}, not \
+             analysed pair by pair ({})",
+            if splits {
+                "some hit splits in two: assumed exponential"
+            } else {
+                "no hit splits in two: each tree is a chain, at most linear"
+            }
+        )],
+    }
+}
+
+/// Exponential growth: a branching state both of whose children can come back (into its
+/// component `comp`), one reason per object.
+fn split_reasons(g: &Graph, comp: &[usize]) -> Vec<String> {
     let mut reasons = Vec::new();
-    // Exponential: a branching state both of whose children can come back.
-    for v in (0..n).filter(|&v| g.branching[v]) {
+    for v in (0..g.states.len()).filter(|&v| g.branching[v]) {
         let back: Vec<Vec<usize>> = g.children[v]
             .iter()
             .map(|kids| {
                 kids.iter()
                     .copied()
-                    .filter(|&w| in_comp(w, comp[v]))
+                    .filter(|&w| comp[w] == comp[v])
                     .collect()
             })
             .collect();
@@ -194,58 +220,49 @@ pub fn tree_growth(scene: &Scene) -> TreeGrowth {
             ));
         }
     }
-    reasons.extend(relations(&g, &comp, &cyclic));
-    if reasons.iter().any(|r| r.starts_with("a ray at")) {
-        return TreeGrowth {
-            growth: Growth::Exponential,
-            reasons,
-        };
-    }
-    // Polynomial degree: along the condensation, a cyclic component multiplies what follows
-    // it when it is left by one child of a split whose other child can stay (a new subtree at
-    // every turn of the cycle); otherwise sizes add.
+    reasons
+}
+
+/// The polynomial degree: along the condensation, a cyclic component multiplies what follows
+/// it when it is left by one child of a split whose other child can stay (a new subtree at
+/// every turn of the cycle); otherwise sizes add.
+fn polynomial_degree(g: &Graph, comp: &[usize], cyclic: &dyn Fn(usize) -> bool) -> u32 {
     let ncomp = comp.iter().copied().max().map_or(0, |m| m + 1);
     let mut memo: Vec<Option<u32>> = vec![None; ncomp];
-    fn degree_of(
-        c: usize,
-        g: &Graph,
-        comp: &[usize],
-        cyclic: &dyn Fn(usize) -> bool,
-        memo: &mut Vec<Option<u32>>,
-    ) -> u32 {
-        if let Some(d) = memo[c] {
-            return d;
-        }
-        let here = cyclic(c);
-        let mut best = u32::from(here);
-        for v in (0..comp.len()).filter(|&v| comp[v] == c) {
-            for (i, kid) in g.children[v].iter().enumerate() {
-                let sibling_stays = g.branching[v]
-                    && g.children[v]
-                        .iter()
-                        .enumerate()
-                        .any(|(k, other)| k != i && other.iter().any(|&w| comp[w] == c));
-                for &w in kid.iter().filter(|&&w| comp[w] != c) {
-                    let after = degree_of(comp[w], g, comp, cyclic, memo);
-                    best = best.max(after + u32::from(here && sibling_stays));
-                }
+    (0..ncomp)
+        .map(|c| degree_of(c, g, comp, cyclic, &mut memo))
+        .max()
+        .unwrap_or(0)
+}
+
+/// The degree of component `c` and what follows it (memoised in `memo`).
+fn degree_of(
+    c: usize,
+    g: &Graph,
+    comp: &[usize],
+    cyclic: &dyn Fn(usize) -> bool,
+    memo: &mut Vec<Option<u32>>,
+) -> u32 {
+    if let Some(d) = memo[c] {
+        return d;
+    }
+    let here = cyclic(c);
+    let mut best = u32::from(here);
+    for v in (0..comp.len()).filter(|&v| comp[v] == c) {
+        for (i, kid) in g.children[v].iter().enumerate() {
+            let sibling_stays = g.branching[v]
+                && g.children[v]
+                    .iter()
+                    .enumerate()
+                    .any(|(k, other)| k != i && other.iter().any(|&w| comp[w] == c));
+            for &w in kid.iter().filter(|&&w| comp[w] != c) {
+                let after = degree_of(comp[w], g, comp, cyclic, memo);
+                best = best.max(after + u32::from(here && sibling_stays));
             }
         }
-        memo[c] = Some(best);
-        best
     }
-    let degree = (0..ncomp)
-        .map(|c| degree_of(c, &g, &comp, &cyclic, &mut memo))
-        .max()
-        .unwrap_or(0);
-    TreeGrowth {
-        growth: if degree == 0 {
-            Growth::Bounded
-        } else {
-            Growth::Polynomial(degree)
-        },
-        reasons,
-    }
+    memo[c] = Some(best);
+    best
 }
 
 /// The relations behind each cyclic component: nesting, mutual visibility, internal reflection.

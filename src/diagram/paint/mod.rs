@@ -9,7 +9,10 @@ mod style;
 pub use prim::Prim;
 pub use style::{Rgba, Style, Theme};
 
-use super::model::{Diagram, Fill, LabelRole, LegendKey, RaySegment, SliceShape};
+use super::model::{
+    CameraMark, Diagram, Fill, HitMark, Label, LabelRole, LegendKey, LightMark, ObjectSlice,
+    RaySegment, SliceShape,
+};
 use crate::tree::RayKind;
 use glam::DVec2;
 use hatch::hatch;
@@ -25,17 +28,74 @@ pub fn display_list(d: &Diagram, style: &Style) -> Vec<Prim> {
         .iter()
         .find(|l| l.role == LabelRole::Legend)
         .map_or(17.0, |l| l.size / 0.9);
-    let ws = (fs / 17.0).max(0.7);
-    let mut out = vec![Prim::Fill {
-        points: vec![
-            DVec2::ZERO,
-            DVec2::new(d.width, 0.0),
-            DVec2::new(d.width, d.height),
-            DVec2::new(0.0, d.height),
-        ],
-        color: style.background,
-    }];
+    let mut p = Painter {
+        style,
+        fs,
+        ws: (fs / 17.0).max(0.7),
+        out: Vec::new(),
+    };
+    p.background(d);
     for o in &d.objects {
+        p.object(o);
+    }
+    if let Some((a, b)) = d.camera.as_ref().and_then(|c| c.image_plane) {
+        p.out
+            .push(stroke(vec![a, b], style.muted, 2.0 * p.ws, None));
+    }
+    for h in &d.hits {
+        p.normal(h);
+    }
+    let mut order: Vec<&RaySegment> = d.rays.iter().collect();
+    order.sort_by_key(|r| std::cmp::Reverse(r.depth));
+    for r in order {
+        ray_prims(r, style, p.fs, p.ws, &mut p.out);
+    }
+    for h in &d.hits {
+        p.hit_marks(h);
+    }
+    for l in &d.lights {
+        p.light(l);
+    }
+    if let Some(c) = &d.camera {
+        p.camera(c);
+    }
+    for i in &d.insets {
+        inset_prims(i, style, p.ws, p.fs, &mut p.out);
+    }
+    p.legend(d);
+    for l in &d.labels {
+        p.label(l);
+    }
+    p.out
+}
+
+/// What every layer of the display list is drawn with: the style, the legend's font size
+/// `fs` (the unit of glyph sizes), the stroke width scale `ws`, and the list so far.
+struct Painter<'a> {
+    style: &'a Style,
+    fs: f64,
+    ws: f64,
+    out: Vec<Prim>,
+}
+
+impl Painter<'_> {
+    /// The background: one rectangle over the whole diagram.
+    fn background(&mut self, d: &Diagram) {
+        self.out.push(Prim::Fill {
+            points: vec![
+                DVec2::ZERO,
+                DVec2::new(d.width, 0.0),
+                DVec2::new(d.width, d.height),
+                DVec2::new(0.0, d.height),
+            ],
+            color: self.style.background,
+        });
+    }
+
+    /// One object's slice: its glow if it is a lamp, its fill and outline, a mirror's hatching
+    /// and a plane's visible boundary line.
+    fn object(&mut self, o: &ObjectSlice) {
+        let (style, ws) = (self.style, self.ws);
         let (fill, outline) = match o.fill {
             Fill::Glass { tint, .. } | Fill::Absorbing { tint } => {
                 let g = style.glass;
@@ -49,8 +109,9 @@ pub fn display_list(d: &Diagram, style: &Style) -> Vec<Prim> {
             Fill::Diffuse => (style.diffuse, style.muted),
             Fill::Emitter => (style.rays[3].fade(0.85), style.rays[3]),
         };
+        let out = &mut self.out;
         if o.fill == Fill::Emitter {
-            lamp_glow(&o.shape, style.rays[3].fade(0.35), 9.0 * ws, &mut out);
+            lamp_glow(&o.shape, style.rays[3].fade(0.35), 9.0 * ws, out);
         }
         match &o.shape {
             SliceShape::Circle { center, radius } => out.push(Prim::Circle {
@@ -90,38 +151,37 @@ pub fn display_list(d: &Diagram, style: &Style) -> Vec<Prim> {
             out.push(stroke(vec![a, b], outline, 2.0 * ws, None));
         }
     }
-    if let Some((a, b)) = d.camera.as_ref().and_then(|c| c.image_plane) {
-        out.push(stroke(vec![a, b], style.muted, 2.0 * ws, None));
-    }
-    for h in &d.hits {
+
+    /// A hit's normal, dashed through the hit point (drawn under the rays).
+    fn normal(&mut self, h: &HitMark) {
         if h.normal != DVec2::ZERO {
             let a = h.point - h.normal * h.normal_len;
             let b = h.point + h.normal * h.normal_len;
-            out.push(stroke(
+            self.out.push(stroke(
                 vec![a, b],
-                style.muted.fade(h.fade),
-                1.3 * ws,
-                Some([5.0 * ws, 4.0 * ws]),
+                self.style.muted.fade(h.fade),
+                1.3 * self.ws,
+                Some([5.0 * self.ws, 4.0 * self.ws]),
             ));
         }
     }
-    let mut order: Vec<&RaySegment> = d.rays.iter().collect();
-    order.sort_by_key(|r| std::cmp::Reverse(r.depth));
-    for r in order {
-        ray_prims(r, style, fs, ws, &mut out);
-    }
-    for h in &d.hits {
+
+    /// A hit's marks over the rays: its angle arcs, its dot, a ring for total internal
+    /// reflection and a square where the tree was cut.
+    fn hit_marks(&mut self, h: &HitMark) {
+        let (style, fs, ws) = (self.style, self.fs, self.ws);
         for a in &h.arcs {
-            out.push(stroke(
+            self.out.push(stroke(
                 a.points(24),
                 style.ink.fade(0.8 * h.fade),
                 1.4 * ws,
                 None,
             ));
         }
-        out.push(dot(h.point, 3.0 * ws, style.ink.fade(h.fade)));
+        self.out
+            .push(dot(h.point, 3.0 * ws, style.ink.fade(h.fade)));
         if h.tir {
-            out.push(Prim::Circle {
+            self.out.push(Prim::Circle {
                 center: h.point,
                 radius: 0.42 * fs,
                 fill: None,
@@ -130,7 +190,7 @@ pub fn display_list(d: &Diagram, style: &Style) -> Vec<Prim> {
         }
         if h.truncated {
             let s = 0.35 * fs;
-            out.push(Prim::Stroke {
+            self.out.push(Prim::Stroke {
                 points: vec![
                     h.point + DVec2::new(-s, -s),
                     h.point + DVec2::new(s, -s),
@@ -144,132 +204,157 @@ pub fn display_list(d: &Diagram, style: &Style) -> Vec<Prim> {
             });
         }
     }
-    for l in &d.lights {
-        let c = style.rays[3].fade(l.fade);
+
+    /// A light's glyph: a lamp where rays meet an area light, a star (and its cone) for a
+    /// point or spot light, an arrow for a directional one.
+    fn light(&mut self, l: &LightMark) {
+        let c = self.style.rays[3].fade(l.fade);
         match l.directional {
-            None if l.area => {
-                // Where rays meet a lamp: a small lamp glyph (the lamp itself is drawn where
-                // the plane cuts it).
-                out.push(Prim::Circle {
-                    center: l.point,
-                    radius: 0.3 * fs,
-                    fill: Some(c),
-                    stroke: Some((style.ink.fade(l.fade), 1.0 * ws)),
-                });
-                for k in 0..4 {
-                    let a =
-                        f64::from(k) * std::f64::consts::FRAC_PI_2 + std::f64::consts::FRAC_PI_4;
-                    let v = DVec2::new(a.cos(), a.sin());
-                    out.push(stroke(
-                        vec![l.point + v * 0.4 * fs, l.point + v * 0.7 * fs],
-                        c,
-                        1.6 * ws,
-                        None,
-                    ));
-                }
-            }
-            None => {
-                // A spot light: its cone's edges in the plane, dashed.
-                for e in l.cone.iter().flatten() {
-                    out.push(stroke(
-                        vec![l.point + *e * 0.9 * fs, l.point + *e * 10.0 * fs],
-                        c,
-                        1.4 * ws,
-                        Some([0.5 * fs, 0.35 * fs]),
-                    ));
-                }
-                for k in 0..8 {
-                    let a = f64::from(k) * std::f64::consts::FRAC_PI_4;
-                    let v = DVec2::new(a.cos(), a.sin());
-                    out.push(stroke(
-                        vec![l.point + v * 0.55 * fs, l.point + v * 0.9 * fs],
-                        c,
-                        2.0 * ws,
-                        None,
-                    ));
-                }
-                out.push(Prim::Circle {
-                    center: l.point,
-                    radius: 0.42 * fs,
-                    fill: Some(c),
-                    stroke: Some((style.ink.fade(l.fade), 1.0 * ws)),
-                });
-            }
+            None if l.area => self.area_lamp(l, c),
+            None => self.point_light(l, c),
             Some(dir) => {
-                let from = l.point - dir * 2.2 * fs;
-                out.push(stroke(vec![from, l.point], c, 3.0 * ws, None));
-                out.extend(arrow_head(l.point + dir * 0.4 * fs, dir, 0.9 * fs, c));
+                let from = l.point - dir * 2.2 * self.fs;
+                self.out
+                    .push(stroke(vec![from, l.point], c, 3.0 * self.ws, None));
+                self.out.extend(arrow_head(
+                    l.point + dir * 0.4 * self.fs,
+                    dir,
+                    0.9 * self.fs,
+                    c,
+                ));
             }
         }
     }
-    if let Some(c) = &d.camera {
+
+    /// Where rays meet a lamp: a small lamp glyph (the lamp itself is drawn where the plane
+    /// cuts it).
+    fn area_lamp(&mut self, l: &LightMark, c: Rgba) {
+        let (fs, ws) = (self.fs, self.ws);
+        self.out.push(Prim::Circle {
+            center: l.point,
+            radius: 0.3 * fs,
+            fill: Some(c),
+            stroke: Some((self.style.ink.fade(l.fade), 1.0 * ws)),
+        });
+        for k in 0..4 {
+            let a = f64::from(k) * std::f64::consts::FRAC_PI_2 + std::f64::consts::FRAC_PI_4;
+            let v = DVec2::new(a.cos(), a.sin());
+            self.out.push(stroke(
+                vec![l.point + v * 0.4 * fs, l.point + v * 0.7 * fs],
+                c,
+                1.6 * ws,
+                None,
+            ));
+        }
+    }
+
+    /// A point or spot light: a star, and a spot light's cone edges in the plane, dashed.
+    fn point_light(&mut self, l: &LightMark, c: Rgba) {
+        let (fs, ws) = (self.fs, self.ws);
+        for e in l.cone.iter().flatten() {
+            self.out.push(stroke(
+                vec![l.point + *e * 0.9 * fs, l.point + *e * 10.0 * fs],
+                c,
+                1.4 * ws,
+                Some([0.5 * fs, 0.35 * fs]),
+            ));
+        }
+        for k in 0..8 {
+            let a = f64::from(k) * std::f64::consts::FRAC_PI_4;
+            let v = DVec2::new(a.cos(), a.sin());
+            self.out.push(stroke(
+                vec![l.point + v * 0.55 * fs, l.point + v * 0.9 * fs],
+                c,
+                2.0 * ws,
+                None,
+            ));
+        }
+        self.out.push(Prim::Circle {
+            center: l.point,
+            radius: 0.42 * fs,
+            fill: Some(c),
+            stroke: Some((self.style.ink.fade(l.fade), 1.0 * ws)),
+        });
+    }
+
+    /// The camera: the traced pixel's span on the image plane, the pixel and the eye.
+    fn camera(&mut self, c: &CameraMark) {
+        let (style, fs, ws) = (self.style, self.fs, self.ws);
         if let Some((a, b)) = c.pixel_span {
             let mid = (a + b) * 0.5;
             let half = ((b - a) * 0.5).try_normalize().unwrap_or(DVec2::X)
                 * ((b - a).length() * 0.5).max(0.35 * fs);
-            out.push(stroke(
+            self.out.push(stroke(
                 vec![mid - half, mid + half],
                 style.rays[1],
                 5.0 * ws,
                 None,
             ));
         }
-        out.push(dot(c.pixel, 3.5 * ws, style.ink));
-        out.push(dot(c.eye, 0.35 * fs, style.ink));
+        self.out.push(dot(c.pixel, 3.5 * ws, style.ink));
+        self.out.push(dot(c.eye, 0.35 * fs, style.ink));
     }
-    for i in &d.insets {
-        inset_prims(i, style, ws, fs, &mut out);
-    }
-    let r = d.legend_rect;
-    out.push(Prim::Fill {
-        points: rect_points(r.min, r.max),
-        color: style.background.fade(0.94),
-    });
-    out.push(Prim::Stroke {
-        points: rect_points(r.min, r.max),
-        color: style.muted.fade(0.6),
-        width: 1.0,
-        dash: None,
-        closed: true,
-    });
-    for e in &d.legend {
-        let (a, b) = (e.pos, e.pos + DVec2::new(2.0 * fs, 0.0));
-        match e.key {
-            LegendKey::Ray(kind) => {
-                let dash = (kind == RayKind::Shadow).then_some([8.0 * ws, 5.0 * ws]);
-                out.push(stroke(vec![a, b], style.ray(kind), 2.6 * ws, dash));
-                out.extend(arrow_head(b, b - a, 0.6 * fs, style.ray(kind)));
+
+    /// The legend's box and the sample line (or mark) of each entry; its words are labels.
+    fn legend(&mut self, d: &Diagram) {
+        let (style, fs, ws) = (self.style, self.fs, self.ws);
+        let r = d.legend_rect;
+        self.out.push(Prim::Fill {
+            points: rect_points(r.min, r.max),
+            color: style.background.fade(0.94),
+        });
+        self.out.push(Prim::Stroke {
+            points: rect_points(r.min, r.max),
+            color: style.muted.fade(0.6),
+            width: 1.0,
+            dash: None,
+            closed: true,
+        });
+        let out = &mut self.out;
+        for e in &d.legend {
+            let (a, b) = (e.pos, e.pos + DVec2::new(2.0 * fs, 0.0));
+            match e.key {
+                LegendKey::Ray(kind) => {
+                    let dash = (kind == RayKind::Shadow).then_some([8.0 * ws, 5.0 * ws]);
+                    out.push(stroke(vec![a, b], style.ray(kind), 2.6 * ws, dash));
+                    out.extend(arrow_head(b, b - a, 0.6 * fs, style.ray(kind)));
+                }
+                LegendKey::OffPlane => out.push(stroke(
+                    vec![a, b],
+                    style.rays[1].fade(0.5),
+                    2.6 * ws,
+                    Some([2.0 * ws, 4.0 * ws]),
+                )),
+                LegendKey::Normal => out.push(stroke(
+                    vec![a, b],
+                    style.muted,
+                    1.3 * ws,
+                    Some([5.0 * ws, 4.0 * ws]),
+                )),
+                LegendKey::Blocked => {
+                    cross(
+                        a + DVec2::new(fs, 0.0),
+                        0.4 * fs,
+                        style.rays[3],
+                        2.5 * ws,
+                        out,
+                    );
+                }
+                LegendKey::Note => {}
             }
-            LegendKey::OffPlane => out.push(stroke(
-                vec![a, b],
-                style.rays[1].fade(0.5),
-                2.6 * ws,
-                Some([2.0 * ws, 4.0 * ws]),
-            )),
-            LegendKey::Normal => out.push(stroke(
-                vec![a, b],
-                style.muted,
-                1.3 * ws,
-                Some([5.0 * ws, 4.0 * ws]),
-            )),
-            LegendKey::Blocked => cross(
-                a + DVec2::new(fs, 0.0),
-                0.4 * fs,
-                style.rays[3],
-                2.5 * ws,
-                &mut out,
-            ),
-            LegendKey::Note => {}
         }
     }
-    for l in &d.labels {
+
+    /// One label's text, tinted by its ray's kind for attenuations and angles.
+    fn label(&mut self, l: &Label) {
+        let style = self.style;
         let color = match l.role {
             LabelRole::Attenuation | LabelRole::Angle => {
                 l.kind.map_or(style.ink, |k| mix(style.ray(k), style.ink))
             }
             _ => style.ink,
         };
-        out.push(Prim::Text {
+        self.out.push(Prim::Text {
             pos: l.pos,
             text: l.text.clone(),
             size: l.size,
@@ -278,7 +363,6 @@ pub fn display_list(d: &Diagram, style: &Style) -> Vec<Prim> {
             halo: Some(style.background),
         });
     }
-    out
 }
 
 /// A wide translucent stroke around a lamp's slice: its glow.

@@ -57,6 +57,21 @@ impl Buf<'_> {
     }
 }
 
+/// What an accessor's elements are, checked against their use: shared by its dense part and
+/// its sparse substitutions.
+struct Layout {
+    /// `accessors[i]`, for messages.
+    path: String,
+    /// The type of each number.
+    ct: ComponentType,
+    /// Numbers per element.
+    dims: usize,
+    /// Integers mapped to [0, 1] or [-1, 1].
+    normalized: bool,
+    /// Elements.
+    count: usize,
+}
+
 /// The file's binary data, loaded on first use.
 pub struct Data<'a, 'r> {
     /// The scene file as named by the caller.
@@ -281,12 +296,40 @@ impl<'a, 'r> Data<'a, 'r> {
         what: &str,
         unsigned_ints: bool,
     ) -> Result<Vec<T>, FormatError> {
-        let dims = T::DIMS;
         let path = format!("accessors[{index}]");
         let root = self.root;
         let Some(a) = root.accessors.get(index) else {
             return Err(self.err(&path, "no such accessor"));
         };
+        let layout = self.layout(a, path, T::DIMS, what, unsigned_ints)?;
+        let mut out = vec![T::default(); layout.count];
+        if let Some(v) = a.buffer_view {
+            let off = a.byte_offset.map_or(0, |o| o.0);
+            self.dense(v.value(), off, &layout, &mut out)?;
+        }
+        if let Some(s) = &a.sparse {
+            self.sparse(s, &layout, &mut out)?;
+        }
+        if let Some(i) = out.iter().position(|x| !x.finite()) {
+            return Err(self.err(
+                &layout.path,
+                format!("{what}: element {i} is not a finite number"),
+            ));
+        }
+        Ok(out)
+    }
+
+    /// The layout of accessor `a` at `path`, checked: its type has `dims` numbers, its
+    /// components are unsigned integers if `unsigned_ints`, its count is within the vertex
+    /// limit (`what` names its use in messages).
+    fn layout(
+        &self,
+        a: &::gltf::json::Accessor,
+        path: String,
+        dims: usize,
+        what: &str,
+        unsigned_ints: bool,
+    ) -> Result<Layout, FormatError> {
         let Checked::Valid(ty) = a.type_ else {
             return Err(self.err(&format!("{path}.type"), "invalid type"));
         };
@@ -327,68 +370,81 @@ impl<'a, 'r> Data<'a, 'r> {
                 ),
             ));
         }
-        let count = count as usize;
-        let csize = ct.size();
-        let elem = csize * dims;
-        let normalized = a.normalized && ct != ComponentType::F32;
-        let mut out = vec![T::default(); count];
-        if let Some(v) = a.buffer_view {
-            let off = a.byte_offset.map_or(0, |o| o.0);
-            let file = self.file.clone();
-            let (bytes, stride) = self.view(v.value())?;
-            let stride = stride.unwrap_or(elem);
-            if stride < elem {
-                return Err(err(
-                    &file,
-                    &format!("bufferViews[{}].byteStride", v.value()),
-                    format!("{stride} is less than the {elem}-byte elements of {path}"),
-                ));
-            }
-            if count > 0 {
-                let need = u128::from(off) + (stride as u128) * (count as u128 - 1) + elem as u128;
-                if need > bytes.len() as u128 {
-                    return Err(err(
-                        &file,
-                        &path,
-                        format!(
-                            "{count} elements of {elem} bytes (stride {stride}, offset {off}) \
-                             need {need} bytes of bufferViews[{}], which has {}",
-                            v.value(),
-                            bytes.len()
-                        ),
-                    ));
-                }
-            }
-            let off = off as usize;
-            for (k, e) in out.iter_mut().enumerate() {
-                let base = off + k * stride;
-                for c in 0..dims {
-                    let at = base + c * csize;
-                    e.set(c, component(ct, &bytes[at..at + csize], normalized));
-                }
-            }
-        }
-        if let Some(s) = &a.sparse {
-            self.sparse(s, &path, ct, dims, normalized, count, &mut out)?;
-        }
-        if let Some(i) = out.iter().position(|x| !x.finite()) {
-            return Err(self.err(&path, format!("{what}: element {i} is not a finite number")));
-        }
-        Ok(out)
+        Ok(Layout {
+            path,
+            ct,
+            dims,
+            normalized: a.normalized && ct != ComponentType::F32,
+            count: count as usize,
+        })
     }
 
-    /// Apply the sparse substitutions `s` of accessor `path` to `out`.
-    #[allow(clippy::too_many_arguments)]
+    /// Decode the elements of `layout` at byte `off` of buffer view `view` into `out`.
+    fn dense<T: Elem>(
+        &mut self,
+        view: usize,
+        off: u64,
+        layout: &Layout,
+        out: &mut [T],
+    ) -> Result<(), FormatError> {
+        let Layout {
+            ref path,
+            ct,
+            dims,
+            normalized,
+            count,
+        } = *layout;
+        let csize = ct.size();
+        let elem = csize * dims;
+        let file = self.file.clone();
+        let (bytes, stride) = self.view(view)?;
+        let stride = stride.unwrap_or(elem);
+        if stride < elem {
+            return Err(err(
+                &file,
+                &format!("bufferViews[{view}].byteStride"),
+                format!("{stride} is less than the {elem}-byte elements of {path}"),
+            ));
+        }
+        if count > 0 {
+            let need = u128::from(off) + (stride as u128) * (count as u128 - 1) + elem as u128;
+            if need > bytes.len() as u128 {
+                return Err(err(
+                    &file,
+                    path,
+                    format!(
+                        "{count} elements of {elem} bytes (stride {stride}, offset {off}) \
+                         need {need} bytes of bufferViews[{view}], which has {}",
+                        bytes.len()
+                    ),
+                ));
+            }
+        }
+        let off = off as usize;
+        for (k, e) in out.iter_mut().enumerate() {
+            let base = off + k * stride;
+            for c in 0..dims {
+                let at = base + c * csize;
+                e.set(c, component(ct, &bytes[at..at + csize], normalized));
+            }
+        }
+        Ok(())
+    }
+
+    /// Apply the sparse substitutions `s` of the accessor of `layout` to `out`.
     fn sparse<T: Elem>(
         &mut self,
         s: &::gltf::json::accessor::sparse::Sparse,
-        path: &str,
-        ct: ComponentType,
-        dims: usize,
-        normalized: bool,
-        count: usize,
+        layout: &Layout,
         out: &mut [T],
     ) -> Result<(), FormatError> {
+        let Layout {
+            ref path,
+            ct,
+            dims,
+            normalized,
+            count,
+        } = *layout;
         let n = s.count.0;
         if n > count as u64 {
             return Err(self.err(

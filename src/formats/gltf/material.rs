@@ -111,27 +111,14 @@ fn fmt3(v: Triple) -> String {
 /// raytree's material for `p`, and what the mapping approximated (one sentence each).
 #[must_use]
 pub fn map(p: &Pbr) -> (MaterialDesc, Vec<String>) {
-    let mut notes = Vec::new();
     if p.unlit {
-        notes.push(format!(
-            "KHR_materials_unlit: an emitter of its base colour {} and no reflection (in raytree \
-             it also lights the scene)",
-            fmt3(p.base)
-        ));
-        return (
-            MaterialDesc {
-                emission: p.base,
-                ..MaterialDesc::default()
-            },
-            notes,
-        );
+        return unlit(p);
     }
     let m = p.metallic.clamp(0.0, 1.0);
     let t = p.transmission.clamp(0.0, 1.0);
     let alpha = p.roughness.clamp(0.0, 1.0).powi(2);
     let f0d = crate::formats::material_map::dielectric_f0(p.ior);
     let base = p.base;
-    let scale = |v: Triple, k: f64| v.map(|c| c * k);
     let mut out = MaterialDesc {
         roughness: alpha,
         emission: p.emission,
@@ -142,79 +129,29 @@ pub fn map(p: &Pbr) -> (MaterialDesc, Vec<String>) {
     if wd > 0.0 && base.iter().any(|&c| c > 0.0) {
         out.diffuse = Some(TextureDesc::Solid(scale(base, wd * (1.0 - f0d))));
     }
-    // The transmitting dielectric part.
-    let wt = (1.0 - m) * t;
-    let volume = p.volume.filter(|v| v.0 > 0.0);
+    let parts = Parts {
+        m,
+        wd,
+        // The transmitting dielectric part.
+        wt: (1.0 - m) * t,
+        f0d,
+        volume: p.volume.filter(|v| v.0 > 0.0),
+    };
     // The reflection the Fresnel lobe carries: normal-incidence reflectance per channel and
     // the share of the surface it covers (the volume dielectric reflects for itself).
-    let (spec, cover) = if wt > 0.0 && volume.is_some() {
+    let (spec, cover) = if parts.wt > 0.0 && parts.volume.is_some() {
         let cover = m + wd;
         let f = [0, 1, 2].map(|c| m * base[c] + wd * f0d);
         (f, cover)
     } else {
         ([0, 1, 2].map(|c| m * base[c] + (1.0 - m) * f0d), 1.0)
     };
-    if wt > 0.0 {
-        out.transmissivity = match volume {
-            Some(_) => scale(base, wt),
-            None => scale(base, wt * (1.0 - f0d)),
-        };
-        if let Some((_, dist, color)) = volume {
-            out.ior = Some(p.ior);
-            if dist.is_finite() && dist > 0.0 {
-                out.absorption = color.map(|c| (-(c.max(1e-9)).ln() / dist).max(0.0));
-                if color.iter().any(|&c| c < 1e-9) {
-                    notes.push(
-                        "KHR_materials_volume: an attenuation colour of 0 is absorbed as 1e-9"
-                            .into(),
-                    );
-                }
-            }
-            if base.iter().any(|&c| c != 1.0) {
-                notes.push(format!(
-                    "transmission: raytree's dielectric tints its Fresnel reflection by the base \
-                     colour {} too (glTF tints only the transmitted light)",
-                    fmt3(base)
-                ));
-            }
-        } else {
-            out.ior = Some(1.0);
-            notes.push(format!(
-                "KHR_materials_transmission without KHR_materials_volume is thin-walled \
-                 (glTF): light passes straight through, unrefracted, with weight {} (base colour \
-                 times transmission times 1 - F0 at normal incidence)",
-                fmt3(out.transmissivity)
-            ));
-        }
+    let mut notes = Vec::new();
+    if parts.wt > 0.0 {
+        transmission(p, &parts, &mut out, &mut notes);
     }
     if m > 0.0 {
-        let f = spec.map(|c| c / cover);
-        let idx = f.map(index_for_f0);
-        let (eta, k) = (idx.map(|i| i.0), idx.map(|i| i.1));
-        let gap = idx.iter().map(|i| i.2).fold(0.0, f64::max);
-        out.conductor = Some(ConductorDesc {
-            metal: None,
-            eta: Some(eta),
-            k: Some(k),
-            scale: (cover < 1.0).then_some([cover; 3]),
-        });
-        notes.push(format!(
-            "metallic {m}: glTF's Schlick Fresnel of F0 = mix({f0d:.4}, baseColor, metallic) = {} \
-             is the exact Fresnel of the complex index eta {} + i k {}, which has that F0 and \
-             differs from Schlick's curve by at most {gap:.3} (near grazing){}",
-            fmt3(f),
-            fmt3(eta),
-            fmt3(k),
-            if wd > 0.0 {
-                format!(
-                    "; the diffuse part is weighted by 1 - F0 = {:.4} at every angle (glTF: 1 - \
-                     F, less at grazing)",
-                    1.0 - f0d
-                )
-            } else {
-                String::new()
-            }
-        ));
+        notes.push(conductor(&parts, spec, cover, &mut out));
     } else if spec.iter().any(|&c| c > 0.0) {
         out.reflectivity = spec;
         notes.push(format!(
@@ -225,6 +162,110 @@ pub fn map(p: &Pbr) -> (MaterialDesc, Vec<String>) {
         ));
     }
     (out, notes)
+}
+
+/// The shares of a glTF material's parts, and what they have in common.
+struct Parts {
+    /// The metallic share (`metallicFactor`, clamped to [0, 1]).
+    m: f64,
+    /// The opaque dielectric share, `(1 - m)(1 - transmission)`.
+    wd: f64,
+    /// The transmitting dielectric share, `(1 - m) transmission`.
+    wt: f64,
+    /// The dielectric's normal-incidence reflectance, from the IOR.
+    f0d: f64,
+    /// `KHR_materials_volume` when it has a thickness.
+    volume: Option<(f64, f64, Triple)>,
+}
+
+/// `v` times `k`, per channel.
+fn scale(v: Triple, k: f64) -> Triple {
+    v.map(|c| c * k)
+}
+
+/// `KHR_materials_unlit`: an emitter of the base colour that reflects nothing.
+fn unlit(p: &Pbr) -> (MaterialDesc, Vec<String>) {
+    let notes = vec![format!(
+        "KHR_materials_unlit: an emitter of its base colour {} and no reflection (in raytree \
+         it also lights the scene)",
+        fmt3(p.base)
+    )];
+    (
+        MaterialDesc {
+            emission: p.base,
+            ..MaterialDesc::default()
+        },
+        notes,
+    )
+}
+
+/// The transmitting part of `p` into `out`: a refracting dielectric with Beer's law when it
+/// has a volume, thin-walled (unrefracted) without.
+fn transmission(p: &Pbr, parts: &Parts, out: &mut MaterialDesc, notes: &mut Vec<String>) {
+    let (base, wt, f0d) = (p.base, parts.wt, parts.f0d);
+    out.transmissivity = match parts.volume {
+        Some(_) => scale(base, wt),
+        None => scale(base, wt * (1.0 - f0d)),
+    };
+    if let Some((_, dist, color)) = parts.volume {
+        out.ior = Some(p.ior);
+        if dist.is_finite() && dist > 0.0 {
+            out.absorption = color.map(|c| (-(c.max(1e-9)).ln() / dist).max(0.0));
+            if color.iter().any(|&c| c < 1e-9) {
+                notes.push(
+                    "KHR_materials_volume: an attenuation colour of 0 is absorbed as 1e-9".into(),
+                );
+            }
+        }
+        if base.iter().any(|&c| c != 1.0) {
+            notes.push(format!(
+                "transmission: raytree's dielectric tints its Fresnel reflection by the base \
+                 colour {} too (glTF tints only the transmitted light)",
+                fmt3(base)
+            ));
+        }
+    } else {
+        out.ior = Some(1.0);
+        notes.push(format!(
+            "KHR_materials_transmission without KHR_materials_volume is thin-walled \
+             (glTF): light passes straight through, unrefracted, with weight {} (base colour \
+             times transmission times 1 - F0 at normal incidence)",
+            fmt3(out.transmissivity)
+        ));
+    }
+}
+
+/// The metallic part into `out`: the conductor whose exact Fresnel has the normal-incidence
+/// reflectance `spec / cover` over the share `cover`; returns its note.
+fn conductor(parts: &Parts, spec: Triple, cover: f64, out: &mut MaterialDesc) -> String {
+    let (m, f0d) = (parts.m, parts.f0d);
+    let f = spec.map(|c| c / cover);
+    let idx = f.map(index_for_f0);
+    let (eta, k) = (idx.map(|i| i.0), idx.map(|i| i.1));
+    let gap = idx.iter().map(|i| i.2).fold(0.0, f64::max);
+    out.conductor = Some(ConductorDesc {
+        metal: None,
+        eta: Some(eta),
+        k: Some(k),
+        scale: (cover < 1.0).then_some([cover; 3]),
+    });
+    format!(
+        "metallic {m}: glTF's Schlick Fresnel of F0 = mix({f0d:.4}, baseColor, metallic) = {} \
+         is the exact Fresnel of the complex index eta {} + i k {}, which has that F0 and \
+         differs from Schlick's curve by at most {gap:.3} (near grazing){}",
+        fmt3(f),
+        fmt3(eta),
+        fmt3(k),
+        if parts.wd > 0.0 {
+            format!(
+                "; the diffuse part is weighted by 1 - F0 = {:.4} at every angle (glTF: 1 - \
+                 F, less at grazing)",
+                1.0 - f0d
+            )
+        } else {
+            String::new()
+        }
+    )
 }
 
 /// The sRGB transfer function's inverse (IEC 61966-2-1) of an 8-bit value, as a table.

@@ -115,41 +115,7 @@ impl<'a, 'r> State<'a, 'r> {
     /// The whole conversion.
     pub fn run(mut self) -> Result<Converted, FormatError> {
         let root = self.root();
-        for (i, name) in root.extensions_used.iter().enumerate() {
-            if !super::SUPPORTED_EXTENSIONS.contains(&name.as_str()) {
-                self.note(
-                    &format!("extensionsUsed[{i}]"),
-                    format!("{name} is not read: what it adds is left out"),
-                );
-            }
-        }
-        if !root.animations.is_empty() {
-            self.note(
-                "animations",
-                format!(
-                    "{} animation(s) not played: the nodes' static transforms are used",
-                    root.animations.len()
-                ),
-            );
-        }
-        let scene = match root.scene {
-            Some(s) => s.value(),
-            None if root.scenes.is_empty() => {
-                return Err(self.err("scenes", "the file has no scene (only assets)"));
-            }
-            None => {
-                if root.scenes.len() > 1 {
-                    self.note(
-                        "scene",
-                        format!(
-                            "no default scene among {}: scenes[0] is used",
-                            root.scenes.len()
-                        ),
-                    );
-                }
-                0
-            }
-        };
+        let scene = self.scene_index()?;
         let (instances, cameras, lights) = self.walk(scene)?;
         // Meshes are decoded first: the default camera frames them.
         for &(_, mesh, _) in &instances {
@@ -200,6 +166,47 @@ impl<'a, 'r> State<'a, 'r> {
             .finish()
             .ok_or_else(|| super::err(&file, "", "no camera"))?;
         Ok(Converted { desc, notes })
+    }
+
+    /// The index of the scene to convert (the default, or the first), after noting the
+    /// extensions that are not read and the animations that are not played.
+    fn scene_index(&mut self) -> Result<usize, FormatError> {
+        let root = self.root();
+        for (i, name) in root.extensions_used.iter().enumerate() {
+            if !super::SUPPORTED_EXTENSIONS.contains(&name.as_str()) {
+                self.note(
+                    &format!("extensionsUsed[{i}]"),
+                    format!("{name} is not read: what it adds is left out"),
+                );
+            }
+        }
+        if !root.animations.is_empty() {
+            self.note(
+                "animations",
+                format!(
+                    "{} animation(s) not played: the nodes' static transforms are used",
+                    root.animations.len()
+                ),
+            );
+        }
+        Ok(match root.scene {
+            Some(s) => s.value(),
+            None if root.scenes.is_empty() => {
+                return Err(self.err("scenes", "the file has no scene (only assets)"));
+            }
+            None => {
+                if root.scenes.len() > 1 {
+                    self.note(
+                        "scene",
+                        format!(
+                            "no default scene among {}: scenes[0] is used",
+                            root.scenes.len()
+                        ),
+                    );
+                }
+                0
+            }
+        })
     }
 
     /// The nodes of scene `s`, depth first without recursion: mesh instances, cameras and
@@ -419,21 +426,7 @@ impl<'a, 'r> State<'a, 'r> {
                 format!("light {l} does not exist"),
             ));
         };
-        let color = light.color.map(dec);
-        let intensity = dec(light.intensity);
-        if color.iter().any(|c| !(c.is_finite() && *c >= 0.0)) {
-            return Err(self.err(
-                &format!("{path}.color"),
-                "every component must be a finite number >= 0",
-            ));
-        }
-        if !(intensity.is_finite() && intensity >= 0.0) {
-            return Err(self.err(
-                &format!("{path}.intensity"),
-                format!("{intensity} is not a finite number >= 0"),
-            ));
-        }
-        let power = color.map(|c| c * intensity);
+        let power = self.light_power(light, &path)?;
         let a = DAffine3::from_mat4(*w);
         if let Some(r) = light.range {
             self.note(
@@ -489,6 +482,29 @@ impl<'a, 'r> State<'a, 'r> {
         Ok(())
     }
 
+    /// The colour times the intensity of `light` at `path`, each checked finite and >= 0.
+    fn light_power(
+        &self,
+        light: &::gltf::json::extensions::scene::khr_lights_punctual::Light,
+        path: &str,
+    ) -> Result<[f64; 3], FormatError> {
+        let color = light.color.map(dec);
+        let intensity = dec(light.intensity);
+        if color.iter().any(|c| !(c.is_finite() && *c >= 0.0)) {
+            return Err(self.err(
+                &format!("{path}.color"),
+                "every component must be a finite number >= 0",
+            ));
+        }
+        if !(intensity.is_finite() && intensity >= 0.0) {
+            return Err(self.err(
+                &format!("{path}.intensity"),
+                format!("{intensity} is not a finite number >= 0"),
+            ));
+        }
+        Ok(color.map(|c| c * intensity))
+    }
+
     /// A spot light's (outer, inner) cone half-angles in degrees: glTF's `outerConeAngle`
     /// (default pi/4) and `innerConeAngle` (default 0), with `0 <= inner < outer <= pi/2` as
     /// the extension requires.
@@ -535,8 +551,65 @@ impl<'a, 'r> State<'a, 'r> {
         j: usize,
         p: &::gltf::json::mesh::Primitive,
     ) -> Result<Option<Prim>, FormatError> {
-        use ::gltf::json::mesh::{Mode, Semantic};
+        use ::gltf::json::mesh::Semantic;
         let path = format!("meshes[{m}].primitives[{j}]");
+        let mode = self.surface_mode(p, &path)?;
+        let Some(pos) = p.attributes.get(&Checked::Valid(Semantic::Positions)) else {
+            self.note(&path, "no POSITION attribute: left out (as glTF says)");
+            return Ok(None);
+        };
+        let positions: Vec<DVec3> = self.d.accessor(pos.value(), "POSITION", false)?;
+        let n = positions.len();
+        let normals = self.normals(p, &path, n)?;
+        for key in p.attributes.keys() {
+            if let Checked::Valid(Semantic::Colors(c)) = key {
+                self.note(
+                    &format!("{path}.attributes.COLOR_{c}"),
+                    "vertex colours are not read (raytree has none): the material's colour is \
+                     used alone",
+                );
+            }
+        }
+        let index_list: Vec<u32> = match p.indices {
+            Some(a) => {
+                let v: Vec<u32> = self.d.accessor(a.value(), "indices", true)?;
+                if let Some((k, x)) = v.iter().enumerate().find(|&(_, &x)| x as usize >= n) {
+                    return Err(self.err(
+                        &format!("accessors[{}]", a.value()),
+                        format!("index {k} is {x}, out of range for the {n} vertices of {path}"),
+                    ));
+                }
+                v
+            }
+            None => (0..n as u32).collect(),
+        };
+        let tris: Vec<[u32; 3]> = self
+            .triangles(mode, index_list, &path)?
+            .into_iter()
+            .filter(|t| {
+                let [a, b, c] = t.map(|i| positions[i as usize]);
+                (b - a).cross(c - a).length_squared() > 0.0
+            })
+            .collect();
+        if tris.is_empty() {
+            self.note(&path, "no triangle with area: left out");
+            return Ok(None);
+        }
+        Ok(Some(Prim {
+            positions,
+            tris,
+            normals,
+            material: p.material.map(|x| x.value()),
+        }))
+    }
+
+    /// The mode of primitive `p` at `path`, refused unless it has triangles.
+    fn surface_mode(
+        &self,
+        p: &::gltf::json::mesh::Primitive,
+        path: &str,
+    ) -> Result<::gltf::json::mesh::Mode, FormatError> {
+        use ::gltf::json::mesh::Mode;
         let Checked::Valid(mode) = p.mode else {
             return Err(self.err(&format!("{path}.mode"), "unknown primitive mode"));
         };
@@ -560,13 +633,19 @@ impl<'a, 'r> State<'a, 'r> {
                 ),
             ));
         }
-        let Some(pos) = p.attributes.get(&Checked::Valid(Semantic::Positions)) else {
-            self.note(&path, "no POSITION attribute: left out (as glTF says)");
-            return Ok(None);
-        };
-        let positions: Vec<DVec3> = self.d.accessor(pos.value(), "POSITION", false)?;
-        let n = positions.len();
-        let mut normals = match p.attributes.get(&Checked::Valid(Semantic::Normals)) {
+        Ok(mode)
+    }
+
+    /// The `n` vertex normals of primitive `p` at `path`, or `None` (flat normals) when it
+    /// has none or one of them is zero (noted).
+    fn normals(
+        &mut self,
+        p: &::gltf::json::mesh::Primitive,
+        path: &str,
+        n: usize,
+    ) -> Result<Option<Vec<DVec3>>, FormatError> {
+        use ::gltf::json::mesh::Semantic;
+        let normals = match p.attributes.get(&Checked::Valid(Semantic::Normals)) {
             None => None,
             Some(a) => {
                 let ns: Vec<DVec3> = self.d.accessor(a.value(), "NORMAL", false)?;
@@ -589,31 +668,21 @@ impl<'a, 'r> State<'a, 'r> {
                 &format!("{path}.attributes.NORMAL"),
                 format!("normal {k} is zero: the primitive is shaded with flat normals"),
             );
-            normals = None;
+            return Ok(None);
         }
-        for key in p.attributes.keys() {
-            if let Checked::Valid(Semantic::Colors(c)) = key {
-                self.note(
-                    &format!("{path}.attributes.COLOR_{c}"),
-                    "vertex colours are not read (raytree has none): the material's colour is \
-                     used alone",
-                );
-            }
-        }
-        let index_list: Vec<u32> = match p.indices {
-            Some(a) => {
-                let v: Vec<u32> = self.d.accessor(a.value(), "indices", true)?;
-                if let Some((k, x)) = v.iter().enumerate().find(|&(_, &x)| x as usize >= n) {
-                    return Err(self.err(
-                        &format!("accessors[{}]", a.value()),
-                        format!("index {k} is {x}, out of range for the {n} vertices of {path}"),
-                    ));
-                }
-                v
-            }
-            None => (0..n as u32).collect(),
-        };
-        let tris: Vec<[u32; 3]> = match mode {
+        Ok(normals)
+    }
+
+    /// The triangles of `index_list` under `mode` (strips alternate their winding, fans share
+    /// their first vertex), degenerate ones included.
+    fn triangles(
+        &self,
+        mode: ::gltf::json::mesh::Mode,
+        index_list: Vec<u32>,
+        path: &str,
+    ) -> Result<Vec<[u32; 3]>, FormatError> {
+        use ::gltf::json::mesh::Mode;
+        Ok(match mode {
             Mode::TriangleStrip => (2..index_list.len())
                 .map(|i| {
                     let (a, b, c) = (index_list[i - 2], index_list[i - 1], index_list[i]);
@@ -626,7 +695,7 @@ impl<'a, 'r> State<'a, 'r> {
             _ => {
                 if !index_list.len().is_multiple_of(3) {
                     return Err(self.err(
-                        &path,
+                        path,
                         format!(
                             "{} indices (vertices) is not a multiple of 3 for TRIANGLES",
                             index_list.len()
@@ -638,24 +707,7 @@ impl<'a, 'r> State<'a, 'r> {
                     .map(|c| [c[0], c[1], c[2]])
                     .collect()
             }
-        };
-        let tris: Vec<[u32; 3]> = tris
-            .into_iter()
-            .filter(|t| {
-                let [a, b, c] = t.map(|i| positions[i as usize]);
-                (b - a).cross(c - a).length_squared() > 0.0
-            })
-            .collect();
-        if tris.is_empty() {
-            self.note(&path, "no triangle with area: left out");
-            return Ok(None);
-        }
-        Ok(Some(Prim {
-            positions,
-            tris,
-            normals,
-            material: p.material.map(|x| x.value()),
-        }))
+        })
     }
 
     /// Place mesh `m` of node `node` under `w`.
@@ -731,10 +783,54 @@ impl<'a, 'r> State<'a, 'r> {
 
     /// The parameters of material `i` with its textures' means folded in, and its name.
     fn read_material(&mut self, i: usize) -> Result<(Pbr, String), FormatError> {
-        use ::gltf::json::material::AlphaMode;
         let root = self.root();
         let m = &root.materials[i];
         let path = format!("materials[{i}]");
+        let pmp = format!("{path}.pbrMetallicRoughness");
+        let (mut pbr, alpha) = self.textured_factors(m, &path, &pmp)?;
+        self.note_unread_maps(m, &path, alpha);
+        for (k, v) in [
+            ("metallicFactor", pbr.metallic),
+            ("roughnessFactor", pbr.roughness),
+        ] {
+            if !(v.is_finite() && (0.0..=1.0).contains(&v)) {
+                return Err(self.err(&format!("{pmp}.{k}"), format!("{v} is not in [0, 1]")));
+            }
+        }
+        if pbr.base.iter().any(|c| !(c.is_finite() && *c >= 0.0)) {
+            return Err(self.err(
+                &format!("{pmp}.baseColorFactor"),
+                "every component must be a finite number >= 0",
+            ));
+        }
+        if let Some(ext) = &m.extensions {
+            self.material_extensions(ext, &path, &mut pbr)?;
+        }
+        if pbr.emission.iter().any(|c| !(c.is_finite() && *c >= 0.0)) {
+            return Err(self.err(
+                &format!("{path}.emissiveFactor"),
+                "every component must be a finite number >= 0",
+            ));
+        }
+        if pbr.emission.iter().any(|&c| c > 0.0) && m.double_sided {
+            self.note(
+                &format!("{path}.doubleSided"),
+                "an emissive double-sided material: raytree emits from the front side only",
+            );
+        }
+        let name = m.name.clone().unwrap_or_else(|| format!("material{i}"));
+        Ok((pbr, name))
+    }
+
+    /// Material `m`'s factors with the means of its base colour, metallic-roughness and
+    /// emissive textures folded in, and its alpha (`pmp`: the path of its
+    /// `pbrMetallicRoughness`).
+    fn textured_factors(
+        &mut self,
+        m: &::gltf::json::Material,
+        path: &str,
+        pmp: &str,
+    ) -> Result<(Pbr, f64), FormatError> {
         let pm = &m.pbr_metallic_roughness;
         let bc = pm.base_color_factor.0.map(dec);
         let mut pbr = Pbr {
@@ -745,7 +841,6 @@ impl<'a, 'r> State<'a, 'r> {
             ..Pbr::default()
         };
         let mut alpha = bc[3];
-        let pmp = format!("{path}.pbrMetallicRoughness");
         if let Some(t) = &pm.base_color_texture {
             let tp = format!("{pmp}.baseColorTexture");
             if let Some(mean) = self.texture(t.index.value(), true, &tp, "baseColorFactor")? {
@@ -775,6 +870,13 @@ impl<'a, 'r> State<'a, 'r> {
                 }
             }
         }
+        Ok((pbr, alpha))
+    }
+
+    /// Notes for what material `m` has that raytree does not read: normal and occlusion
+    /// maps, alpha masks and blending (`alpha`: the base colour's, texture included).
+    fn note_unread_maps(&mut self, m: &::gltf::json::Material, path: &str, alpha: f64) {
+        use ::gltf::json::material::AlphaMode;
         if let Some(t) = &m.normal_texture {
             self.note(
                 &format!("{path}.normalTexture"),
@@ -805,118 +907,117 @@ impl<'a, 'r> State<'a, 'r> {
             ),
             _ => {}
         }
-        for (k, v) in [
-            ("metallicFactor", pbr.metallic),
-            ("roughnessFactor", pbr.roughness),
-        ] {
-            if !(v.is_finite() && (0.0..=1.0).contains(&v)) {
-                return Err(self.err(&format!("{pmp}.{k}"), format!("{v} is not in [0, 1]")));
+    }
+
+    /// The material extensions `ext` of the material at `path` folded into `pbr`, in the
+    /// order they are checked: emissive strength, IOR, transmission, volume, then the others
+    /// (unlit is read, the rest noted).
+    fn material_extensions(
+        &mut self,
+        ext: &::gltf::json::extensions::material::Material,
+        path: &str,
+        pbr: &mut Pbr,
+    ) -> Result<(), FormatError> {
+        if let Some(s) = &ext.emissive_strength {
+            let k = dec(s.emissive_strength.0);
+            if !(k.is_finite() && k >= 0.0) {
+                return Err(self.err(
+                    &format!("{path}.extensions.KHR_materials_emissive_strength"),
+                    format!("emissiveStrength {k} is not a finite number >= 0"),
+                ));
+            }
+            pbr.emission = pbr.emission.map(|c| c * k);
+        }
+        if let Some(ior) = &ext.ior {
+            let v = dec(ior.ior.0);
+            if !(v.is_finite() && v >= 1.0) {
+                return Err(self.err(
+                    &format!("{path}.extensions.KHR_materials_ior.ior"),
+                    format!("{v} is not a finite number >= 1"),
+                ));
+            }
+            pbr.ior = v;
+        }
+        if let Some(t) = &ext.transmission {
+            pbr.transmission = self.transmission(t, path)?;
+        }
+        if let Some(v) = &ext.volume {
+            pbr.volume = Some(self.volume(v, path)?);
+        }
+        for k in ext.others.keys() {
+            if k == "KHR_materials_unlit" {
+                pbr.unlit = true;
+            } else {
+                self.note(
+                    &format!("{path}.extensions.{k}"),
+                    "not read: the material is mapped without it",
+                );
             }
         }
-        if pbr.base.iter().any(|c| !(c.is_finite() && *c >= 0.0)) {
+        Ok(())
+    }
+
+    /// `KHR_materials_transmission` of the material at `path`: its factor, times its
+    /// texture's mean red.
+    fn transmission(
+        &mut self,
+        t: &::gltf::json::extensions::material::Transmission,
+        path: &str,
+    ) -> Result<f64, FormatError> {
+        let ep = format!("{path}.extensions.KHR_materials_transmission");
+        let mut transmission = dec(t.transmission_factor.0);
+        if !(transmission.is_finite() && (0.0..=1.0).contains(&transmission)) {
             return Err(self.err(
-                &format!("{pmp}.baseColorFactor"),
-                "every component must be a finite number >= 0",
+                &format!("{ep}.transmissionFactor"),
+                format!("{transmission} is not in [0, 1]"),
             ));
         }
-        if let Some(ext) = &m.extensions {
-            if let Some(s) = &ext.emissive_strength {
-                let k = dec(s.emissive_strength.0);
-                if !(k.is_finite() && k >= 0.0) {
-                    return Err(self.err(
-                        &format!("{path}.extensions.KHR_materials_emissive_strength"),
-                        format!("emissiveStrength {k} is not a finite number >= 0"),
-                    ));
-                }
-                pbr.emission = pbr.emission.map(|c| c * k);
-            }
-            if let Some(ior) = &ext.ior {
-                let v = dec(ior.ior.0);
-                if !(v.is_finite() && v >= 1.0) {
-                    return Err(self.err(
-                        &format!("{path}.extensions.KHR_materials_ior.ior"),
-                        format!("{v} is not a finite number >= 1"),
-                    ));
-                }
-                pbr.ior = v;
-            }
-            if let Some(t) = &ext.transmission {
-                let ep = format!("{path}.extensions.KHR_materials_transmission");
-                pbr.transmission = dec(t.transmission_factor.0);
-                if !(pbr.transmission.is_finite() && (0.0..=1.0).contains(&pbr.transmission)) {
-                    return Err(self.err(
-                        &format!("{ep}.transmissionFactor"),
-                        format!("{} is not in [0, 1]", pbr.transmission),
-                    ));
-                }
-                if let Some(tt) = &t.transmission_texture {
-                    let tp = format!("{ep}.transmissionTexture");
-                    if let Some(mean) =
-                        self.texture(tt.index.value(), false, &tp, "transmissionFactor")?
-                    {
-                        pbr.transmission *= mean[0];
-                    }
-                }
-            }
-            if let Some(v) = &ext.volume {
-                let ep = format!("{path}.extensions.KHR_materials_volume");
-                let mut thickness = dec(v.thickness_factor.0);
-                let dist = dec(v.attenuation_distance.0);
-                let color = v.attenuation_color.0.map(dec);
-                if !(thickness.is_finite() && thickness >= 0.0) {
-                    return Err(self.err(
-                        &format!("{ep}.thicknessFactor"),
-                        format!("{thickness} is not a finite number >= 0"),
-                    ));
-                }
-                if dist.is_nan() || dist <= 0.0 || color.iter().any(|c| !(0.0..=1.0).contains(c)) {
-                    return Err(self.err(
-                        &ep,
-                        "attenuationDistance must be > 0 and attenuationColor in [0, 1]",
-                    ));
-                }
-                if let Some(tt) = &v.thickness_texture {
-                    let tp = format!("{ep}.thicknessTexture");
-                    if let Some(mean) =
-                        self.texture(tt.index.value(), false, &tp, "thicknessFactor")?
-                    {
-                        thickness *= mean[1];
-                    }
-                }
-                if thickness > 0.0 {
-                    self.note(
-                        &format!("{ep}.thicknessFactor"),
-                        "the thickness (a rasteriser's hint) is not used: raytree traces the \
-                         mesh's actual volume",
-                    );
-                }
-                pbr.volume = Some((thickness, dist, color));
-            }
-            for k in ext.others.keys() {
-                if k == "KHR_materials_unlit" {
-                    pbr.unlit = true;
-                } else {
-                    self.note(
-                        &format!("{path}.extensions.{k}"),
-                        "not read: the material is mapped without it",
-                    );
-                }
+        if let Some(tt) = &t.transmission_texture {
+            let tp = format!("{ep}.transmissionTexture");
+            if let Some(mean) = self.texture(tt.index.value(), false, &tp, "transmissionFactor")? {
+                transmission *= mean[0];
             }
         }
-        if pbr.emission.iter().any(|c| !(c.is_finite() && *c >= 0.0)) {
+        Ok(transmission)
+    }
+
+    /// `KHR_materials_volume` of the material at `path`: thickness (times its texture's mean
+    /// green), attenuation distance and colour.
+    fn volume(
+        &mut self,
+        v: &::gltf::json::extensions::material::Volume,
+        path: &str,
+    ) -> Result<(f64, f64, [f64; 3]), FormatError> {
+        let ep = format!("{path}.extensions.KHR_materials_volume");
+        let mut thickness = dec(v.thickness_factor.0);
+        let dist = dec(v.attenuation_distance.0);
+        let color = v.attenuation_color.0.map(dec);
+        if !(thickness.is_finite() && thickness >= 0.0) {
             return Err(self.err(
-                &format!("{path}.emissiveFactor"),
-                "every component must be a finite number >= 0",
+                &format!("{ep}.thicknessFactor"),
+                format!("{thickness} is not a finite number >= 0"),
             ));
         }
-        if pbr.emission.iter().any(|&c| c > 0.0) && m.double_sided {
+        if dist.is_nan() || dist <= 0.0 || color.iter().any(|c| !(0.0..=1.0).contains(c)) {
+            return Err(self.err(
+                &ep,
+                "attenuationDistance must be > 0 and attenuationColor in [0, 1]",
+            ));
+        }
+        if let Some(tt) = &v.thickness_texture {
+            let tp = format!("{ep}.thicknessTexture");
+            if let Some(mean) = self.texture(tt.index.value(), false, &tp, "thicknessFactor")? {
+                thickness *= mean[1];
+            }
+        }
+        if thickness > 0.0 {
             self.note(
-                &format!("{path}.doubleSided"),
-                "an emissive double-sided material: raytree emits from the front side only",
+                &format!("{ep}.thicknessFactor"),
+                "the thickness (a rasteriser's hint) is not used: raytree traces the mesh's \
+                 actual volume",
             );
         }
-        let name = m.name.clone().unwrap_or_else(|| format!("material{i}"));
-        Ok((pbr, name))
+        Ok((thickness, dist, color))
     }
 
     /// The mean linear RGBA of texture `t` at `path` (sRGB-decoded when `srgb`), noted; `None`

@@ -21,6 +21,142 @@ fn deref<'a>(ids: &'a HashMap<String, El>, el: &'a El) -> Result<&'a El, FormatE
         .ok_or_else(|| el.err(format!("refers to undefined id {id:?}")))
 }
 
+/// The index of refraction `name` of `el`: a number, or a named material's.
+fn ior(el: &El, p: &Props, name: &str, default: f64) -> Result<f64, FormatError> {
+    match p.string(name) {
+        Ok(Some(s)) => {
+            mm::named_ior(&s).ok_or_else(|| el.err(format!("{name}: unknown material {s:?}")))
+        }
+        Ok(None) => p.float(name, default),
+        Err(_) => p.float(name, default),
+    }
+}
+
+/// A BSDF's properties being read, with the notes they raise (those of its colours and
+/// those of its roughness, kept apart: they are reported in that order).
+struct BsdfReader<'a, 'p> {
+    el: &'a El,
+    p: &'a Props<'p>,
+    /// A rough variant (`rough...`): `alpha` reads a roughness.
+    rough: bool,
+    /// Notes of the colours read.
+    notes: Vec<String>,
+    /// Notes of the roughness.
+    a_notes: Vec<String>,
+    /// alpha_v of an anisotropic roughness, set by `alpha`.
+    alpha_v: Option<f64>,
+    /// The Beckmann distribution, set by `alpha`.
+    beckmann: bool,
+}
+
+impl BsdfReader<'_, '_> {
+    /// The colour `name`, or `default`.
+    fn color(&mut self, name: &str, default: [f64; 3]) -> Result<[f64; 3], FormatError> {
+        Ok(match self.p.color(name)? {
+            Some((c, n)) => {
+                self.notes.extend(n);
+                c
+            }
+            None => default,
+        })
+    }
+
+    /// alpha_u of a rough BSDF (0 for a smooth one), with its distribution.
+    fn alpha(&mut self) -> Result<f64, FormatError> {
+        if !self.rough {
+            return Ok(0.0);
+        }
+        let p = self.p;
+        let a = p.float("alpha", 0.1)?;
+        let (a, v, n) = mm::anisotropic(p.float("alpha_u", a)?, p.float("alpha_v", a)?);
+        self.a_notes.extend(n);
+        self.alpha_v = v;
+        let dist = p
+            .string("distribution")?
+            .unwrap_or_else(|| "beckmann".into());
+        match dist.as_str() {
+            "ggx" => Ok(a),
+            "beckmann" => {
+                self.beckmann = true;
+                Ok(a)
+            }
+            d => Err(self.el.err(format!("unknown distribution {d:?}"))),
+        }
+    }
+
+    /// `conductor` or `roughconductor`: from `eta` and `k`, a named metal, or a mirror.
+    fn conductor(&mut self) -> Result<mm::Mapped, FormatError> {
+        let p = self.p;
+        let a = self.alpha()?;
+        let scale = self.color("specular_reflectance", [1.0; 3])?;
+        let material = p.string("material")?.unwrap_or_else(|| "none".into());
+        Ok(if p.color("eta")?.is_some() || p.color("k")?.is_some() {
+            mm::conductor(
+                self.color("eta", [0.0; 3])?,
+                self.color("k", [1.0; 3])?,
+                a,
+                scale,
+            )
+        } else if material == "none" {
+            mm::mirror(scale, a)
+        } else {
+            let (e, k) = mm::metal(&material).ok_or_else(|| self.el.err(format!("unknown conductor material {material:?} (raytree knows Ag, Al, Au, Cr, Cu, none)")))?;
+            mm::conductor(e, k, a, scale)
+        })
+    }
+}
+
+/// A sensor's field of view in degrees (`fov`, or from `focal_length` on a 36 x 24 mm film
+/// along the diagonal) and the axis it is measured along (`fov_axis`).
+fn sensor_fov(el: &El, p: &Props) -> Result<(f64, String), FormatError> {
+    let fov = match p.float("fov", -1.0)? {
+        f if f > 0.0 => f,
+        _ => {
+            // Mitsuba: focal_length on a 36 x 24 mm film, along the diagonal.
+            let s = p.string("focal_length")?.unwrap_or_else(|| "50mm".into());
+            let f: f64 = s
+                .trim_end_matches("mm")
+                .parse()
+                .map_err(|_| el.err(format!("bad focal_length {s:?}")))?;
+            2.0 * ((36f64.hypot(24.0)) / (2.0 * f)).atan().to_degrees()
+        }
+    };
+    let axis = p.string("fov_axis")?.unwrap_or_else(|| {
+        if p.string("focal_length").ok().flatten().is_some() {
+            "diagonal".into()
+        } else {
+            "x".into()
+        }
+    });
+    Ok((fov, axis))
+}
+
+/// The vertical field of view of a `w` x `h` image whose field of view `fov` is measured
+/// along `axis`: the given one when that axis is vertical, else from its tangent.
+fn vertical_fov(el: &El, fov: f64, axis: &str, (w, h): (u32, u32)) -> Result<f64, FormatError> {
+    let half = (fov.to_radians() / 2.0).tan();
+    let (wf, hf) = (f64::from(w), f64::from(h));
+    // The vertical field of view: the given one when fov_axis is vertical, else from tan.
+    let vertical = match axis {
+        "x" => false,
+        "y" => true,
+        "smaller" => w >= h,
+        "larger" => w <= h,
+        "diagonal" => false,
+        _ => return Err(el.err(format!("unknown fov_axis {axis:?}"))),
+    };
+    Ok(if vertical {
+        fov
+    } else {
+        let tan_y = if axis == "diagonal" {
+            half * hf / wf.hypot(hf)
+        } else {
+            half * hf / wf
+        };
+        2.0 * tan_y.atan().to_degrees()
+    })
+}
+
 /// Converter state.
 pub struct State<'r> {
     reader: Reader<'r>,
@@ -116,25 +252,7 @@ impl<'r> State<'r> {
         let ids = self.ids();
         let p = Props::new(el, &ids)?;
         let to_world = p.transform("to_world")?.unwrap_or(Xf::IDENTITY);
-        let fov = match p.float("fov", -1.0)? {
-            f if f > 0.0 => f,
-            _ => {
-                // Mitsuba: focal_length on a 36 x 24 mm film, along the diagonal.
-                let s = p.string("focal_length")?.unwrap_or_else(|| "50mm".into());
-                let f: f64 = s
-                    .trim_end_matches("mm")
-                    .parse()
-                    .map_err(|_| el.err(format!("bad focal_length {s:?}")))?;
-                2.0 * ((36f64.hypot(24.0)) / (2.0 * f)).atan().to_degrees()
-            }
-        };
-        let axis = p.string("fov_axis")?.unwrap_or_else(|| {
-            if p.string("focal_length").ok().flatten().is_some() {
-                "diagonal".into()
-            } else {
-                "x".into()
-            }
-        });
+        let (fov, axis) = sensor_fov(el, &p)?;
         let (aperture, focus) = (
             p.float("aperture_radius", 0.0)?,
             p.float("focus_distance", 0.0)?,
@@ -142,44 +260,10 @@ impl<'r> State<'r> {
         if ty == "thinlens" && (aperture <= 0.0 || focus <= 0.0) {
             return Err(el.err("thinlens needs aperture_radius > 0 and focus_distance > 0"));
         }
-        // Mitsuba's defaults (1e-2, 1e4) clip nothing in most scenes; others are noted.
-        for (k, default) in [("near_clip", 1e-2), ("far_clip", 1e4)] {
-            let v = p.float(k, default)?;
-            if v != default {
-                self.b.note(
-                    &el.file,
-                    el.line,
-                    format!(
-                        "{}: {k} {v}: raytree does not clip camera rays (surfaces nearer or \
-                         farther are seen)",
-                        el.label()
-                    ),
-                );
-            }
-        }
+        self.note_clipping(el, &p)?;
         self.unused(el, &p);
         let (w, h, spp) = self.film_and_sampler(el)?;
-        let half = (fov.to_radians() / 2.0).tan();
-        let (wf, hf) = (f64::from(w), f64::from(h));
-        // The vertical field of view: the given one when fov_axis is vertical, else from tan.
-        let vertical = match axis.as_str() {
-            "x" => false,
-            "y" => true,
-            "smaller" => w >= h,
-            "larger" => w <= h,
-            "diagonal" => false,
-            _ => return Err(el.err(format!("unknown fov_axis {axis:?}"))),
-        };
-        let fov_y = if vertical {
-            fov
-        } else {
-            let tan_y = if axis == "diagonal" {
-                half * hf / wf.hypot(hf)
-            } else {
-                half * hf / wf
-            };
-            2.0 * tan_y.atan().to_degrees()
-        };
+        let fov_y = vertical_fov(el, fov, &axis, (w, h))?;
         let m = to_world
             .affine()
             .ok_or_else(|| el.err("projective to_world"))?;
@@ -203,6 +287,25 @@ impl<'r> State<'r> {
         }
         self.b.settings.spp = spp;
         self.b.set_camera(&spec, &el.file, el.line);
+        Ok(())
+    }
+
+    /// Mitsuba's near and far clipping planes: noted unless they are its defaults.
+    fn note_clipping(&mut self, el: &El, p: &Props) -> Result<(), FormatError> {
+        for (k, default) in [("near_clip", 1e-2), ("far_clip", 1e4)] {
+            let v = p.float(k, default)?;
+            if v != default {
+                self.b.note(
+                    &el.file,
+                    el.line,
+                    format!(
+                        "{}: {k} {v}: raytree does not clip camera rays (surfaces nearer or \
+                         farther are seen)",
+                        el.label()
+                    ),
+                );
+            }
+        }
         Ok(())
     }
 
@@ -385,77 +488,32 @@ impl<'r> State<'r> {
 
     fn material_of(&mut self, el: &El, p: &Props) -> Result<mm::Mapped, FormatError> {
         let ty = el.attr("type").unwrap_or("");
-        let mut notes: Vec<String> = Vec::new();
-        let mut color = |name: &str, default: [f64; 3]| -> Result<[f64; 3], FormatError> {
-            Ok(match p.color(name)? {
-                Some((c, n)) => {
-                    notes.extend(n);
-                    c
-                }
-                None => default,
-            })
-        };
-        let ior = |name: &str, default: f64| -> Result<f64, FormatError> {
-            match p.string(name) {
-                Ok(Some(s)) => mm::named_ior(&s)
-                    .ok_or_else(|| el.err(format!("{name}: unknown material {s:?}"))),
-                Ok(None) => p.float(name, default),
-                Err(_) => p.float(name, default),
-            }
-        };
         // Mitsuba's default interior: BK7 glass, polypropylene (1.49) under plastics.
         let int_default = if ty.ends_with("plastic") {
             1.49
         } else {
             1.5046
         };
-        let eta = ior("int_ior", int_default)? / ior("ext_ior", 1.000_277)?;
+        let eta = ior(el, p, "int_ior", int_default)? / ior(el, p, "ext_ior", 1.000_277)?;
         let rough = ty.starts_with("rough");
-        // alpha_v and the distribution of a rough BSDF, set by `alpha`.
-        let alpha_v = std::cell::Cell::new(None);
-        let beckmann = std::cell::Cell::new(false);
-        let alpha = |notes: &mut Vec<String>| -> Result<f64, FormatError> {
-            if !rough {
-                return Ok(0.0);
-            }
-            let a = p.float("alpha", 0.1)?;
-            let (a, v, n) = mm::anisotropic(p.float("alpha_u", a)?, p.float("alpha_v", a)?);
-            notes.extend(n);
-            alpha_v.set(v);
-            let dist = p
-                .string("distribution")?
-                .unwrap_or_else(|| "beckmann".into());
-            match dist.as_str() {
-                "ggx" => Ok(a),
-                "beckmann" => {
-                    beckmann.set(true);
-                    Ok(a)
-                }
-                d => Err(el.err(format!("unknown distribution {d:?}"))),
-            }
+        let mut r = BsdfReader {
+            el,
+            p,
+            rough,
+            notes: Vec::new(),
+            a_notes: Vec::new(),
+            alpha_v: None,
+            beckmann: false,
         };
-        let mut a_notes = Vec::new();
         let (mut desc, note) = match ty {
-            "diffuse" => (mm::diffuse(color("reflectance", [0.5; 3])?), None),
-            "dielectric" | "roughdielectric" => mm::dielectric(eta, alpha(&mut a_notes)?),
+            "diffuse" => (mm::diffuse(r.color("reflectance", [0.5; 3])?), None),
+            "dielectric" | "roughdielectric" => mm::dielectric(eta, r.alpha()?),
             "thindielectric" => mm::thin_dielectric(eta),
-            "conductor" | "roughconductor" => {
-                let a = alpha(&mut a_notes)?;
-                let scale = color("specular_reflectance", [1.0; 3])?;
-                let material = p.string("material")?.unwrap_or_else(|| "none".into());
-                if p.color("eta")?.is_some() || p.color("k")?.is_some() {
-                    mm::conductor(color("eta", [0.0; 3])?, color("k", [1.0; 3])?, a, scale)
-                } else if material == "none" {
-                    mm::mirror(scale, a)
-                } else {
-                    let (e, k) = mm::metal(&material).ok_or_else(|| el.err(format!("unknown conductor material {material:?} (raytree knows Ag, Al, Au, Cr, Cu, none)")))?;
-                    mm::conductor(e, k, a, scale)
-                }
-            }
+            "conductor" | "roughconductor" => r.conductor()?,
             "plastic" | "roughplastic" => {
-                let a = alpha(&mut a_notes)?;
-                let base = color("diffuse_reflectance", [0.5; 3])?;
-                let spec = color("specular_reflectance", [1.0; 3])?;
+                let a = r.alpha()?;
+                let base = r.color("diffuse_reflectance", [0.5; 3])?;
+                let spec = r.color("specular_reflectance", [1.0; 3])?;
                 let nonlinear = p.bool("nonlinear", false)?;
                 mm::coated_diffuse(base, eta, a, spec, nonlinear, None)
             }
@@ -466,11 +524,12 @@ impl<'r> State<'r> {
                 )),
             ),
         };
-        notes.extend(a_notes);
+        let mut notes = r.notes;
+        notes.extend(r.a_notes);
         notes.extend(note);
         if rough {
-            desc.roughness_v = alpha_v.get();
-            if beckmann.get() {
+            desc.roughness_v = r.alpha_v;
+            if r.beckmann {
                 desc.distribution = crate::bsdf::Distribution::Beckmann;
             }
         }

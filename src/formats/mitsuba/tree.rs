@@ -251,51 +251,61 @@ impl<'r> Reader<'r> {
                     }
                 }
                 "include" => {
-                    let name = child
-                        .attr("filename")
-                        .ok_or_else(|| child.err("needs a filename"))?;
-                    if depth + 1 > self.limits.include_depth {
-                        return Err(child.err(format!(
-                            "nested deeper than {} files",
-                            self.limits.include_depth
-                        )));
-                    }
-                    let cycle = |open: &[String], path: &str| {
-                        open.iter().any(|o| o == path).then(|| {
-                            child.err(format!("include cycle ({} -> {path})", open.join(" -> ")))
-                        })
-                    };
-                    // Without <path> directories the file is known before it is read when
-                    // it is open: the top file's directory comes first (and is the file's
-                    // own in the top file).
-                    if self.search.is_empty()
-                        && let Some(e) = cycle(&self.open, &relative_to(&self.top, name))
-                    {
-                        return Err(e);
-                    }
-                    let (path, bytes) = self.resource(&child, name)?;
-                    if let Some(e) = cycle(&self.open, &path) {
-                        return Err(e);
-                    }
-                    let inc = self.read_file(&path, &bytes, depth + 1, false)?;
+                    let inc = self.include(&child, depth)?;
                     el.children.extend(inc.children);
                 }
-                "path" => {
-                    let dir = child
-                        .attr("value")
-                        .ok_or_else(|| child.err("needs a value"))?;
-                    let at = relative_to(file, dir);
-                    // Mitsuba refuses a search path that does not exist.
-                    if self.res.is_dir(&at) == Some(false) {
-                        return Err(child.err(format!("{at:?} is not a directory")));
-                    }
-                    self.search.insert(0, at);
-                }
+                "path" => self.search_path(&child, file)?,
                 "alias" => self.aliases.push(child),
                 _ => el.children.push(child),
             }
         }
         Ok(el)
+    }
+
+    /// The file `<include>` element `child` names, read at `depth + 1` (its scene's children
+    /// take the element's place); a cycle or too deep a nesting is an error.
+    fn include(&mut self, child: &El, depth: usize) -> Result<El, FormatError> {
+        let name = child
+            .attr("filename")
+            .ok_or_else(|| child.err("needs a filename"))?;
+        if depth + 1 > self.limits.include_depth {
+            return Err(child.err(format!(
+                "nested deeper than {} files",
+                self.limits.include_depth
+            )));
+        }
+        let cycle = |open: &[String], path: &str| {
+            open.iter()
+                .any(|o| o == path)
+                .then(|| child.err(format!("include cycle ({} -> {path})", open.join(" -> "))))
+        };
+        // Without <path> directories the file is known before it is read when
+        // it is open: the top file's directory comes first (and is the file's
+        // own in the top file).
+        if self.search.is_empty()
+            && let Some(e) = cycle(&self.open, &relative_to(&self.top, name))
+        {
+            return Err(e);
+        }
+        let (path, bytes) = self.resource(child, name)?;
+        if let Some(e) = cycle(&self.open, &path) {
+            return Err(e);
+        }
+        self.read_file(&path, &bytes, depth + 1, false)
+    }
+
+    /// `<path value>`, a directory searched first from now on (relative to `file`).
+    fn search_path(&mut self, child: &El, file: &str) -> Result<(), FormatError> {
+        let dir = child
+            .attr("value")
+            .ok_or_else(|| child.err("needs a value"))?;
+        let at = relative_to(file, dir);
+        // Mitsuba refuses a search path that does not exist.
+        if self.res.is_dir(&at) == Some(false) {
+            return Err(child.err(format!("{at:?} is not a directory")));
+        }
+        self.search.insert(0, at);
+        Ok(())
     }
 
     /// `$name` replaced by its value (`-D` first, then `<default>`); an unknown one is an error.

@@ -8,7 +8,7 @@ use crate::formats::xform::Xf;
 use crate::formats::{Converted, FormatError, Limits, Resolver, material_map as mm, relative_to};
 use crate::lights::SpotProfile;
 use crate::scene::desc::{FilterDesc, MaterialDesc, Triple};
-use glam::{DMat4, DVec3};
+use glam::{DAffine3, DMat4, DVec3};
 use std::collections::HashMap;
 
 /// An area light attached to the shapes that follow.
@@ -216,17 +216,7 @@ impl<'r> State<'r> {
         }
         match name {
             "AttributeBegin" | "TransformBegin" => self.stack.push(self.gs.clone()),
-            "AttributeEnd" | "TransformEnd" => {
-                let g = self
-                    .stack
-                    .pop()
-                    .ok_or_else(|| err_at(file, t, format!("{name} without a matching begin")))?;
-                if name == "TransformEnd" {
-                    self.gs.ctm = g.ctm;
-                } else {
-                    self.gs = g;
-                }
-            }
+            "AttributeEnd" | "TransformEnd" => self.attribute_end(file, t, name)?,
             "ReverseOrientation" => self.gs.reverse = !self.gs.reverse,
             "WorldBegin" => self.world_begin(file, t)?,
             "WorldEnd" => {}
@@ -250,34 +240,12 @@ impl<'r> State<'r> {
             }
             "ObjectBegin" => {
                 let n = string_arg(file, toks, i, name)?;
-                if self.current_object.is_some() {
-                    return Err(err_at(file, t, "ObjectBegin inside another ObjectBegin"));
-                }
-                self.stack.push(self.gs.clone());
-                self.current_object = Some((n, Vec::new()));
+                self.object_begin(file, t, n)?;
             }
-            "ObjectEnd" => {
-                let (n, shapes) = self
-                    .current_object
-                    .take()
-                    .ok_or_else(|| err_at(file, t, "ObjectEnd without ObjectBegin"))?;
-                self.gs = self
-                    .stack
-                    .pop()
-                    .ok_or_else(|| err_at(file, t, "ObjectEnd without ObjectBegin"))?;
-                self.objects.insert(n, shapes);
-            }
+            "ObjectEnd" => self.object_end(file, t)?,
             "ObjectInstance" => {
                 let n = string_arg(file, toks, i, name)?;
-                let shapes = self.objects.get(&n).cloned().ok_or_else(|| {
-                    err_at(file, t, format!("ObjectInstance: unknown object {n:?}"))
-                })?;
-                let instance = self.gs.ctm;
-                for r in shapes {
-                    let mut gs = r.gs.clone();
-                    gs.ctm = instance.then(&r.gs.ctm);
-                    self.shape_with(&r.file, r.line, r.column, &r.kind, &r.params, &gs)?;
-                }
+                self.object_instance(file, t, &n)?;
             }
             "NamedMaterial" => {
                 let n = string_arg(file, toks, i, name)?;
@@ -287,6 +255,61 @@ impl<'r> State<'r> {
                 self.gs.material = (n, m);
             }
             _ => return self.with_params(file, t, name, toks, i),
+        }
+        Ok(())
+    }
+
+    /// `AttributeEnd` or `TransformEnd` (`name`): the graphics state, or only its transform,
+    /// of the matching begin.
+    fn attribute_end(&mut self, file: &str, t: &Token, name: &str) -> Result<(), FormatError> {
+        let g = self
+            .stack
+            .pop()
+            .ok_or_else(|| err_at(file, t, format!("{name} without a matching begin")))?;
+        if name == "TransformEnd" {
+            self.gs.ctm = g.ctm;
+        } else {
+            self.gs = g;
+        }
+        Ok(())
+    }
+
+    /// `ObjectBegin "n"`: shapes are recorded, not placed, until `ObjectEnd`.
+    fn object_begin(&mut self, file: &str, t: &Token, n: String) -> Result<(), FormatError> {
+        if self.current_object.is_some() {
+            return Err(err_at(file, t, "ObjectBegin inside another ObjectBegin"));
+        }
+        self.stack.push(self.gs.clone());
+        self.current_object = Some((n, Vec::new()));
+        Ok(())
+    }
+
+    /// `ObjectEnd`: the recorded shapes become the object, the graphics state is restored.
+    fn object_end(&mut self, file: &str, t: &Token) -> Result<(), FormatError> {
+        let (n, shapes) = self
+            .current_object
+            .take()
+            .ok_or_else(|| err_at(file, t, "ObjectEnd without ObjectBegin"))?;
+        self.gs = self
+            .stack
+            .pop()
+            .ok_or_else(|| err_at(file, t, "ObjectEnd without ObjectBegin"))?;
+        self.objects.insert(n, shapes);
+        Ok(())
+    }
+
+    /// `ObjectInstance "n"`: the object's shapes under the current transform.
+    fn object_instance(&mut self, file: &str, t: &Token, n: &str) -> Result<(), FormatError> {
+        let shapes = self
+            .objects
+            .get(n)
+            .cloned()
+            .ok_or_else(|| err_at(file, t, format!("ObjectInstance: unknown object {n:?}")))?;
+        let instance = self.gs.ctm;
+        for r in shapes {
+            let mut gs = r.gs.clone();
+            gs.ctm = instance.then(&r.gs.ctm);
+            self.shape_with(&r.file, r.line, r.column, &r.kind, &r.params, &gs)?;
         }
         Ok(())
     }
@@ -305,18 +328,7 @@ impl<'r> State<'r> {
             return Err(err_at(file, t, format!("unknown directive {name:?}")));
         }
         let kind = match name {
-            "Texture" => {
-                let n = string_arg(file, toks, i, name)?;
-                let _ty = string_arg(file, toks, i, name)?;
-                let class = string_arg(file, toks, i, name)?;
-                let params = Params::parse(toks, i).map_err(|(l, c, m)| FormatError {
-                    file: file.into(),
-                    line: l,
-                    column: c,
-                    message: format!("{name}: {m}"),
-                })?;
-                return self.texture(file, t, &n, &class, &params);
-            }
+            "Texture" => return self.texture_directive(file, t, toks, i),
             "TransformTimes" => {
                 numbers(file, toks, i, name, 2)?;
                 self.b.note(
@@ -327,25 +339,7 @@ impl<'r> State<'r> {
                 return Ok(());
             }
             "ActiveTransform" | "MediumInterface" | "ColorSpace" => {
-                let w = match &toks.get(*i).map(|x| &x.tok) {
-                    Some(Tok::Word(w) | Tok::Str(w)) => w.clone(),
-                    _ => return Err(err_at(file, t, format!("{name} needs an argument"))),
-                };
-                *i += 1;
-                if name == "MediumInterface"
-                    && matches!(toks.get(*i).map(|x| &x.tok), Some(Tok::Str(_)))
-                {
-                    *i += 1;
-                }
-                if name == "ActiveTransform" {
-                    // Only the start-time transformation is used (no motion blur).
-                    self.end_only = w == "EndTime";
-                    if w != "EndTime" {
-                        return Ok(());
-                    }
-                }
-                self.b.note(file, t.line, format!("{name} {w} ignored (raytree has no motion blur, participating media or colour spaces other than linear sRGB)"));
-                return Ok(());
+                return self.untyped_state(file, t, name, toks, i);
             }
             _ => string_arg(file, toks, i, name)?,
         };
@@ -359,20 +353,7 @@ impl<'r> State<'r> {
         match name {
             "Camera" => self.camera(file, t, &kind, &params)?,
             "Film" => self.film(file, t, &kind, &params)?,
-            "Sampler" => {
-                let spp = ctx(file, &what, &params, &self.textures).int("pixelsamples", 16)?;
-                self.b.settings.spp =
-                    u32::try_from(spp).ok().filter(|&s| s > 0).ok_or_else(|| {
-                        err_at(
-                            file,
-                            t,
-                            format!("{what}: pixelsamples must be > 0, got {spp}"),
-                        )
-                    })?;
-                if !matches!(kind.as_str(), "sobol" | "zsobol" | "paddedsobol") {
-                    self.b.note(file, t.line, format!("{what}: raytree draws its own sample points (Sobol); the image converges to the same result"));
-                }
-            }
+            "Sampler" => self.sampler(file, t, &kind, &params)?,
             "Integrator" => self.integrator(file, t, &kind, &params)?,
             "PixelFilter" => self.filter(file, t, &kind, &params)?,
             "Material" => {
@@ -388,21 +369,7 @@ impl<'r> State<'r> {
             }
             "AreaLightSource" => self.area(file, t, &kind, &params)?,
             "LightSource" => self.light(file, t, &kind, &params)?,
-            "Shape" => {
-                if let Some((_, shapes)) = &mut self.current_object {
-                    shapes.push(Recorded {
-                        kind,
-                        params,
-                        gs: self.gs.clone(),
-                        file: file.into(),
-                        line: t.line,
-                        column: t.column,
-                    });
-                    return Ok(());
-                }
-                let gs = self.gs.clone();
-                return self.shape_with(file, t.line, t.column, &kind, &params, &gs);
-            }
+            "Shape" => return self.shape(file, t, kind, params),
             "Attribute" | "Accelerator" | "Option" | "MakeNamedMedium" => {
                 self.b.note(file, t.line, format!("{what} ignored"));
             }
@@ -410,6 +377,102 @@ impl<'r> State<'r> {
         }
         self.unused(file, t, &what, &params);
         Ok(())
+    }
+
+    /// `Texture "name" "type" "class" params`.
+    fn texture_directive(
+        &mut self,
+        file: &str,
+        t: &Token,
+        toks: &[Token],
+        i: &mut usize,
+    ) -> Result<(), FormatError> {
+        let name = "Texture";
+        let n = string_arg(file, toks, i, name)?;
+        let _ty = string_arg(file, toks, i, name)?;
+        let class = string_arg(file, toks, i, name)?;
+        let params = Params::parse(toks, i).map_err(|(l, c, m)| FormatError {
+            file: file.into(),
+            line: l,
+            column: c,
+            message: format!("{name}: {m}"),
+        })?;
+        self.texture(file, t, &n, &class, &params)
+    }
+
+    /// `ActiveTransform`, `MediumInterface` or `ColorSpace` (`name`) and its argument: only
+    /// `ActiveTransform EndTime` changes what follows, the others are noted.
+    fn untyped_state(
+        &mut self,
+        file: &str,
+        t: &Token,
+        name: &str,
+        toks: &[Token],
+        i: &mut usize,
+    ) -> Result<(), FormatError> {
+        let w = match &toks.get(*i).map(|x| &x.tok) {
+            Some(Tok::Word(w) | Tok::Str(w)) => w.clone(),
+            _ => return Err(err_at(file, t, format!("{name} needs an argument"))),
+        };
+        *i += 1;
+        if name == "MediumInterface" && matches!(toks.get(*i).map(|x| &x.tok), Some(Tok::Str(_))) {
+            *i += 1;
+        }
+        if name == "ActiveTransform" {
+            // Only the start-time transformation is used (no motion blur).
+            self.end_only = w == "EndTime";
+            if w != "EndTime" {
+                return Ok(());
+            }
+        }
+        self.b.note(file, t.line, format!("{name} {w} ignored (raytree has no motion blur, participating media or colour spaces other than linear sRGB)"));
+        Ok(())
+    }
+
+    /// `Sampler "kind"`: its samples per pixel (raytree draws its own points).
+    fn sampler(
+        &mut self,
+        file: &str,
+        t: &Token,
+        kind: &str,
+        params: &Params,
+    ) -> Result<(), FormatError> {
+        let what = format!("Sampler \"{kind}\"");
+        let spp = ctx(file, &what, params, &self.textures).int("pixelsamples", 16)?;
+        self.b.settings.spp = u32::try_from(spp).ok().filter(|&s| s > 0).ok_or_else(|| {
+            err_at(
+                file,
+                t,
+                format!("{what}: pixelsamples must be > 0, got {spp}"),
+            )
+        })?;
+        if !matches!(kind, "sobol" | "zsobol" | "paddedsobol") {
+            self.b.note(file, t.line, format!("{what}: raytree draws its own sample points (Sobol); the image converges to the same result"));
+        }
+        Ok(())
+    }
+
+    /// `Shape "kind" params`: recorded inside `ObjectBegin`, placed otherwise.
+    fn shape(
+        &mut self,
+        file: &str,
+        t: &Token,
+        kind: String,
+        params: Params,
+    ) -> Result<(), FormatError> {
+        if let Some((_, shapes)) = &mut self.current_object {
+            shapes.push(Recorded {
+                kind,
+                params,
+                gs: self.gs.clone(),
+                file: file.into(),
+                line: t.line,
+                column: t.column,
+            });
+            return Ok(());
+        }
+        let gs = self.gs.clone();
+        self.shape_with(file, t.line, t.column, &kind, &params, &gs)
     }
 
     /// A note naming the parameters a directive did not read.
@@ -724,7 +787,7 @@ impl<'r> State<'r> {
         // its film multiplies back: a no-op in RGB) and, given a target `power` (point, spot)
         // or `illuminance` (distant, infinite), multiplies by it over the light's k_e.
         let target = c.float(light_target(kind), -1.0)?;
-        let gain = |k_e: f64| scale * if target > 0.0 { target / k_e } else { 1.0 };
+        let gain = Gain { scale, target };
         let from = c.point("from", DVec3::ZERO)?;
         let to = c.point("to", DVec3::Z)?;
         let file_name = c.string("filename")?;
@@ -733,57 +796,33 @@ impl<'r> State<'r> {
         }
         match kind {
             "point" => {
-                let k = gain(4.0 * std::f64::consts::PI);
+                let k = gain.of(4.0 * std::f64::consts::PI);
                 self.b
                     .point_light(m.transform_point3(from), rgb.map(|x| x * k));
             }
             "spot" => {
-                let c = ctx(file, &what, p, &self.textures);
-                let cone = c.float("coneangle", 30.0)?;
-                let delta = c.float("conedelta", 5.0)?;
-                let rgb = rgb.map(|x| x * gain(spot_k_e(cone, delta)));
-                // pbrt-v4 `SpotLight`: cosFalloffStart = cos(coneangle - conedelta), so the
-                // falloff starts |coneangle - conedelta| from the axis; its smoothstep needs
-                // that inside the cone.
-                let falloff = (cone - delta).abs();
-                if !(cone > 0.0 && cone < 180.0) {
-                    return Err(err_at(
-                        file,
-                        t,
-                        format!("{what}: \"coneangle\" {cone} is not in (0, 180) degrees"),
-                    ));
-                }
-                if falloff.is_nan() || falloff > cone {
-                    return Err(err_at(
-                        file,
-                        t,
-                        format!("{what}: \"conedelta\" {delta} is not in [0, 2 coneangle]"),
-                    ));
-                }
-                let axis = m.transform_vector3(to - from);
-                if axis.try_normalize().is_none() {
-                    return Err(err_at(file, t, format!("{what}: from and to coincide")));
-                }
-                let at = (m.transform_point3(from), axis);
-                self.b
-                    .spot_light(at, rgb, (cone, falloff), SpotProfile::Smoothstep);
+                let l = LightAt {
+                    file,
+                    t,
+                    what,
+                    p,
+                    m,
+                };
+                self.spot_light(&l, (from, to), rgb, gain)?;
             }
             "distant" => {
-                let d = m.transform_vector3(to - from);
-                if d.try_normalize().is_none() {
-                    return Err(err_at(file, t, format!("{what}: from and to coincide")));
-                }
-                if target > 0.0 {
-                    // pbrt-v4 divides by -w.y of the light-space direction here, which its
-                    // author calls a bug (mmp/pbrt-v4 issue 130): raytree takes the
-                    // illuminance on a surface facing the light, which is what it means.
-                    self.b.note(file, t.line, format!("{what}: \"illuminance\" {target} is taken on a surface facing the light (pbrt-v4 divides by -w.y of the light-space direction, its issue 130, so its image may differ)"));
-                }
-                self.b.directional_light(d, rgb.map(|x| x * gain(1.0)));
+                let l = LightAt {
+                    file,
+                    t,
+                    what,
+                    p,
+                    m,
+                };
+                self.distant_light(&l, to - from, rgb, gain)?;
             }
             "infinite" => {
                 // A constant environment of radiance L gives a surface facing up E = pi L.
-                let rgb = rgb.map(|x| x * gain(std::f64::consts::PI));
+                let rgb = rgb.map(|x| x * gain.of(std::f64::consts::PI));
                 if let Some(f) = file_name {
                     self.b.note(file, t.line, format!("{what}: environment map {f:?} not read; its L times scale ({rgb:?}) is used as the constant background radiance"));
                 }
@@ -797,6 +836,71 @@ impl<'r> State<'r> {
                 ));
             }
         }
+        Ok(())
+    }
+
+    /// `LightSource "spot"` from `from` towards `to`, of intensity `rgb` before `gain`.
+    fn spot_light(
+        &mut self,
+        l: &LightAt,
+        (from, to): (DVec3, DVec3),
+        rgb: [f64; 3],
+        gain: Gain,
+    ) -> Result<(), FormatError> {
+        let (file, t, what, m) = (l.file, l.t, &l.what, &l.m);
+        let c = ctx(file, what, l.p, &self.textures);
+        let cone = c.float("coneangle", 30.0)?;
+        let delta = c.float("conedelta", 5.0)?;
+        let rgb = rgb.map(|x| x * gain.of(spot_k_e(cone, delta)));
+        // pbrt-v4 `SpotLight`: cosFalloffStart = cos(coneangle - conedelta), so the
+        // falloff starts |coneangle - conedelta| from the axis; its smoothstep needs
+        // that inside the cone.
+        let falloff = (cone - delta).abs();
+        if !(cone > 0.0 && cone < 180.0) {
+            return Err(err_at(
+                file,
+                t,
+                format!("{what}: \"coneangle\" {cone} is not in (0, 180) degrees"),
+            ));
+        }
+        if falloff.is_nan() || falloff > cone {
+            return Err(err_at(
+                file,
+                t,
+                format!("{what}: \"conedelta\" {delta} is not in [0, 2 coneangle]"),
+            ));
+        }
+        let axis = m.transform_vector3(to - from);
+        if axis.try_normalize().is_none() {
+            return Err(err_at(file, t, format!("{what}: from and to coincide")));
+        }
+        let at = (m.transform_point3(from), axis);
+        self.b
+            .spot_light(at, rgb, (cone, falloff), SpotProfile::Smoothstep);
+        Ok(())
+    }
+
+    /// `LightSource "distant"` along `dir` (light space), of radiance `rgb` before `gain`.
+    fn distant_light(
+        &mut self,
+        l: &LightAt,
+        dir: DVec3,
+        rgb: [f64; 3],
+        gain: Gain,
+    ) -> Result<(), FormatError> {
+        let target = gain.target;
+        let (file, t, what) = (l.file, l.t, &l.what);
+        let d = l.m.transform_vector3(dir);
+        if d.try_normalize().is_none() {
+            return Err(err_at(file, t, format!("{what}: from and to coincide")));
+        }
+        if target > 0.0 {
+            // pbrt-v4 divides by -w.y of the light-space direction here, which its
+            // author calls a bug (mmp/pbrt-v4 issue 130): raytree takes the
+            // illuminance on a surface facing the light, which is what it means.
+            self.b.note(file, t.line, format!("{what}: \"illuminance\" {target} is taken on a surface facing the light (pbrt-v4 divides by -w.y of the light-space direction, its issue 130, so its image may differ)"));
+        }
+        self.b.directional_light(d, rgb.map(|x| x * gain.of(1.0)));
         Ok(())
     }
 
@@ -885,6 +989,38 @@ pub fn ctx<'a>(
         what: what.to_string(),
         params,
         textures,
+    }
+}
+
+/// A `LightSource` being converted: where it is written, its name in messages, its
+/// parameters and its light-to-world transform.
+struct LightAt<'a> {
+    file: &'a str,
+    t: &'a Token,
+    /// `LightSource "kind"`.
+    what: String,
+    p: &'a Params,
+    /// Light to world.
+    m: DAffine3,
+}
+
+/// pbrt-v4's factor on a light's spectrum: `scale`, times a target `power` or `illuminance`
+/// (`target`, -1 when not given) over the light's `k_e`.
+#[derive(Clone, Copy)]
+struct Gain {
+    scale: f64,
+    target: f64,
+}
+
+impl Gain {
+    /// The factor for a light whose `k_e` (power or illuminance per unit of spectrum) is `k_e`.
+    fn of(self, k_e: f64) -> f64 {
+        self.scale
+            * if self.target > 0.0 {
+                self.target / k_e
+            } else {
+                1.0
+            }
     }
 }
 

@@ -40,21 +40,51 @@ fn pct(n: u64, of: u64) -> f64 {
 pub fn acne_ui(ui: &mut egui::Ui, doc: &Document, cmds: &mut Vec<Command>) {
     let lab = &doc.lab;
     if !lab.started {
-        ui.label(
-            "Render this scene scaled and moved from the origin with the self-hit and leak \
-             diagnostics, for one offset strategy and epsilon and as a sweep of all of them.",
-        );
-        if ui.button("run the acne lab").clicked() {
-            let o = doc.scene.settings.offset;
-            cmds.push(Command::SetLab(LabParams {
-                strategy: o.strategy,
-                epsilon: o.epsilon,
-                ..LabParams::default()
-            }));
-        }
+        start_ui(ui, doc, cmds);
         return;
     }
-    let old = lab.params;
+    let p = params_ui(ui, lab.params, cmds);
+    ui.small(format!(
+        "scene at {:.0e} x, moved to ({d:.1e}, {d:.1e}, {d:.1e})",
+        p.scale,
+        d = p.scale * p.shift
+    ));
+    match &lab.current {
+        Some(c) => count_ui(ui, c),
+        None => {
+            ui.label("counting…");
+        }
+    }
+    let total = job_len() - 1;
+    if !lab.done {
+        ui.add(
+            egui::ProgressBar::new(lab.sweep.len() as f32 / total as f32)
+                .desired_width(200.0)
+                .text(format!("sweep {}/{total}", lab.sweep.len())),
+        );
+    }
+    plot(ui, &lab.sweep, &p);
+}
+
+/// Before the lab has run: what it does, and the button that starts it at the scene's offset.
+fn start_ui(ui: &mut egui::Ui, doc: &Document, cmds: &mut Vec<Command>) {
+    ui.label(
+        "Render this scene scaled and moved from the origin with the self-hit and leak \
+         diagnostics, for one offset strategy and epsilon and as a sweep of all of them.",
+    );
+    if ui.button("run the acne lab").clicked() {
+        let o = doc.scene.settings.offset;
+        cmds.push(Command::SetLab(LabParams {
+            strategy: o.strategy,
+            epsilon: o.epsilon,
+            ..LabParams::default()
+        }));
+    }
+}
+
+/// The lab's strategy, epsilon, scale and distance, from `old`; a change is sent as a
+/// command. The parameters as shown.
+fn params_ui(ui: &mut egui::Ui, old: LabParams, cmds: &mut Vec<Command>) -> LabParams {
     let mut p = old;
     egui::ComboBox::from_label("lab offset")
         .selected_text(p.strategy.name())
@@ -87,50 +117,35 @@ pub fn acne_ui(ui: &mut egui::Ui, doc: &Document, cmds: &mut Vec<Command>) {
     if p != old {
         cmds.push(Command::SetLab(p));
     }
+    p
+}
+
+/// The count for the lab's own choice: pixels with acne and with leaks (in the warning colour
+/// when there are any), then the rays.
+fn count_ui(ui: &mut egui::Ui, c: &AcneCell) {
+    let text = format!(
+        "{}: {} of {} pixels with acne ({:.1}%), {} with leaks ({:.1}%)",
+        c.strategy.name(),
+        c.self_hit_pixels,
+        c.pixels,
+        pct(c.self_hit_pixels, c.pixels),
+        c.leak_pixels,
+        pct(c.leak_pixels, c.pixels)
+    );
+    let colour = if c.clean() {
+        Color32::PLACEHOLDER
+    } else {
+        crate::gui::style::WARNING
+    };
+    let mut rt = egui::RichText::new(text).strong();
+    if colour != Color32::PLACEHOLDER {
+        rt = rt.color(colour);
+    }
+    ui.label(rt);
     ui.small(format!(
-        "scene at {:.0e} x, moved to ({d:.1e}, {d:.1e}, {d:.1e})",
-        p.scale,
-        d = p.scale * p.shift
+        "{} self-hit rays, {} leaking rays of {} ({CURRENT_WIDTH} px wide)",
+        c.self_hit_rays, c.leak_rays, c.rays
     ));
-    match &lab.current {
-        Some(c) => {
-            let text = format!(
-                "{}: {} of {} pixels with acne ({:.1}%), {} with leaks ({:.1}%)",
-                c.strategy.name(),
-                c.self_hit_pixels,
-                c.pixels,
-                pct(c.self_hit_pixels, c.pixels),
-                c.leak_pixels,
-                pct(c.leak_pixels, c.pixels)
-            );
-            let colour = if c.clean() {
-                Color32::PLACEHOLDER
-            } else {
-                crate::gui::style::WARNING
-            };
-            let mut rt = egui::RichText::new(text).strong();
-            if colour != Color32::PLACEHOLDER {
-                rt = rt.color(colour);
-            }
-            ui.label(rt);
-            ui.small(format!(
-                "{} self-hit rays, {} leaking rays of {} ({CURRENT_WIDTH} px wide)",
-                c.self_hit_rays, c.leak_rays, c.rays
-            ));
-        }
-        None => {
-            ui.label("counting…");
-        }
-    }
-    let total = job_len() - 1;
-    if !lab.done {
-        ui.add(
-            egui::ProgressBar::new(lab.sweep.len() as f32 / total as f32)
-                .desired_width(200.0)
-                .text(format!("sweep {}/{total}", lab.sweep.len())),
-        );
-    }
-    plot(ui, &lab.sweep, &p);
 }
 
 /// x of epsilon `e` on the plot's axis: 0 at the left, then one step per decade from 1e-9.
@@ -139,6 +154,23 @@ fn eps_x(e: f64) -> f64 {
         0.0
     } else {
         (e.log10() + 10.0).clamp(0.5, 9.0)
+    }
+}
+
+/// The plot's frame: epsilon's axis position (0 to `xmax`) across `plot`, percent up it.
+struct Axes {
+    plot: Rect,
+    xmax: f64,
+}
+
+impl Axes {
+    /// The point of axis position `x` and `y` percent.
+    fn at(&self, x: f64, y: f64) -> Pos2 {
+        let plot = self.plot;
+        pos2(
+            plot.left() + (x / self.xmax) as f32 * plot.width(),
+            plot.bottom() - (y / 100.0) as f32 * plot.height(),
+        )
     }
 }
 
@@ -156,24 +188,56 @@ fn plot(ui: &mut egui::Ui, cells: &[AcneCell], p: &LabParams) {
     let painter = ui.painter_at(rect);
     let visuals = ui.visuals();
     painter.rect_filled(rect, 2.0, visuals.extreme_bg_color);
-    let plot = Rect::from_min_max(rect.min + vec2(34.0, 8.0), rect.max - vec2(8.0, 30.0));
     let eps = sweep_epsilons();
-    let xmax = eps_x(*eps.last().unwrap_or(&0.1));
-    let at = |x: f64, y: f64| -> Pos2 {
-        pos2(
-            plot.left() + (x / xmax) as f32 * plot.width(),
-            plot.bottom() - (y / 100.0) as f32 * plot.height(),
-        )
+    let axes = Axes {
+        plot: Rect::from_min_max(rect.min + vec2(34.0, 8.0), rect.max - vec2(8.0, 30.0)),
+        xmax: eps_x(*eps.last().unwrap_or(&0.1)),
     };
-    let axis = Stroke::new(1.0, visuals.weak_text_color());
     let font = FontId::proportional(10.0);
+    paint_axes(&painter, &axes, visuals, &font, &eps);
+    // The lab's epsilon.
+    let x = eps_x(p.epsilon);
+    painter.line_segment(
+        [axes.at(x, 0.0), axes.at(x, 100.0)],
+        Stroke::new(1.5, crate::gui::style::SELECTED),
+    );
+    for s in OffsetStrategy::ALL {
+        let line: Vec<&AcneCell> = cells.iter().filter(|c| c.strategy == s).collect();
+        let acne: Vec<Pos2> = line
+            .iter()
+            .map(|c| axes.at(eps_x(c.epsilon), pct(c.self_hit_pixels, c.pixels)))
+            .collect();
+        let leaks: Vec<Pos2> = line
+            .iter()
+            .map(|c| axes.at(eps_x(c.epsilon), pct(c.leak_pixels, c.pixels)))
+            .collect();
+        let stroke = Stroke::new(1.8, colour(s));
+        painter.add(Shape::line(acne.clone(), stroke));
+        painter.extend(Shape::dashed_line(&leaks, stroke, 4.0, 3.0));
+        for q in acne {
+            painter.circle_filled(q, 2.5, colour(s));
+        }
+    }
+    legend(&painter, rect, visuals, font);
+}
+
+/// The percent grid and its labels, epsilon's labels (every other one, and the last) and the
+/// x axis.
+fn paint_axes(
+    painter: &egui::Painter,
+    axes: &Axes,
+    visuals: &egui::Visuals,
+    font: &FontId,
+    eps: &[f64],
+) {
+    let axis = Stroke::new(1.0, visuals.weak_text_color());
     for y in [0.0, 50.0, 100.0] {
         painter.line_segment(
-            [at(0.0, y), at(xmax, y)],
+            [axes.at(0.0, y), axes.at(axes.xmax, y)],
             Stroke::new(0.5, visuals.weak_text_color()),
         );
         painter.text(
-            at(0.0, y) - vec2(4.0, 0.0),
+            axes.at(0.0, y) - vec2(4.0, 0.0),
             egui::Align2::RIGHT_CENTER,
             format!("{y:.0}%"),
             font.clone(),
@@ -183,7 +247,7 @@ fn plot(ui: &mut egui::Ui, cells: &[AcneCell], p: &LabParams) {
     for (i, e) in eps.iter().enumerate() {
         if i % 2 == 0 || i + 1 == eps.len() {
             painter.text(
-                at(eps_x(*e), 0.0) + vec2(0.0, 3.0),
+                axes.at(eps_x(*e), 0.0) + vec2(0.0, 3.0),
                 egui::Align2::CENTER_TOP,
                 eps_text(*e),
                 font.clone(),
@@ -191,31 +255,11 @@ fn plot(ui: &mut egui::Ui, cells: &[AcneCell], p: &LabParams) {
             );
         }
     }
-    painter.line_segment([plot.left_bottom(), plot.right_bottom()], axis);
-    // The lab's epsilon.
-    let x = eps_x(p.epsilon);
-    painter.line_segment(
-        [at(x, 0.0), at(x, 100.0)],
-        Stroke::new(1.5, crate::gui::style::SELECTED),
-    );
-    for s in OffsetStrategy::ALL {
-        let line: Vec<&AcneCell> = cells.iter().filter(|c| c.strategy == s).collect();
-        let acne: Vec<Pos2> = line
-            .iter()
-            .map(|c| at(eps_x(c.epsilon), pct(c.self_hit_pixels, c.pixels)))
-            .collect();
-        let leaks: Vec<Pos2> = line
-            .iter()
-            .map(|c| at(eps_x(c.epsilon), pct(c.leak_pixels, c.pixels)))
-            .collect();
-        let stroke = Stroke::new(1.8, colour(s));
-        painter.add(Shape::line(acne.clone(), stroke));
-        painter.extend(Shape::dashed_line(&leaks, stroke, 4.0, 3.0));
-        for q in acne {
-            painter.circle_filled(q, 2.5, colour(s));
-        }
-    }
-    // Legend under the axis labels.
+    painter.line_segment([axes.plot.left_bottom(), axes.plot.right_bottom()], axis);
+}
+
+/// The legend under the axis labels: each strategy's colour, and which line is which.
+fn legend(painter: &egui::Painter, rect: Rect, visuals: &egui::Visuals, font: FontId) {
     let mut lx = rect.left() + 8.0;
     let ly = rect.bottom() - 8.0;
     for s in OffsetStrategy::ALL {

@@ -5,7 +5,7 @@
 //! overlay and the diagram draw rays down to that depth only).
 
 use crate::analysis::teach;
-use crate::gui::model::document::{Command, Document};
+use crate::gui::model::document::{Command, Document, Step};
 use crate::gui::style::{SELECTED, num, vec3};
 use crate::tree::{RayNode, RayTree};
 use egui::{Color32, Pos2, RichText, Slider, Stroke, pos2};
@@ -70,6 +70,19 @@ pub fn step_ui(ui: &mut egui::Ui, doc: &Document, cmds: &mut Vec<Command>) {
     if resp.changed() && end > 0.0 {
         step.at = Some(t / end);
     }
+    numbers_ui(ui, n, t);
+    if at_hit(step.at, n) {
+        hit_ui(ui, n);
+    }
+    ui.separator();
+    recursion_ui(ui, tree, &mut step);
+    if step != old {
+        cmds.push(Command::SetStep(step));
+    }
+}
+
+/// The formula's numbers at `t` on ray `n`, and where the ray ends.
+fn numbers_ui(ui: &mut egui::Ui, n: &RayNode, t: f64) {
     egui::Grid::new("step-grid")
         .num_columns(2)
         .min_col_width(90.0)
@@ -90,9 +103,11 @@ pub fn step_ui(ui: &mut egui::Ui, doc: &Document, cmds: &mut Vec<Command>) {
                 (None, None) => row("t_hit", "none: the ray misses".into()),
             }
         });
-    if at_hit(step.at, n)
-        && let Some(h) = &n.hit
-    {
+}
+
+/// At the hit: the normal, the angle of incidence and the interface's angles.
+fn hit_ui(ui: &mut egui::Ui, n: &RayNode) {
+    if let Some(h) = &n.hit {
         ui.label(RichText::new("at t_hit").strong().color(SELECTED));
         ui.monospace(format!("N = {}", vec3(h.normal)));
         ui.monospace(format!(
@@ -104,7 +119,10 @@ pub fn step_ui(ui: &mut egui::Ui, doc: &Document, cmds: &mut Vec<Command>) {
             ui.add(egui::Label::new(RichText::new(teach::incidence_text(i)).monospace()).wrap());
         }
     }
-    ui.separator();
+}
+
+/// The recursion step control: back, step, all, and the depths shown.
+fn recursion_ui(ui: &mut egui::Ui, tree: &RayTree, step: &mut Step) {
     let max = tree.nodes.iter().map(|n| n.depth).max().unwrap_or(0);
     ui.horizontal_wrapped(|ui| {
         ui.label("recursion");
@@ -126,9 +144,6 @@ pub fn step_ui(ui: &mut egui::Ui, doc: &Document, cmds: &mut Vec<Command>) {
             None => format!("all {} depths shown", max + 1),
         });
     });
-    if step != old {
-        cmds.push(Command::SetStep(step));
-    }
 }
 
 /// The marker: a ring at the point, and at a hit a short line along the normal.

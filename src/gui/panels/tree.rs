@@ -188,6 +188,40 @@ pub fn tree_ui(ui: &mut egui::Ui, doc: &Document, view: &mut TreeView, cmds: &mu
         ui.label("Click a pixel to trace its ray tree.");
         return;
     };
+    header_ui(ui, doc, tree, view);
+    view.sync(doc);
+    let area = rows_area(ui, view);
+    let rows = std::mem::take(&mut view.rows);
+    let mut toggled = None;
+    area.show_rows(ui, ROW_HEIGHT, rows.len(), |ui, range| {
+        view.shown = range.clone();
+        for &row in &rows[range] {
+            match row {
+                Row::Sample(i) => sample_row(ui, tree, i, cmds),
+                Row::Node(id) => {
+                    if node_row(ui, tree, id, view.open[id.index()], doc.node, cmds) {
+                        toggled = Some(id);
+                    }
+                }
+            }
+        }
+    });
+    view.rows = rows;
+    if let Some(id) = toggled {
+        view.open[id.index()] = !view.open[id.index()];
+        view.rows_dirty = true;
+    }
+    for c in cmds.iter() {
+        if let Command::SelectNode(n) = c {
+            // Selected here, so already on screen: no scrolling.
+            view.seen_node = *n;
+        }
+    }
+}
+
+/// Above the rows: the pixel and its value, the rays by kind, and the expand and collapse
+/// buttons.
+fn header_ui(ui: &mut egui::Ui, doc: &Document, tree: &RayTree, view: &mut TreeView) {
     ui.horizontal(|ui| {
         ui.label(RichText::new(format!("pixel {}, {}", tree.pixel[0], tree.pixel[1])).strong());
         square(ui, swatch(tree.radiance));
@@ -225,7 +259,10 @@ pub fn tree_ui(ui: &mut egui::Ui, doc: &Document, view: &mut TreeView, cmds: &mu
         }
         ui.small("w: weight from the parent, c: share of the pixel");
     });
-    view.sync(doc);
+}
+
+/// The scrolled list of rows, scrolled to the ray to reveal unless it is already on screen.
+fn rows_area(ui: &egui::Ui, view: &mut TreeView) -> egui::ScrollArea {
     let spacing = ui.spacing().item_spacing.y;
     let height = (ui.available_height() * 0.45).max(6.0 * ROW_HEIGHT);
     let mut area = egui::ScrollArea::vertical()
@@ -242,44 +279,22 @@ pub fn tree_ui(ui: &mut egui::Ui, doc: &Document, view: &mut TreeView, cmds: &mu
             area = area.vertical_scroll_offset(offset.max(0.0));
         }
     }
-    let rows = std::mem::take(&mut view.rows);
-    let mut toggled = None;
-    area.show_rows(ui, ROW_HEIGHT, rows.len(), |ui, range| {
-        view.shown = range.clone();
-        for &row in &rows[range] {
-            match row {
-                Row::Sample(i) => {
-                    let sample = &tree.samples[i];
-                    let text = format!(
-                        "sample {} at ({:.3}, {:.3})",
-                        sample.index, sample.film[0], sample.film[1]
-                    );
-                    let resp = ui.add_sized(
-                        vec2(ui.available_width(), ROW_HEIGHT),
-                        egui::Button::selectable(false, RichText::new(text).small()),
-                    );
-                    if resp.clicked() {
-                        cmds.push(Command::SelectNode(Some(sample.root)));
-                    }
-                }
-                Row::Node(id) => {
-                    if node_row(ui, tree, id, view.open[id.index()], doc.node, cmds) {
-                        toggled = Some(id);
-                    }
-                }
-            }
-        }
-    });
-    view.rows = rows;
-    if let Some(id) = toggled {
-        view.open[id.index()] = !view.open[id.index()];
-        view.rows_dirty = true;
-    }
-    for c in cmds.iter() {
-        if let Command::SelectNode(n) = c {
-            // Selected here, so already on screen: no scrolling.
-            view.seen_node = *n;
-        }
+    area
+}
+
+/// The row of sample `i` (when the tree has several): a click selects its camera ray.
+fn sample_row(ui: &mut egui::Ui, tree: &RayTree, i: usize, cmds: &mut Vec<Command>) {
+    let sample = &tree.samples[i];
+    let text = format!(
+        "sample {} at ({:.3}, {:.3})",
+        sample.index, sample.film[0], sample.film[1]
+    );
+    let resp = ui.add_sized(
+        vec2(ui.available_width(), ROW_HEIGHT),
+        egui::Button::selectable(false, RichText::new(text).small()),
+    );
+    if resp.clicked() {
+        cmds.push(Command::SelectNode(Some(sample.root)));
     }
 }
 
@@ -317,50 +332,75 @@ fn node_row(
     } else if resp.hovered() {
         painter.rect_filled(body, 2.0, visuals.widgets.hovered.weak_bg_fill);
     }
-    let mut toggle_clicked = false;
-    if !n.children.is_empty() {
-        let t = ui.interact(
-            toggle_rect,
-            ui.make_persistent_id(("ray-toggle", id.0)),
-            Sense::click(),
-        );
-        t.widget_info(|| {
-            let what = if open { "collapse" } else { "expand" };
-            egui::WidgetInfo::labeled(egui::Role::Button, true, format!("{what} #{}", id.0))
-        });
-        toggle_clicked = t.clicked();
-        let c = toggle_rect.center();
-        let colour = if t.hovered() {
-            visuals.strong_text_color()
-        } else {
-            visuals.text_color()
-        };
-        let pts = if open {
-            vec![
-                c + vec2(-4.0, -2.5),
-                c + vec2(4.0, -2.5),
-                c + vec2(0.0, 3.5),
-            ]
-        } else {
-            vec![
-                c + vec2(-2.5, -4.0),
-                c + vec2(3.5, 0.0),
-                c + vec2(-2.5, 4.0),
-            ]
-        };
-        painter.add(egui::Shape::convex_polygon(pts, colour, egui::Stroke::NONE));
-    }
+    let toggle_clicked = !n.children.is_empty() && toggle_ui(ui, &painter, toggle_rect, id, open);
     painter.circle_filled(
         pos2(body.left() + 5.0, rect.center().y),
         4.5,
         kind_colour(n.kind),
     );
-    let font = FontId::monospace(12.0);
     let text_colour = if is_sel {
         SELECTED
     } else {
         visuals.text_color()
     };
+    paint_row_text(&painter, rect, body.left() + 14.0, tree, id, text_colour);
+    toggle_clicked
+}
+
+/// The open/close triangle of ray `id` in `toggle_rect` (`open`: pointing down); whether it
+/// was clicked.
+fn toggle_ui(
+    ui: &egui::Ui,
+    painter: &egui::Painter,
+    toggle_rect: Rect,
+    id: NodeId,
+    open: bool,
+) -> bool {
+    let visuals = ui.visuals();
+    let t = ui.interact(
+        toggle_rect,
+        ui.make_persistent_id(("ray-toggle", id.0)),
+        Sense::click(),
+    );
+    t.widget_info(|| {
+        let what = if open { "collapse" } else { "expand" };
+        egui::WidgetInfo::labeled(egui::Role::Button, true, format!("{what} #{}", id.0))
+    });
+    let toggle_clicked = t.clicked();
+    let c = toggle_rect.center();
+    let colour = if t.hovered() {
+        visuals.strong_text_color()
+    } else {
+        visuals.text_color()
+    };
+    let pts = if open {
+        vec![
+            c + vec2(-4.0, -2.5),
+            c + vec2(4.0, -2.5),
+            c + vec2(0.0, 3.5),
+        ]
+    } else {
+        vec![
+            c + vec2(-2.5, -4.0),
+            c + vec2(3.5, 0.0),
+            c + vec2(-2.5, 4.0),
+        ]
+    };
+    painter.add(egui::Shape::convex_polygon(pts, colour, egui::Stroke::NONE));
+    toggle_clicked
+}
+
+/// The text of ray `id`'s row in `rect`: the `w=` and `c=` columns at the right, its name from
+/// `name_left`, cut to the room left.
+fn paint_row_text(
+    painter: &egui::Painter,
+    rect: Rect,
+    name_left: f32,
+    tree: &RayTree,
+    id: NodeId,
+    text_colour: egui::Color32,
+) {
+    let font = FontId::monospace(12.0);
     let [w, c] = node_numbers(tree, id);
     let right = rect.right() - 4.0;
     for (text, x) in [(c, right), (w, right - NUMBER_COLUMN)] {
@@ -372,14 +412,12 @@ fn node_row(
             text_colour,
         );
     }
-    let name_left = body.left() + 14.0;
     let name_width = (right - 2.0 * NUMBER_COLUMN - name_left).max(8.0);
-    let mut job = LayoutJob::simple_singleline(node_name(n), font, text_colour);
+    let mut job = LayoutJob::simple_singleline(node_name(tree.node(id)), font, text_colour);
     job.wrap = TextWrapping::truncate_at_width(name_width);
     let galley = painter.layout_job(job);
     let y = rect.center().y - galley.size().y / 2.0;
     painter.galley(pos2(name_left, y), galley, text_colour);
-    toggle_clicked
 }
 
 #[cfg(test)]

@@ -16,7 +16,7 @@ use super::words::chain;
 use super::{Explanation, Sentence, SentenceKind, Share, ids, luminance, rgb};
 use crate::math::Rgb;
 use crate::scene::Scene;
-use crate::tree::{RayKind, RayNode, RayTree};
+use crate::tree::{NodeId, RayKind, RayNode, RayTree};
 use sentences::{energy, events_sentences, noise, strategies};
 
 /// One event of a light path expression: `C`, `L`, `B` or `<RD>`-style (type, scatter).
@@ -101,13 +101,61 @@ fn plural(n: usize) -> &'static str {
 
 /// Explain a path-traced pixel.
 pub(super) fn explain_path(tree: &RayTree, scene: &Scene) -> Explanation {
+    let mut sentences = Vec::new();
+    let c = contributions(tree);
+    sees(tree, scene, &c.classes, &mut sentences);
+    if strategy::has_strategies(tree) {
+        strategy::bidirectional(tree, &mut sentences);
+    } else {
+        strategies(
+            &mut sentences,
+            (c.by_light.value, c.by_light.nodes),
+            (c.by_bsdf.value, c.by_bsdf.nodes),
+        );
+    }
+    events_sentences(tree, &mut sentences);
+    energy(tree, scene, &mut sentences);
+    noise(tree, &mut sentences);
+    super::suspicious(tree, &mut sentences);
+    Explanation {
+        pixel: tree.pixel,
+        radiance: tree.radiance,
+        shares: c.classes.into_iter().map(|c| c.share).collect(),
+        sentences,
+    }
+}
+
+/// One light path class's share of the pixel, with the expression of its first path.
+struct ClassShare {
+    share: Share,
+    example: String,
+}
+
+/// Light found by one strategy, and the nodes that found it.
+#[derive(Default)]
+struct Found {
+    value: Rgb,
+    nodes: Vec<NodeId>,
+}
+
+/// What the pixel's counted, finite contributions add up to: per light path class (largest
+/// first), and per strategy that found the light.
+struct Contributions {
+    classes: Vec<ClassShare>,
+    /// By light sampling (shadow rays).
+    by_light: Found,
+    /// By BSDF sampling: emission found by a sampled ray (not the camera's), which competes
+    /// with light sampling.
+    by_bsdf: Found,
+}
+
+/// The contributions of `tree`'s nodes, grouped by class and by strategy.
+fn contributions(tree: &RayTree) -> Contributions {
     let spp = tree.samples.len().max(1) as f64;
     let pixel_lum = luminance(tree.radiance);
-    let mut sentences = Vec::new();
     let mut shares: Vec<Share> = Vec::new();
     let mut example: Vec<String> = Vec::new();
-    let (mut by_light, mut by_bsdf) = (Rgb::ZERO, Rgb::ZERO);
-    let (mut light_nodes, mut bsdf_nodes) = (Vec::new(), Vec::new());
+    let (mut by_light, mut by_bsdf) = (Found::default(), Found::default());
     let counted = tree.pixel_nodes();
     for n in &tree.nodes {
         let Some(p) = &n.path else { continue };
@@ -116,19 +164,14 @@ pub(super) fn explain_path(tree: &RayTree, scene: &Scene) -> Explanation {
         }
         let value = p.contribution / spp;
         let ev = events(&p.lpe);
-        let (words, at) = class(&ev);
-        let chain = chain(tree, n.id);
-        let path = match at.and_then(|k| surface(&chain, k)) {
-            Some(object) => format!("{words} on the {object}"),
-            None => words.to_string(),
-        };
+        let path = class_words(tree, n, &ev);
         // Emission found by a sampled ray (not the camera's) competes with light sampling.
         if n.kind == RayKind::Shadow {
-            by_light += value;
-            light_nodes.push(n.id);
+            by_light.value += value;
+            by_light.nodes.push(n.id);
         } else if n.kind != RayKind::Camera && ev.last() == Some(&Event::Light) {
-            by_bsdf += value;
-            bsdf_nodes.push(n.id);
+            by_bsdf.value += value;
+            by_bsdf.nodes.push(n.id);
         }
         match shares.iter().position(|s| s.path == path) {
             Some(i) => {
@@ -155,11 +198,33 @@ pub(super) fn explain_path(tree: &RayTree, scene: &Scene) -> Explanation {
     }
     let mut order: Vec<usize> = (0..shares.len()).collect();
     order.sort_by(|&a, &b| luminance(shares[b].value).total_cmp(&luminance(shares[a].value)));
-    let shares: Vec<(Share, String)> = order
+    let classes = order
         .into_iter()
-        .map(|i| (shares[i].clone(), example[i].clone()))
+        .map(|i| ClassShare {
+            share: shares[i].clone(),
+            example: example[i].clone(),
+        })
         .collect();
-    if shares.is_empty() {
+    Contributions {
+        classes,
+        by_light,
+        by_bsdf,
+    }
+}
+
+/// The class of node `n`'s path (with events `ev`) in words, on the surface that names it.
+fn class_words(tree: &RayTree, n: &RayNode, ev: &[Event]) -> String {
+    let (words, at) = class(ev);
+    let chain = chain(tree, n.id);
+    match at.and_then(|k| surface(&chain, k)) {
+        Some(object) => format!("{words} on the {object}"),
+        None => words.to_string(),
+    }
+}
+
+/// What the pixel sees: one sentence per class with an example path, or that it is black.
+fn sees(tree: &RayTree, scene: &Scene, classes: &[ClassShare], sentences: &mut Vec<Sentence>) {
+    if classes.is_empty() {
         sentences.push(Sentence {
             kind: SentenceKind::Sees,
             text: format!(
@@ -171,35 +236,16 @@ pub(super) fn explain_path(tree: &RayTree, scene: &Scene) -> Explanation {
             nodes: tree.samples.iter().map(|s| s.root).collect(),
         });
     }
-    for (s, lpe) in &shares {
+    for ClassShare { share: s, example } in classes {
         sentences.push(Sentence {
             kind: SentenceKind::Sees,
             text: format!(
-                "{} (e.g. {lpe}): {:.1}% {}",
+                "{} (e.g. {example}): {:.1}% {}",
                 s.path,
                 100.0 * s.fraction,
                 rgb(s.value)
             ),
             nodes: ids(&s.nodes),
         });
-    }
-    if strategy::has_strategies(tree) {
-        strategy::bidirectional(tree, &mut sentences);
-    } else {
-        strategies(
-            &mut sentences,
-            (by_light, light_nodes),
-            (by_bsdf, bsdf_nodes),
-        );
-    }
-    events_sentences(tree, &mut sentences);
-    energy(tree, scene, &mut sentences);
-    noise(tree, &mut sentences);
-    super::suspicious(tree, &mut sentences);
-    Explanation {
-        pixel: tree.pixel,
-        radiance: tree.radiance,
-        shares: shares.into_iter().map(|(s, _)| s).collect(),
-        sentences,
     }
 }

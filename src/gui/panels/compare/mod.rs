@@ -232,93 +232,16 @@ fn rows_ui(
         let offset = row as f32 * (ROW_HEIGHT + spacing) - height / 3.0;
         area = area.vertical_scroll_offset(offset.max(0.0));
     }
+    let rows = Rows {
+        view,
+        trees: [a, b],
+        selected_node: doc.node,
+    };
     let mut clicked = None;
-    area.show_rows(ui, ROW_HEIGHT, view.rows.len(), |ui, range| {
+    area.show_rows(ui, ROW_HEIGHT, rows.view.rows.len(), |ui, range| {
         for i in range {
-            let r = view.rows[i];
-            let change = view.change_of(&r);
-            let (rect, _) =
-                ui.allocate_exact_size(vec2(ui.available_width(), ROW_HEIGHT), Sense::hover());
-            let (ta, tb) = (side_text(a, r.a), side_text(b, r.b));
-            let fields = change.map_or(0, |k| {
-                view.diff.as_ref().map_or(0, |d| d.changed[k].fields.len())
-            });
-            let status = match (r.a, r.b) {
-                _ if Some(i) == view.first_row => format!("first divergence, {fields} changed"),
-                (Some(_), None) => "only pinned".to_string(),
-                (None, Some(_)) => "only current".to_string(),
-                _ if fields > 0 => format!("{fields} changed"),
-                _ => "same".to_string(),
-            };
-            let resp = ui.interact(
-                rect,
-                ui.make_persistent_id(("compare-row", i)),
-                Sense::click(),
-            );
-            let label = format!("{ta} | {tb} [{status}]");
-            let is_sel = view.selected == Some(i);
-            resp.widget_info(|| {
-                egui::WidgetInfo::selected(egui::Role::Button, true, is_sel, &label)
-            });
-            if resp.clicked() {
+            if row_ui(ui, &rows, i) {
                 clicked = Some(i);
-            }
-            let painter = ui.painter_at(rect);
-            let bg = if Some(i) == view.first_row {
-                Some(FIRST_BG)
-            } else if r.a.is_none() || r.b.is_none() {
-                Some(ONLY_BG)
-            } else if fields > 0 {
-                Some(CHANGED_BG)
-            } else {
-                None
-            };
-            if let Some(bg) = bg {
-                painter.rect_filled(rect, 2.0, bg);
-            }
-            if is_sel {
-                painter.rect_stroke(
-                    rect,
-                    2.0,
-                    egui::Stroke::new(1.5, SELECTED),
-                    egui::StrokeKind::Inside,
-                );
-            }
-            let half = rect.width() / 2.0;
-            let font = FontId::monospace(11.5);
-            let text_colour = ui.visuals().text_color();
-            for (side, (t, id, text)) in [(a, r.a, ta), (b, r.b, tb)].into_iter().enumerate() {
-                let Some(id) = id else { continue };
-                let x0 = rect.left() + side as f32 * half + 4.0 + r.depth as f32 * INDENT;
-                painter.circle_filled(
-                    pos2(x0 + 4.0, rect.center().y),
-                    4.0,
-                    kind_colour(t.node(id).kind),
-                );
-                let colour = if side == 1 && doc.node == Some(id) {
-                    SELECTED
-                } else {
-                    text_colour
-                };
-                // Room for the Δ count at the end of the pinned side.
-                let width = (rect.left() + (side as f32 + 1.0) * half - x0 - 48.0).max(8.0);
-                let mut job = LayoutJob::simple_singleline(text, font.clone(), colour);
-                job.wrap = TextWrapping::truncate_at_width(width);
-                let g = painter.layout_job(job);
-                painter.galley(
-                    pos2(x0 + 12.0, rect.center().y - g.size().y / 2.0),
-                    g,
-                    colour,
-                );
-            }
-            if fields > 0 {
-                painter.text(
-                    pos2(rect.left() + half - 4.0, rect.center().y),
-                    egui::Align2::RIGHT_CENTER,
-                    format!("Δ{fields}"),
-                    font.clone(),
-                    WARNING,
-                );
             }
         }
     });
@@ -327,6 +250,119 @@ fn rows_ui(
         if let Some(id) = view.rows[i].b {
             cmds.push(Command::SelectNode(Some(id)));
         }
+    }
+}
+
+/// What every row of the comparison is drawn from.
+struct Rows<'a> {
+    view: &'a CompareView,
+    /// The pinned and the current tree.
+    trees: [&'a RayTree; 2],
+    /// The current tree's selected node.
+    selected_node: Option<NodeId>,
+}
+
+/// Row `i`: both sides, its status for accessibility, its background and its count of changed
+/// fields. Whether it was clicked.
+fn row_ui(ui: &mut egui::Ui, rows: &Rows, i: usize) -> bool {
+    let view = rows.view;
+    let r = view.rows[i];
+    let change = view.change_of(&r);
+    let (rect, _) = ui.allocate_exact_size(vec2(ui.available_width(), ROW_HEIGHT), Sense::hover());
+    let [a, b] = rows.trees;
+    let (ta, tb) = (side_text(a, r.a), side_text(b, r.b));
+    let fields = change.map_or(0, |k| {
+        view.diff.as_ref().map_or(0, |d| d.changed[k].fields.len())
+    });
+    let first = Some(i) == view.first_row;
+    let status = match (r.a, r.b) {
+        _ if first => format!("first divergence, {fields} changed"),
+        (Some(_), None) => "only pinned".to_string(),
+        (None, Some(_)) => "only current".to_string(),
+        _ if fields > 0 => format!("{fields} changed"),
+        _ => "same".to_string(),
+    };
+    let resp = ui.interact(
+        rect,
+        ui.make_persistent_id(("compare-row", i)),
+        Sense::click(),
+    );
+    let label = format!("{ta} | {tb} [{status}]");
+    let is_sel = view.selected == Some(i);
+    resp.widget_info(|| egui::WidgetInfo::selected(egui::Role::Button, true, is_sel, &label));
+    let painter = ui.painter_at(rect);
+    let bg = if first {
+        Some(FIRST_BG)
+    } else if r.a.is_none() || r.b.is_none() {
+        Some(ONLY_BG)
+    } else if fields > 0 {
+        Some(CHANGED_BG)
+    } else {
+        None
+    };
+    if let Some(bg) = bg {
+        painter.rect_filled(rect, 2.0, bg);
+    }
+    if is_sel {
+        painter.rect_stroke(
+            rect,
+            2.0,
+            egui::Stroke::new(1.5, SELECTED),
+            egui::StrokeKind::Inside,
+        );
+    }
+    paint_sides(ui, &painter, rect, rows, &r, [ta, tb]);
+    if fields > 0 {
+        let half = rect.width() / 2.0;
+        painter.text(
+            pos2(rect.left() + half - 4.0, rect.center().y),
+            egui::Align2::RIGHT_CENTER,
+            format!("Δ{fields}"),
+            FontId::monospace(11.5),
+            WARNING,
+        );
+    }
+    resp.clicked()
+}
+
+/// The two halves of row `r` at `rect`: each side's ray, a dot of its kind's colour at its
+/// depth and its text `texts`, truncated.
+fn paint_sides(
+    ui: &egui::Ui,
+    painter: &egui::Painter,
+    rect: egui::Rect,
+    rows: &Rows,
+    r: &AlignedRow,
+    texts: [String; 2],
+) {
+    let half = rect.width() / 2.0;
+    let font = FontId::monospace(11.5);
+    let text_colour = ui.visuals().text_color();
+    let [a, b] = rows.trees;
+    let [ta, tb] = texts;
+    for (side, (t, id, text)) in [(a, r.a, ta), (b, r.b, tb)].into_iter().enumerate() {
+        let Some(id) = id else { continue };
+        let x0 = rect.left() + side as f32 * half + 4.0 + r.depth as f32 * INDENT;
+        painter.circle_filled(
+            pos2(x0 + 4.0, rect.center().y),
+            4.0,
+            kind_colour(t.node(id).kind),
+        );
+        let colour = if side == 1 && rows.selected_node == Some(id) {
+            SELECTED
+        } else {
+            text_colour
+        };
+        // Room for the Δ count at the end of the pinned side.
+        let width = (rect.left() + (side as f32 + 1.0) * half - x0 - 48.0).max(8.0);
+        let mut job = LayoutJob::simple_singleline(text, font.clone(), colour);
+        job.wrap = TextWrapping::truncate_at_width(width);
+        let g = painter.layout_job(job);
+        painter.galley(
+            pos2(x0 + 12.0, rect.center().y - g.size().y / 2.0),
+            g,
+            colour,
+        );
     }
 }
 
