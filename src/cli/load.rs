@@ -204,6 +204,13 @@ pub fn apply(scene: &mut Scene, o: &Overrides) -> Result<()> {
         s.path.mis =
             raytree::scene::MisHeuristic::from_name(v).map_err(|msg| anyhow!("--mis: {msg}"))?;
     }
+    apply_film_sampling(s, o)?;
+    raytree::scene::check_settings(s).map_err(|(path, msg)| settings_error(&path, &msg))?;
+    apply_camera(scene, o)
+}
+
+/// The sampler, pixel filter and antialiasing flags of `o` applied to `s`.
+fn apply_film_sampling(s: &mut raytree::scene::Settings, o: &Overrides) -> Result<()> {
     if let Some(v) = &o.sampler {
         s.sampler = Some(
             raytree::scene::SamplerKind::from_name(v).map_err(|msg| anyhow!("--sampler: {msg}"))?,
@@ -232,20 +239,27 @@ pub fn apply(scene: &mut Scene, o: &Overrides) -> Result<()> {
         };
         a.max_spp = Some(m);
     }
-    raytree::scene::check_settings(s).map_err(|(path, msg)| {
-        match path.as_str() {
-            "settings.adaptive" | "settings.adaptive.threshold" => {
-                return anyhow!("--adaptive: {msg}");
-            }
-            "settings.adaptive.max_spp" => return anyhow!("--max-spp: {msg}"),
-            _ => {}
+    Ok(())
+}
+
+/// A settings check's failure (`path`, `msg`) named by the flag that set the value.
+fn settings_error(path: &str, msg: &str) -> anyhow::Error {
+    match path {
+        "settings.adaptive" | "settings.adaptive.threshold" => {
+            return anyhow!("--adaptive: {msg}");
         }
-        let flag = path.rsplit('.').next().unwrap_or(&path).replace('_', "-");
-        if path.starts_with("settings.filter.") {
-            return anyhow!("--filter: {flag} {msg}");
-        }
-        anyhow!("--{flag}: {msg}")
-    })?;
+        "settings.adaptive.max_spp" => return anyhow!("--max-spp: {msg}"),
+        _ => {}
+    }
+    let flag = path.rsplit('.').next().unwrap_or(path).replace('_', "-");
+    if path.starts_with("settings.filter.") {
+        return anyhow!("--filter: {flag} {msg}");
+    }
+    anyhow!("--{flag}: {msg}")
+}
+
+/// The lens and image-size flags of `o` applied to the camera of `scene`.
+fn apply_camera(scene: &mut Scene, o: &Overrides) -> Result<()> {
     if let Some(v) = o.aperture {
         scene.camera.aperture_radius =
             raytree::scene::check_aperture(v).map_err(|msg| anyhow!("--aperture: {msg}"))?;

@@ -126,16 +126,6 @@ impl Bdpt<'_> {
                 lp[s - 2].1 = self.pdf(q, Some(p), m);
             }
         }
-        let heuristic = self.scene().settings.path.mis;
-        let mut sum = 0.0;
-        let mut ri = 1.0;
-        for i in (1..t).rev() {
-            ri *= remap0(cp[i].1) / remap0(cp[i].0);
-            if !cp[i].2 && !cp[i - 1].2 {
-                sum += heuristic.term(ri);
-            }
-        }
-        ri = 1.0;
         let delta_light = qs.is_some_and(|q| {
             if s == 1 {
                 q.delta_light
@@ -143,13 +133,7 @@ impl Bdpt<'_> {
                 light[0].delta_light
             }
         });
-        for i in (0..s).rev() {
-            ri *= remap0(lp[i].1) / remap0(lp[i].0);
-            let before_delta = if i > 0 { lp[i - 1].2 } else { delta_light };
-            if !lp[i].2 && !before_delta {
-                sum += heuristic.term(ri);
-            }
-        }
+        let sum = other_strategies(&cp, &lp, delta_light, self.scene().settings.path.mis);
         1.0 / (1.0 + sum)
     }
 
@@ -428,4 +412,35 @@ fn light_area(light: &Light<'_>) -> f64 {
         Light::Area { shape, .. } => shape.area(),
         _ => 1.0,
     }
+}
+
+/// The sum in a strategy's MIS weight `1 / (1 + sum)` over the strategies that could have made
+/// the same path (Veach 1997, section 10.2; pbrt-v3's `MISWeight`): walking from the
+/// connection towards the camera (`cam`) and towards the light (`light`), each vertex's
+/// (forward, reverse, delta) densities, the running ratio of reverse to forward densities,
+/// counted where neither end of the moved connection is a delta vertex (`delta_light`: the
+/// path's light is a point, spot or directional light).
+fn other_strategies(
+    cam: &[(f64, f64, bool)],
+    light: &[(f64, f64, bool)],
+    delta_light: bool,
+    heuristic: crate::scene::MisHeuristic,
+) -> f64 {
+    let mut sum = 0.0;
+    let mut ri = 1.0;
+    for i in (1..cam.len()).rev() {
+        ri *= remap0(cam[i].1) / remap0(cam[i].0);
+        if !cam[i].2 && !cam[i - 1].2 {
+            sum += heuristic.term(ri);
+        }
+    }
+    ri = 1.0;
+    for i in (0..light.len()).rev() {
+        ri *= remap0(light[i].1) / remap0(light[i].0);
+        let before_delta = if i > 0 { light[i - 1].2 } else { delta_light };
+        if !light[i].2 && !before_delta {
+            sum += heuristic.term(ri);
+        }
+    }
+    sum
 }

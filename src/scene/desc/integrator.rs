@@ -6,8 +6,6 @@
 use crate::math::FresnelModel;
 use serde::{Deserialize, Serialize};
 
-use super::settings::ShadowMode;
-
 /// Which integrator computes a camera ray's radiance (`settings.integrator`'s `type`).
 ///
 /// `"whitted"` is the lecture's recursion, `"path"` the Monte Carlo path tracer
@@ -81,6 +79,17 @@ impl TryFrom<String> for IntegratorKind {
     fn try_from(name: String) -> Result<Self, String> {
         Self::from_name(&name)
     }
+}
+
+/// How shadow rays treat transmissive blockers.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "lowercase")]
+pub enum ShadowMode {
+    /// Any blocker stops the shadow ray.
+    #[default]
+    Opaque,
+    /// Each blocker passes transmissivity x Beer's attenuation over its chord (no caustics).
+    Translucent,
 }
 
 /// What the Whitted integrator alone reads (`settings.integrator` of type `"whitted"`). The

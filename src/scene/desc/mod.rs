@@ -426,13 +426,13 @@ mod settings;
 mod spelling;
 pub use antialias::{ADAPTIVE_FACTOR, AUTO_THRESHOLD, AdaptiveDesc, Antialiasing};
 pub use integrator::{
-    DEFAULT_RR_DEPTH, DEFAULT_TOLERANCE, IntegratorKind, MisHeuristic, PathSettings,
+    DEFAULT_RR_DEPTH, DEFAULT_TOLERANCE, IntegratorKind, MisHeuristic, PathSettings, ShadowMode,
     WhittedSettings,
 };
 pub use record::{SettingsRecord, flat_settings};
 pub use settings::{
     DEFAULT_MAX_DEPTH, DEFAULT_MAX_RAYS, FilterDesc, GAUSSIAN_RADIUS_SIGMAS, OffsetDesc,
-    OffsetStrategy, SamplerKind, Settings, ShadowMode,
+    OffsetStrategy, SamplerKind, Settings,
 };
 pub use spelling::{
     BdptDesc, IntegratorDesc, RouletteDesc, WhittedDesc, new_spelling, old_spelling,

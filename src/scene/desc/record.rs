@@ -5,9 +5,9 @@
 
 use super::antialias::{AdaptiveDesc, Antialiasing};
 use super::integrator::{
-    DEFAULT_RR_DEPTH, IntegratorKind, MisHeuristic, PathSettings, WhittedSettings,
+    DEFAULT_RR_DEPTH, IntegratorKind, MisHeuristic, PathSettings, ShadowMode, WhittedSettings,
 };
-use super::settings::{FilterDesc, OffsetDesc, SamplerKind, Settings, ShadowMode};
+use super::settings::{FilterDesc, OffsetDesc, SamplerKind, Settings};
 use crate::math::FresnelModel;
 use serde::{Deserialize, Deserializer, Serialize, Serializer};
 

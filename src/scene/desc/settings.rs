@@ -69,17 +69,6 @@ impl Default for OffsetDesc {
     }
 }
 
-/// How shadow rays treat transmissive blockers.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
-#[serde(rename_all = "lowercase")]
-pub enum ShadowMode {
-    /// Any blocker stops the shadow ray.
-    #[default]
-    Opaque,
-    /// Each blocker passes transmissivity x Beer's attenuation over its chord (no caustics).
-    Translucent,
-}
-
 /// The sampler of these settings: its kind, `spp` and `seed` (here, so that sampling does
 /// not depend on the scene).
 impl crate::sampling::SceneSampler {

@@ -19,8 +19,10 @@
 //! (and `mis`, which `bdpt` alone reads).
 
 use super::antialias::{AdaptiveDesc, Antialiasing};
-use super::integrator::{DEFAULT_RR_DEPTH, IntegratorKind, MisHeuristic, WhittedSettings};
-use super::settings::{FilterDesc, OffsetDesc, SamplerKind, Settings, ShadowMode};
+use super::integrator::{
+    DEFAULT_RR_DEPTH, IntegratorKind, MisHeuristic, ShadowMode, WhittedSettings,
+};
+use super::settings::{FilterDesc, OffsetDesc, SamplerKind, Settings};
 use crate::math::FresnelModel;
 use serde::{Deserialize, Deserializer, Serialize, Serializer};
 

@@ -166,8 +166,10 @@ fn the_old_spelling_is_named_key_by_key() {
 /// A tree records its settings flat, in the layout of schema `raytree.tree/2`.
 #[test]
 fn the_flat_record_keeps_the_tree_layout() {
-    let mut s = Settings::default();
-    s.integrator = IntegratorKind::Path;
+    let mut s = Settings {
+        integrator: IntegratorKind::Path,
+        ..Settings::default()
+    };
     s.path.rr_depth = 2;
     s.whitted.light_samples = Some(1);
     let text = serde_json::to_string(&crate::scene::desc::SettingsRecord::from(&s)).unwrap();
