@@ -7,7 +7,7 @@ use super::output::{Inputs, Origin, OutDir, OutputSet};
 use super::say::sayln;
 use anyhow::{Result, anyhow, bail};
 use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
-use raytree::analysis::acne::{AcneConfig, sweep};
+use raytree::analysis::acne::{AcneConfig, AcneReport, sweep};
 use raytree::scene::OffsetStrategy;
 use std::path::Path;
 
@@ -59,28 +59,10 @@ fn config(a: &AcneArgs) -> Result<AcneConfig> {
 /// each atomically, and nothing is written unless the whole sweep succeeded).
 pub fn run(a: &AcneArgs) -> Result<()> {
     let cfg = config(a)?;
-    let overrides = Overrides {
-        integrator: a.integrator.clone(),
-        rr_depth: a.rr_depth,
-        sampler: a.sampler.clone(),
-        seed: a.seed,
-        light_samples: a.light_samples,
-        glossy_samples: a.glossy_samples,
-        aperture: a.aperture,
-        focus: a.focus,
-        filter: a.filter.clone(),
-        ..Overrides::default()
-    };
-    let loaded = load(a.scene.as_deref(), &overrides)?;
+    let loaded = load(a.scene.as_deref(), &overrides(a))?;
     let inputs = Inputs::new(loaded.inputs.iter().map(|p| p.as_path()));
     let dir = OutDir::create(&a.output)?;
-    let mut names = vec!["report.md".to_string(), "report.json".to_string()];
-    names.extend(
-        cfg.strategies
-            .iter()
-            .map(|st| format!("heatmap-{}.png", st.name())),
-    );
-    names.push("plot.png".to_string());
+    let names = file_names(&cfg);
     let mut set = OutputSet::new(&inputs, false);
     let slots = names
         .iter()
@@ -124,6 +106,39 @@ pub fn run(a: &AcneArgs) -> Result<()> {
         cfg.width,
         cfg.height
     )?;
+    say_verdicts(&report, &cfg)
+}
+
+/// The sweep's render settings from the command line (the scale and offset come from the sweep).
+fn overrides(a: &AcneArgs) -> Overrides {
+    Overrides {
+        integrator: a.integrator.clone(),
+        rr_depth: a.rr_depth,
+        sampler: a.sampler.clone(),
+        seed: a.seed,
+        light_samples: a.light_samples,
+        glossy_samples: a.glossy_samples,
+        aperture: a.aperture,
+        focus: a.focus,
+        filter: a.filter.clone(),
+        ..Overrides::default()
+    }
+}
+
+/// The report directory's files, in the order they are staged.
+fn file_names(cfg: &AcneConfig) -> Vec<String> {
+    let mut names = vec!["report.md".to_string(), "report.json".to_string()];
+    names.extend(
+        cfg.strategies
+            .iter()
+            .map(|st| format!("heatmap-{}.png", st.name())),
+    );
+    names.push("plot.png".to_string());
+    names
+}
+
+/// One line per strategy: the epsilons clean at every scale.
+fn say_verdicts(report: &AcneReport, cfg: &AcneConfig) -> Result<()> {
     for &st in &cfg.strategies {
         let ok = report.clean_everywhere(st);
         let list: Vec<String> = ok

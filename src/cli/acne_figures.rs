@@ -105,14 +105,33 @@ fn summary_colour(cell: &AcneCell) -> Rgb8 {
     }
 }
 
+/// Sizes of the summary plot's panels, in pixels.
+struct PanelLayout {
+    cell_w: u32,
+    cell_h: u32,
+    /// Room for the epsilon labels left of the cells.
+    left: u32,
+    /// Room for the title and scale labels above the cells.
+    top: u32,
+    panel_w: u32,
+    panel_h: u32,
+}
+
 /// The summary plot: one panel per strategy, epsilon (rows, small at the top) against scene
 /// scale (columns).
 pub fn plot(report: &AcneReport, scene: &str) -> Result<Vec<u8>> {
     let c = &report.config;
     let (cell_w, cell_h) = (44u32, 22u32);
     let (left, top) = (62u32, 44u32);
-    let panel_w = left + c.scales.len() as u32 * cell_w + 24;
-    let panel_h = top + c.epsilons.len() as u32 * cell_h + 34;
+    let layout = PanelLayout {
+        cell_w,
+        cell_h,
+        left,
+        top,
+        panel_w: left + c.scales.len() as u32 * cell_w + 24,
+        panel_h: top + c.epsilons.len() as u32 * cell_h + 34,
+    };
+    let (panel_w, panel_h) = (layout.panel_w, layout.panel_h);
     let per_row = 2u32;
     let n = c.strategies.len() as u32;
     let grid_rows = n.div_ceil(per_row);
@@ -133,60 +152,86 @@ pub fn plot(report: &AcneReport, scene: &str) -> Result<Vec<u8>> {
         INK,
     );
     for (k, &st) in c.strategies.iter().enumerate() {
-        let (px, py) = (
+        let corner = (
             (k as u32 % per_row) * panel_w + 8,
             head + (k as u32 / per_row) * panel_h,
         );
-        let ok = report.clean_everywhere(st);
-        let verdict = if ok.len() == c.epsilons.len() {
-            "clean everywhere".to_string()
-        } else if ok.is_empty() {
-            "no epsilon is clean at every scale".to_string()
-        } else {
-            format!("clean at every scale for {} eps", ok.len())
-        };
-        cv.text(
-            px as f32,
-            (py + 18) as f32,
-            14.0,
-            &format!("{}: {verdict}", st.name()),
-            INK,
-        );
-        for (j, s) in c.scales.iter().enumerate() {
-            let label = sci(*s);
-            let x = (px + left + j as u32 * cell_w) as f32
-                + (cell_w as f32 - cv.text_width(&label, 10.0)) / 2.0;
-            cv.text(x, (py + top - 4) as f32, 10.0, &label, INK);
-        }
-        for (i, &e) in c.epsilons.iter().enumerate() {
-            let y = py + top + i as u32 * cell_h;
-            let label = if st.uses_epsilon() {
-                sci(e)
-            } else {
-                "(none)".to_string()
-            };
-            cv.text(px as f32, (y + cell_h / 2 + 4) as f32, 10.0, &label, INK);
-            for (j, cell) in report.row(st, e).enumerate() {
-                let x = px + left + j as u32 * cell_w;
-                cv.rect(
-                    x as f32,
-                    y as f32,
-                    (cell_w - 2) as f32,
-                    (cell_h - 2) as f32,
-                    summary_colour(cell),
-                );
-            }
-        }
-        let by = py + top + c.epsilons.len() as u32 * cell_h + 14;
-        cv.text(
-            (px + left) as f32,
-            by as f32,
-            11.0,
-            "scene scale ->   (rows: epsilon, small at top)",
-            INK,
-        );
+        draw_panel(&mut cv, report, &layout, st, corner);
     }
     let fy = (head + grid_rows * panel_h + 16) as f32;
+    draw_legend(&mut cv, fy);
+    cv.png()
+}
+
+/// One strategy's panel with its top-left corner at `(px, py)`: its verdict, the scale labels,
+/// and a row of cells per epsilon.
+fn draw_panel(
+    cv: &mut Canvas,
+    report: &AcneReport,
+    layout: &PanelLayout,
+    st: OffsetStrategy,
+    (px, py): (u32, u32),
+) {
+    let c = &report.config;
+    let PanelLayout {
+        cell_w,
+        cell_h,
+        left,
+        top,
+        ..
+    } = *layout;
+    let ok = report.clean_everywhere(st);
+    let verdict = if ok.len() == c.epsilons.len() {
+        "clean everywhere".to_string()
+    } else if ok.is_empty() {
+        "no epsilon is clean at every scale".to_string()
+    } else {
+        format!("clean at every scale for {} eps", ok.len())
+    };
+    cv.text(
+        px as f32,
+        (py + 18) as f32,
+        14.0,
+        &format!("{}: {verdict}", st.name()),
+        INK,
+    );
+    for (j, s) in c.scales.iter().enumerate() {
+        let label = sci(*s);
+        let x = (px + left + j as u32 * cell_w) as f32
+            + (cell_w as f32 - cv.text_width(&label, 10.0)) / 2.0;
+        cv.text(x, (py + top - 4) as f32, 10.0, &label, INK);
+    }
+    for (i, &e) in c.epsilons.iter().enumerate() {
+        let y = py + top + i as u32 * cell_h;
+        let label = if st.uses_epsilon() {
+            sci(e)
+        } else {
+            "(none)".to_string()
+        };
+        cv.text(px as f32, (y + cell_h / 2 + 4) as f32, 10.0, &label, INK);
+        for (j, cell) in report.row(st, e).enumerate() {
+            let x = px + left + j as u32 * cell_w;
+            cv.rect(
+                x as f32,
+                y as f32,
+                (cell_w - 2) as f32,
+                (cell_h - 2) as f32,
+                summary_colour(cell),
+            );
+        }
+    }
+    let by = py + top + c.epsilons.len() as u32 * cell_h + 14;
+    cv.text(
+        (px + left) as f32,
+        by as f32,
+        11.0,
+        "scene scale ->   (rows: epsilon, small at top)",
+        INK,
+    );
+}
+
+/// The colour legend along the bottom, its baseline at `fy`.
+fn draw_legend(cv: &mut Canvas, fy: f32) {
     let mut x = 10.0;
     for (colour, label) in [
         (CLEAN, "clean"),
@@ -198,5 +243,4 @@ pub fn plot(report: &AcneReport, scene: &str) -> Result<Vec<u8>> {
         cv.text(x + 18.0, fy, 12.0, label, INK);
         x += 30.0 + cv.text_width(label, 12.0);
     }
-    cv.png()
 }

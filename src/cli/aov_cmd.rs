@@ -5,7 +5,7 @@
 use super::args::RenderArgs;
 use super::canvas::Canvas;
 use super::load::load;
-use super::output::{Inputs, Origin, OutputSet, encode_counting, image_format};
+use super::output::{ImageFormat, Inputs, Origin, OutputSet, encode_counting, image_format};
 use super::say::{sayln, warnln};
 use anyhow::{Result, bail};
 use indicatif::{ProgressBar, ProgressStyle};
@@ -55,35 +55,15 @@ pub fn run(a: &RenderArgs) -> Result<()> {
     let loaded = load(a.scene.as_deref(), &a.overrides)?;
     let scene = &loaded.scene;
     super::load::refuse_splat_views(scene, true, "--aov and --debug-view")?;
-    let whitted = scene.settings.integrator == IntegratorKind::Whitted;
-    if whitted && !aovs.is_empty() {
-        bail!("--aov: {}", raytree::aov::AovError::Whitted);
-    }
-    if let Some(v) = views.iter().find(|v| whitted && v.needs_paths()) {
-        bail!(
-            "--debug-view {}: needs the path integrator (Whitted reports no paths): add --integrator path",
-            v.file_name(&[])
-        );
-    }
+    refuse_whitted(scene, &aovs, &views)?;
     super::budget::check_aov_images(
         scene,
         aovs.len(),
         super::budget::mib(a.overrides.max_memory),
     )?;
     let names: Vec<&str> = aovs.iter().map(|x| x.name.as_str()).collect();
-    let ext = a
-        .output
-        .extension()
-        .map_or("png".into(), |e| e.to_string_lossy());
     let inputs = Inputs::new(loaded.inputs.iter().map(|p| p.as_path()));
-    let mut paths = vec![a.output.clone()];
-    paths.extend(names.iter().map(|n| beside(&a.output, n, &ext)));
-    paths.extend(
-        views
-            .iter()
-            .map(|v| beside(&a.output, &format!("view-{}", v.file_name(&names)), "png")),
-    );
-    paths.extend(a.spp_map.clone());
+    let paths = output_paths(a, &names, &views);
     let mut set = OutputSet::new(&inputs, a.force);
     let derived = 1..1 + names.len() + views.len();
     let slots = paths
@@ -112,26 +92,7 @@ pub fn run(a: &RenderArgs) -> Result<()> {
     })?;
     let secs = start.elapsed().as_secs_f64();
     bar.finish_and_clear();
-    let mut files = Vec::new();
-    let (bytes, clamped) = encode_counting(&r.beauty, format)?;
-    files.push(bytes);
-    for img in &r.aovs {
-        files.push(encode_counting(img, format)?.0);
-    }
-    for v in &views {
-        files.push(false_colour(&r, v, &names)?);
-    }
-    if a.spp_map.is_some() {
-        let samples = r.mc.iter().map(|p| p.samples).collect();
-        let (width, height) = (r.beauty.width, r.beauty.height);
-        let map = raytree::DiagnosticMap {
-            width,
-            height,
-            samples,
-            ..raytree::DiagnosticMap::default()
-        };
-        files.push(super::spp_map::png(&map)?);
-    }
+    let (files, clamped) = encode_files(a, &r, &views, &names, format)?;
     for (slot, bytes) in slots.into_iter().zip(&files) {
         set.stage(slot, bytes)?;
     }
@@ -148,6 +109,75 @@ pub fn run(a: &RenderArgs) -> Result<()> {
         }
     }
     Ok(())
+}
+
+/// Whitted reports no paths: refuse the AOVs and the views that need them.
+fn refuse_whitted(
+    scene: &raytree::Scene,
+    aovs: &[raytree::aov::Aov],
+    views: &[McView],
+) -> Result<()> {
+    let whitted = scene.settings.integrator == IntegratorKind::Whitted;
+    if whitted && !aovs.is_empty() {
+        bail!("--aov: {}", raytree::aov::AovError::Whitted);
+    }
+    if let Some(v) = views.iter().find(|v| whitted && v.needs_paths()) {
+        bail!(
+            "--debug-view {}: needs the path integrator (Whitted reports no paths): add --integrator path",
+            v.file_name(&[])
+        );
+    }
+    Ok(())
+}
+
+/// Every file written, in order: the beauty image, one per AOV `names`, one per debug view,
+/// then the `--spp-map`.
+fn output_paths(a: &RenderArgs, names: &[&str], views: &[McView]) -> Vec<PathBuf> {
+    let ext = a
+        .output
+        .extension()
+        .map_or("png".into(), |e| e.to_string_lossy());
+    let mut paths = vec![a.output.clone()];
+    paths.extend(names.iter().map(|n| beside(&a.output, n, &ext)));
+    paths.extend(
+        views
+            .iter()
+            .map(|v| beside(&a.output, &format!("view-{}", v.file_name(names)), "png")),
+    );
+    paths.extend(a.spp_map.clone());
+    paths
+}
+
+/// The bytes of every file, in the order of [`output_paths`], and how many of the beauty
+/// image's values the EXR encoding clamped.
+fn encode_files(
+    a: &RenderArgs,
+    r: &AovRender,
+    views: &[McView],
+    names: &[&str],
+    format: ImageFormat,
+) -> Result<(Vec<Vec<u8>>, usize)> {
+    let mut files = Vec::new();
+    let (bytes, clamped) = encode_counting(&r.beauty, format)?;
+    files.push(bytes);
+    for img in &r.aovs {
+        files.push(encode_counting(img, format)?.0);
+    }
+    for v in views {
+        files.push(false_colour(r, v, names)?);
+    }
+    if a.spp_map.is_some() {
+        let samples = r.mc.iter().map(|p| p.samples).collect();
+        let (width, height) = (r.beauty.width, r.beauty.height);
+        let map = raytree::DiagnosticMap {
+            width,
+            height,
+            samples,
+            ..raytree::DiagnosticMap::default()
+        };
+        files.push(super::spp_map::png(&map)?);
+    }
+    Ok((files, clamped))
 }
 
 /// What was written, the AOVs' shares of the image, dropped samples.

@@ -16,46 +16,14 @@ use std::path::Path;
 /// Print RMSE, max error, the share of pixels off by more than 1/255 and the mean signed
 /// difference A - B per channel with its 95 % interval; optionally write the error map.
 pub fn run(a: &CompareArgs) -> Result<()> {
-    if let Some(m) = &a.map {
-        let png = m
-            .extension()
-            .and_then(|e| e.to_str())
-            .is_some_and(|e| e.eq_ignore_ascii_case("png"));
-        if !png {
-            bail!(
-                "cannot write {}: the error map must end in .png",
-                m.display()
-            );
-        }
-    }
-    if let Some(s) = a.scale
-        && !(s.is_finite() && s > 0.0)
-    {
-        bail!(
-            "--scale {}: the map's full scale must be a finite number > 0",
-            raytree::text::num(s, 4)
-        );
-    }
+    check_map_flags(a)?;
     let inputs = Inputs::new([a.a.as_path(), a.b.as_path()]);
     let pending = a
         .map
         .as_deref()
         .map(|m| Pending::create(m, &inputs))
         .transpose()?;
-    let (ia, ib) = (read_image(&a.a)?, read_image(&a.b)?);
-    finite(&ia, &a.a)?;
-    finite(&ib, &a.b)?;
-    if (ia.width, ia.height) != (ib.width, ib.height) {
-        bail!(
-            "cannot compare {} ({}x{}) with {} ({}x{}): sizes differ",
-            a.a.display(),
-            ia.width,
-            ia.height,
-            a.b.display(),
-            ib.width,
-            ib.height
-        );
-    }
+    let (ia, ib) = read_pair(a)?;
     let region = match &a.region {
         Some(s) => Region::parse(s, ia.width, ia.height)
             .map_err(|e| anyhow::anyhow!("--region {s:?}: {e}"))?,
@@ -120,6 +88,50 @@ pub fn run(a: &CompareArgs) -> Result<()> {
         )?;
     }
     Ok(())
+}
+
+/// The error map must be a PNG and its full scale (`--scale`) a finite number > 0.
+fn check_map_flags(a: &CompareArgs) -> Result<()> {
+    if let Some(m) = &a.map {
+        let png = m
+            .extension()
+            .and_then(|e| e.to_str())
+            .is_some_and(|e| e.eq_ignore_ascii_case("png"));
+        if !png {
+            bail!(
+                "cannot write {}: the error map must end in .png",
+                m.display()
+            );
+        }
+    }
+    if let Some(s) = a.scale
+        && !(s.is_finite() && s > 0.0)
+    {
+        bail!(
+            "--scale {}: the map's full scale must be a finite number > 0",
+            raytree::text::num(s, 4)
+        );
+    }
+    Ok(())
+}
+
+/// Images A and B, both finite and of the same size.
+fn read_pair(a: &CompareArgs) -> Result<(Image, Image)> {
+    let (ia, ib) = (read_image(&a.a)?, read_image(&a.b)?);
+    finite(&ia, &a.a)?;
+    finite(&ib, &a.b)?;
+    if (ia.width, ia.height) != (ib.width, ib.height) {
+        bail!(
+            "cannot compare {} ({}x{}) with {} ({}x{}): sizes differ",
+            a.a.display(),
+            ia.width,
+            ia.height,
+            a.b.display(),
+            ib.width,
+            ib.height
+        );
+    }
+    Ok((ia, ib))
 }
 
 /// The mean signed difference per channel with its interval, and whether it is beyond the

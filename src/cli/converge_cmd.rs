@@ -23,67 +23,11 @@ const NAMES: [&str; 4] = [
 /// Run every series and write the report; nothing is written unless every input is good.
 pub fn run(a: &ConvergeArgs) -> Result<()> {
     let given = a.reference.as_deref().map(read_reference).transpose()?;
-    let mut overrides = a.overrides.clone();
-    if overrides.size.is_none()
-        && let Some(r) = &given
-    {
-        overrides.size = Some(format!("{}x{}", r.width, r.height));
-    }
-    let mut loaded = load(a.scene.as_deref(), &overrides)?;
-    if overrides.size.is_none() {
-        let cam = &loaded.scene.camera;
-        let w: u32 = if a.quick { 64 } else { 160 };
-        let h = (f64::from(w) * f64::from(cam.height) / f64::from(cam.width)).round();
-        loaded.scene.camera = cam.with_size(w, (h as u32).max(1));
-    }
+    let loaded = load_sized(a, given.as_ref())?;
     let scene = &loaded.scene;
     let (w, h) = (scene.camera.width, scene.camera.height);
-    let max_spp = a.max_spp.unwrap_or(if a.quick { 16 } else { 64 });
-    let ref_spp = a.ref_spp.unwrap_or(if a.quick { 256 } else { 1024 });
-    for (flag, v) in [("--max-spp", max_spp), ("--ref-spp", ref_spp)] {
-        if !(1..=raytree::scene::MAX_SPP).contains(&v) {
-            bail!(
-                "{flag} {v}: must be 1 to {} (the limit of --spp)",
-                raytree::scene::MAX_SPP
-            );
-        }
-    }
-    // The reference, a render and their errors at once.
-    super::budget::check_image_with(
-        scene,
-        super::budget::mib(a.overrides.max_memory),
-        3 * super::budget::PIXEL_BYTES,
-    )?;
-    if given.is_none() && ref_spp <= max_spp {
-        bail!(
-            "--ref-spp {ref_spp} must be above --max-spp {max_spp}: the reference must be better than every curve"
-        );
-    }
-    if let Some(r) = &given
-        && (r.width, r.height) != (w, h)
-    {
-        bail!(
-            "the reference {} is {}x{}, the render {w}x{h} (set --size or drop it)",
-            a.reference.as_deref().unwrap_or(Path::new("")).display(),
-            r.width,
-            r.height
-        );
-    }
-    let series = match &a.series {
-        Some(s) => s
-            .split(',')
-            .map(|n| Series::parse(n.trim()).map_err(|e| anyhow::anyhow!("--series: {e}")))
-            .collect::<Result<Vec<_>>>()?,
-        None => Series::defaults(scene),
-    };
-    if scene.settings.integrator != IntegratorKind::Path
-        && let Some(s) = series.iter().find(|s| s.needs_path())
-    {
-        bail!(
-            "--series {}: needs the path integrator (--integrator path)",
-            s.name()
-        );
-    }
+    let SppLimits { max_spp, ref_spp } = spp_limits(a, scene, given.as_ref())?;
+    let series = parse_series(a, scene)?;
     let spps: Vec<u32> = std::iter::successors(Some(1u32), |s| s.checked_mul(2))
         .take_while(|s| *s <= max_spp)
         .collect();
@@ -137,6 +81,93 @@ pub fn run(a: &ConvergeArgs) -> Result<()> {
     out(&md)?;
     sayln!("wrote {}/{{{}}}", a.output.display(), NAMES.join(","))?;
     Ok(())
+}
+
+/// The scene at the size of the `given` reference, or of --size, or a small default width
+/// (64 with --quick, else 160) at the camera's aspect.
+fn load_sized(a: &ConvergeArgs, given: Option<&Image>) -> Result<super::load::Loaded> {
+    let mut overrides = a.overrides.clone();
+    if overrides.size.is_none()
+        && let Some(r) = given
+    {
+        overrides.size = Some(format!("{}x{}", r.width, r.height));
+    }
+    let mut loaded = load(a.scene.as_deref(), &overrides)?;
+    if overrides.size.is_none() {
+        let cam = &loaded.scene.camera;
+        let w: u32 = if a.quick { 64 } else { 160 };
+        let h = (f64::from(w) * f64::from(cam.height) / f64::from(cam.width)).round();
+        loaded.scene.camera = cam.with_size(w, (h as u32).max(1));
+    }
+    Ok(loaded)
+}
+
+/// The largest samples per pixel of the curves and of the reference rendered here.
+struct SppLimits {
+    max_spp: u32,
+    ref_spp: u32,
+}
+
+/// The spp limits, checked with the memory budget and against the `given` reference.
+fn spp_limits(
+    a: &ConvergeArgs,
+    scene: &raytree::Scene,
+    given: Option<&Image>,
+) -> Result<SppLimits> {
+    let (w, h) = (scene.camera.width, scene.camera.height);
+    let max_spp = a.max_spp.unwrap_or(if a.quick { 16 } else { 64 });
+    let ref_spp = a.ref_spp.unwrap_or(if a.quick { 256 } else { 1024 });
+    for (flag, v) in [("--max-spp", max_spp), ("--ref-spp", ref_spp)] {
+        if !(1..=raytree::scene::MAX_SPP).contains(&v) {
+            bail!(
+                "{flag} {v}: must be 1 to {} (the limit of --spp)",
+                raytree::scene::MAX_SPP
+            );
+        }
+    }
+    // The reference, a render and their errors at once.
+    super::budget::check_image_with(
+        scene,
+        super::budget::mib(a.overrides.max_memory),
+        3 * super::budget::PIXEL_BYTES,
+    )?;
+    if given.is_none() && ref_spp <= max_spp {
+        bail!(
+            "--ref-spp {ref_spp} must be above --max-spp {max_spp}: the reference must be better than every curve"
+        );
+    }
+    if let Some(r) = given
+        && (r.width, r.height) != (w, h)
+    {
+        bail!(
+            "the reference {} is {}x{}, the render {w}x{h} (set --size or drop it)",
+            a.reference.as_deref().unwrap_or(Path::new("")).display(),
+            r.width,
+            r.height
+        );
+    }
+    Ok(SppLimits { max_spp, ref_spp })
+}
+
+/// The series of --series, or the scene's defaults; those that need the path integrator only
+/// with it.
+fn parse_series(a: &ConvergeArgs, scene: &raytree::Scene) -> Result<Vec<Series>> {
+    let series = match &a.series {
+        Some(s) => s
+            .split(',')
+            .map(|n| Series::parse(n.trim()).map_err(|e| anyhow::anyhow!("--series: {e}")))
+            .collect::<Result<Vec<_>>>()?,
+        None => Series::defaults(scene),
+    };
+    if scene.settings.integrator != IntegratorKind::Path
+        && let Some(s) = series.iter().find(|s| s.needs_path())
+    {
+        bail!(
+            "--series {}: needs the path integrator (--integrator path)",
+            s.name()
+        );
+    }
+    Ok(series)
 }
 
 fn read_reference(path: &Path) -> Result<Image> {

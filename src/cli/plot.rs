@@ -3,7 +3,7 @@
 use anyhow::{Result, anyhow};
 use plotters::prelude::*;
 use plotters::style::FontStyle;
-use raytree::analysis::cost::CostReport;
+use raytree::analysis::cost::{CostReport, CostRow};
 use std::sync::Once;
 
 /// Register egui's embedded Ubuntu Light as "sans-serif", so no system fonts are needed.
@@ -39,21 +39,16 @@ pub fn error_vs_time(report: &CostReport, w: u32, h: u32) -> Result<Vec<u8>> {
     {
         let root = BitMapBackend::with_buffer(&mut buf, (w, h)).into_drawing_area();
         root.fill(&WHITE).map_err(|e| anyhow!("plot: {e}"))?;
-        let plottable = |r: &&raytree::analysis::cost::CostRow| {
-            r.error.rmse.is_finite() && r.median_ms.is_finite() && r.median_ms > 0.0
-        };
+        let plottable =
+            |r: &&CostRow| r.error.rmse.is_finite() && r.median_ms.is_finite() && r.median_ms > 0.0;
         let rows: Vec<_> = report.rows.iter().filter(plottable).collect();
         let left_out = report.rows.len() - rows.len();
-        // Zero error cannot sit on a log axis: floor it at a tenth of the smallest non-zero error.
-        let nonzero = rows.iter().map(|r| r.error.rmse).filter(|e| *e > 0.0);
-        let floor = nonzero.clone().fold(f64::INFINITY, f64::min).min(1e-3) / 10.0;
-        let emax = nonzero.fold(floor * 10.0, f64::max) * 30.0; // room for the legend
-        let fastest = rows
-            .iter()
-            .map(|r| r.median_ms)
-            .fold(f64::INFINITY, f64::min);
-        let tmin = if fastest.is_finite() { fastest } else { 1.0 } / 1.5;
-        let tmax = rows.iter().map(|r| r.median_ms).fold(tmin * 1.5, f64::max) * 1.5;
+        let Ranges {
+            floor,
+            emax,
+            tmin,
+            tmax,
+        } = Ranges::of(&rows);
         let note = if left_out > 0 {
             format!("; {left_out} settings with non-finite error not plotted")
         } else {
@@ -82,44 +77,7 @@ pub fn error_vs_time(report: &CostReport, w: u32, h: u32) -> Result<Vec<u8>> {
             .axis_desc_style(("sans-serif", 18))
             .draw()
             .map_err(|e| anyhow!("plot: {e}"))?;
-        let clamp = |e: f64| e.max(floor);
-        let mut front: Vec<(f64, f64)> = rows
-            .iter()
-            .filter(|r| r.pareto)
-            .map(|r| (r.median_ms, clamp(r.error.rmse)))
-            .collect();
-        front.sort_by(|a, b| a.0.total_cmp(&b.0));
-        chart
-            .draw_series(LineSeries::new(front.clone(), BLACK.stroke_width(2)))
-            .map_err(|e| anyhow!("plot: {e}"))?
-            .label("Pareto front")
-            .legend(|(x, y)| PathElement::new(vec![(x, y), (x + 20, y)], BLACK.stroke_width(2)));
-        for (k, (axis, color)) in AXES.into_iter().enumerate() {
-            // Stagger labels by axis so settings that land on the same point stay legible.
-            let dy = -10 + 16 * k as i32 - 32;
-            let pts: Vec<_> = rows.iter().filter(|r| r.axis == axis).collect();
-            chart
-                .draw_series(pts.iter().map(|r| {
-                    let p = (r.median_ms, clamp(r.error.rmse));
-                    EmptyElement::at(p)
-                        + Circle::new((0, 0), 6, color.filled())
-                        + Text::new(
-                            r.value.clone(),
-                            (10, dy),
-                            ("sans-serif", 16).into_font().color(&color),
-                        )
-                }))
-                .map_err(|e| anyhow!("plot: {e}"))?
-                .label(axis)
-                .legend(move |(x, y)| Circle::new((x + 10, y), 6, color.filled()));
-        }
-        chart
-            .draw_series(
-                front
-                    .iter()
-                    .map(|p| Circle::new(*p, 10, BLACK.stroke_width(2))),
-            )
-            .map_err(|e| anyhow!("plot: {e}"))?;
+        draw_rows(&mut chart, &rows, floor)?;
         chart
             .configure_series_labels()
             .background_style(WHITE.mix(0.9))
@@ -131,4 +89,83 @@ pub fn error_vs_time(report: &CostReport, w: u32, h: u32) -> Result<Vec<u8>> {
         root.present().map_err(|e| anyhow!("plot: {e}"))?;
     }
     Ok(buf)
+}
+
+/// The log axes' ranges around the plottable rows.
+struct Ranges {
+    /// The lowest error shown: zero errors are drawn here.
+    floor: f64,
+    emax: f64,
+    /// Median time in ms.
+    tmin: f64,
+    tmax: f64,
+}
+
+impl Ranges {
+    fn of(rows: &[&CostRow]) -> Self {
+        // Zero error cannot sit on a log axis: floor it at a tenth of the smallest non-zero error.
+        let nonzero = rows.iter().map(|r| r.error.rmse).filter(|e| *e > 0.0);
+        let floor = nonzero.clone().fold(f64::INFINITY, f64::min).min(1e-3) / 10.0;
+        let emax = nonzero.fold(floor * 10.0, f64::max) * 30.0; // room for the legend
+        let fastest = rows
+            .iter()
+            .map(|r| r.median_ms)
+            .fold(f64::INFINITY, f64::min);
+        let tmin = if fastest.is_finite() { fastest } else { 1.0 } / 1.5;
+        let tmax = rows.iter().map(|r| r.median_ms).fold(tmin * 1.5, f64::max) * 1.5;
+        Self {
+            floor,
+            emax,
+            tmin,
+            tmax,
+        }
+    }
+}
+
+/// The Pareto front's line, one labelled point per row coloured by its axis, and rings on the
+/// front; errors below `floor` are drawn at it.
+fn draw_rows(
+    chart: &mut ChartContext<BitMapBackend, Cartesian2d<LogCoord<f64>, LogCoord<f64>>>,
+    rows: &[&CostRow],
+    floor: f64,
+) -> Result<()> {
+    let clamp = |e: f64| e.max(floor);
+    let mut front: Vec<(f64, f64)> = rows
+        .iter()
+        .filter(|r| r.pareto)
+        .map(|r| (r.median_ms, clamp(r.error.rmse)))
+        .collect();
+    front.sort_by(|a, b| a.0.total_cmp(&b.0));
+    chart
+        .draw_series(LineSeries::new(front.clone(), BLACK.stroke_width(2)))
+        .map_err(|e| anyhow!("plot: {e}"))?
+        .label("Pareto front")
+        .legend(|(x, y)| PathElement::new(vec![(x, y), (x + 20, y)], BLACK.stroke_width(2)));
+    for (k, (axis, color)) in AXES.into_iter().enumerate() {
+        // Stagger labels by axis so settings that land on the same point stay legible.
+        let dy = -10 + 16 * k as i32 - 32;
+        let pts: Vec<_> = rows.iter().filter(|r| r.axis == axis).collect();
+        chart
+            .draw_series(pts.iter().map(|r| {
+                let p = (r.median_ms, clamp(r.error.rmse));
+                EmptyElement::at(p)
+                    + Circle::new((0, 0), 6, color.filled())
+                    + Text::new(
+                        r.value.clone(),
+                        (10, dy),
+                        ("sans-serif", 16).into_font().color(&color),
+                    )
+            }))
+            .map_err(|e| anyhow!("plot: {e}"))?
+            .label(axis)
+            .legend(move |(x, y)| Circle::new((x + 10, y), 6, color.filled()));
+    }
+    chart
+        .draw_series(
+            front
+                .iter()
+                .map(|p| Circle::new(*p, 10, BLACK.stroke_width(2))),
+        )
+        .map_err(|e| anyhow!("plot: {e}"))?;
+    Ok(())
 }

@@ -83,62 +83,29 @@ pub fn denoise(image: &Image, features: &Features, p: &DenoiseParams) -> Image {
     let mut albedo: Vec<Rgb> = features.albedo.iter().map(|&a| demod(a)).collect();
     // Directly seen emission stays out of the filter (issue 32: a filtered lamp's edge turned
     // jagged with bright speckles): the reflected part is filtered and the emission added back.
-    let emitted = |c: usize| features.emitted.get(c).copied().unwrap_or(Rgb::ZERO);
-    let coverage = |c: usize| features.emitter.get(c).copied().unwrap_or(0.0);
     let mut illum: Vec<Rgb> = image
         .pixels
         .iter()
         .zip(&albedo)
         .enumerate()
-        .map(|(i, (c, a))| (*c - emitted(i)) / *a)
+        .map(|(i, (c, a))| (*c - emitted(features, i)) / *a)
         .collect();
     let mut var = variance(&illum, &albedo, features);
     for i in 0..p.iterations {
-        let step = 1usize << i;
         let g = gaussian3(&var, w, h);
-        // One pass: each pixel's (illumination, variance, albedo) from the previous pass,
-        // rows in parallel.
-        let pass = |c: usize| -> (Rgb, f64, Rgb) {
-            let (x, y) = (c % w, c / w);
-            let lp = luminance(illum[c]);
-            let sigma = p.sigma_luminance * g[c].max(0.0).sqrt() + EPS_LUMINANCE;
-            let (np, ap) = (features.normal[c], features.albedo[c]);
-            let vap = features.albedo_variance[c];
-            let (mut sum, mut wsum, mut vsum, mut asum) = (Rgb::ZERO, 0.0, 0.0, Rgb::ZERO);
-            for dy in -2i64..=2 {
-                let yq = y as i64 + dy * step as i64;
-                if yq < 0 || yq >= h as i64 {
-                    continue;
-                }
-                for dx in -2i64..=2 {
-                    let xq = x as i64 + dx * step as i64;
-                    if xq < 0 || xq >= w as i64 {
-                        continue;
-                    }
-                    let q = yq as usize * w + xq as usize;
-                    let kernel = H[dx.unsigned_abs() as usize] * H[dy.unsigned_abs() as usize];
-                    let wl = (-(lp - luminance(illum[q])).abs() / sigma).exp();
-                    let wn = edge(np, features.normal[q], p.sigma_normal);
-                    // An albedo that is itself noisy (a lens, the pixel footprint) widens its
-                    // edge stop by the variance of the difference of the two means.
-                    let s2 = p.sigma_albedo * p.sigma_albedo + (vap + features.albedo_variance[q]);
-                    let wa = (-(ap - features.albedo[q]).length_squared() / s2).exp();
-                    let dc = coverage(c) - coverage(q);
-                    let we = (-(dc * dc) / (SIGMA_EMITTER * SIGMA_EMITTER)).exp();
-                    let wt = kernel * wl * wn * wa * we;
-                    sum += illum[q] * wt;
-                    wsum += wt;
-                    vsum += wt * wt * var[q];
-                    asum += albedo[q] * wt;
-                }
-            }
-            if wsum > 0.0 && wsum.is_finite() && sum.is_finite() {
-                (sum / wsum, vsum / (wsum * wsum), asum / wsum)
-            } else {
-                (illum[c], var[c], albedo[c])
-            }
+        let pass = Pass {
+            w,
+            h,
+            step: 1usize << i,
+            illum: &illum,
+            var: &var,
+            albedo: &albedo,
+            blurred_var: &g,
+            features,
+            p,
         };
-        let out: Vec<(Rgb, f64, Rgb)> = (0..w * h).into_par_iter().map(pass).collect();
+        // Rows in parallel.
+        let out: Vec<(Rgb, f64, Rgb)> = (0..w * h).into_par_iter().map(|c| pass.pixel(c)).collect();
         let next_illum = out.iter().map(|o| o.0).collect();
         let next_var = out.iter().map(|o| o.1).collect();
         let next_albedo = out.iter().map(|o| o.2).collect();
@@ -152,7 +119,7 @@ pub fn denoise(image: &Image, features: &Features, p: &DenoiseParams) -> Image {
         .zip(&image.pixels)
         .enumerate()
         .map(|(i, ((l, a), orig))| {
-            let v = *l * *a + emitted(i);
+            let v = *l * *a + emitted(features, i);
             if v.is_finite() { v } else { *orig }
         })
         .collect();
@@ -160,6 +127,87 @@ pub fn denoise(image: &Image, features: &Features, p: &DenoiseParams) -> Image {
         width: image.width,
         height: image.height,
         pixels,
+    }
+}
+
+/// The emission seen directly at pixel `c` (none where the features do not say).
+fn emitted(features: &Features, c: usize) -> Rgb {
+    features.emitted.get(c).copied().unwrap_or(Rgb::ZERO)
+}
+
+/// The share of pixel `c` covered by an emitter (none where the features do not say).
+fn coverage(features: &Features, c: usize) -> f64 {
+    features.emitter.get(c).copied().unwrap_or(0.0)
+}
+
+/// One à-trous pass over a `w x h` image: its taps `step` pixels apart, reading the previous
+/// pass's illumination, variance and albedo.
+struct Pass<'a> {
+    w: usize,
+    h: usize,
+    step: usize,
+    illum: &'a [Rgb],
+    var: &'a [f64],
+    albedo: &'a [Rgb],
+    /// The variance blurred by a 3x3 Gaussian (the luminance edge stop's scale).
+    blurred_var: &'a [f64],
+    features: &'a Features,
+    p: &'a DenoiseParams,
+}
+
+impl Pass<'_> {
+    /// Pixel `c`'s (illumination, variance, albedo) after this pass; unchanged where the
+    /// weights vanish or are not finite.
+    fn pixel(&self, c: usize) -> (Rgb, f64, Rgb) {
+        let Self {
+            w,
+            h,
+            step,
+            illum,
+            var,
+            albedo,
+            features,
+            p,
+            ..
+        } = *self;
+        let (x, y) = (c % w, c / w);
+        let lp = luminance(illum[c]);
+        let sigma = p.sigma_luminance * self.blurred_var[c].max(0.0).sqrt() + EPS_LUMINANCE;
+        let (np, ap) = (features.normal[c], features.albedo[c]);
+        let vap = features.albedo_variance[c];
+        let (mut sum, mut wsum, mut vsum, mut asum) = (Rgb::ZERO, 0.0, 0.0, Rgb::ZERO);
+        for dy in -2i64..=2 {
+            let yq = y as i64 + dy * step as i64;
+            if yq < 0 || yq >= h as i64 {
+                continue;
+            }
+            for dx in -2i64..=2 {
+                let xq = x as i64 + dx * step as i64;
+                if xq < 0 || xq >= w as i64 {
+                    continue;
+                }
+                let q = yq as usize * w + xq as usize;
+                let kernel = H[dx.unsigned_abs() as usize] * H[dy.unsigned_abs() as usize];
+                let wl = (-(lp - luminance(illum[q])).abs() / sigma).exp();
+                let wn = edge(np, features.normal[q], p.sigma_normal);
+                // An albedo that is itself noisy (a lens, the pixel footprint) widens its
+                // edge stop by the variance of the difference of the two means.
+                let s2 = p.sigma_albedo * p.sigma_albedo + (vap + features.albedo_variance[q]);
+                let wa = (-(ap - features.albedo[q]).length_squared() / s2).exp();
+                let dc = coverage(features, c) - coverage(features, q);
+                let we = (-(dc * dc) / (SIGMA_EMITTER * SIGMA_EMITTER)).exp();
+                let wt = kernel * wl * wn * wa * we;
+                sum += illum[q] * wt;
+                wsum += wt;
+                vsum += wt * wt * var[q];
+                asum += albedo[q] * wt;
+            }
+        }
+        if wsum > 0.0 && wsum.is_finite() && sum.is_finite() {
+            (sum / wsum, vsum / (wsum * wsum), asum / wsum)
+        } else {
+            (illum[c], var[c], albedo[c])
+        }
     }
 }
 

@@ -4,7 +4,7 @@
 //! its albedo and normal buffers. A feature ray draws no random number, so gathering features
 //! leaves the beauty samples untouched.
 
-use crate::bsdf::{Bsdf, Lobe, LobeKind, MAX_LOBES, luminance};
+use crate::bsdf::{Bsdf, BsdfSample, Lobe, LobeKind, MAX_LOBES, luminance};
 use crate::integrator::Whitted;
 use crate::math::{Ray, Rgb};
 use crate::media::MediaStack;
@@ -67,23 +67,7 @@ pub fn first_non_delta(tracer: &Whitted<'_>, camera: Ray) -> FeatureSample {
             .filter(|(l, _)| !l.is_delta())
             .map(|(l, _)| l.weight())
             .sum();
-        // The delta branch carrying the most: the first and the last delta lobe's events
-        // (mirror, Fresnel reflection, refraction), compared by their weight f |cos| (a delta
-        // sample's value is its coefficient over |cos|).
-        let mut delta = [Lobe::Lambert { albedo: Rgb::ZERO }; MAX_LOBES];
-        let mut k = 0;
-        for (l, _) in bsdf.lobes().filter(|(l, _)| l.is_delta()) {
-            delta[k] = *l;
-            k += 1;
-        }
-        let specular = Bsdf::new(*bsdf.frame(), &delta[..k]);
-        let u = DVec2::splat(0.5);
-        let branch = [1e-9, 1.0 - 1e-9]
-            .into_iter()
-            .filter_map(|uc| specular.sample(si.wo, uc, u))
-            .filter(|s| s.value.is_finite())
-            .map(|s| (s, s.value * s.wi.dot(si.ns).abs()))
-            .max_by(|a, b| luminance(a.1).total_cmp(&luminance(b.1)));
+        let branch = strongest_delta_branch(&bsdf, &si);
         // A surface stops the feature ray unless a delta branch carries more than its
         // non-delta lobes (a mirror ball with a trace of diffuse is followed).
         if branch.is_none_or(|(_, w)| luminance(w) <= luminance(albedo)) {
@@ -121,4 +105,27 @@ pub fn first_non_delta(tracer: &Whitted<'_>, camera: Ray) -> FeatureSample {
         normal,
         emitted: emitted.unwrap_or(Rgb::ZERO),
     }
+}
+
+/// The delta branch carrying the most at `si`, with its weight: the first and the last delta
+/// lobe's events (mirror, Fresnel reflection, refraction), compared by their weight f |cos| (a
+/// delta sample's value is its coefficient over |cos|).
+fn strongest_delta_branch(
+    bsdf: &Bsdf,
+    si: &crate::interaction::SurfaceInteraction<'_>,
+) -> Option<(BsdfSample, Rgb)> {
+    let mut delta = [Lobe::Lambert { albedo: Rgb::ZERO }; MAX_LOBES];
+    let mut k = 0;
+    for (l, _) in bsdf.lobes().filter(|(l, _)| l.is_delta()) {
+        delta[k] = *l;
+        k += 1;
+    }
+    let specular = Bsdf::new(*bsdf.frame(), &delta[..k]);
+    let u = DVec2::splat(0.5);
+    [1e-9, 1.0 - 1e-9]
+        .into_iter()
+        .filter_map(|uc| specular.sample(si.wo, uc, u))
+        .filter(|s| s.value.is_finite())
+        .map(|s| (s, s.value * s.wi.dot(si.ns).abs()))
+        .max_by(|a, b| luminance(a.1).total_cmp(&luminance(b.1)))
 }

@@ -26,25 +26,36 @@ impl EffectPlan {
     /// The plan as lines with reasons, for `raytree effects`.
     #[must_use]
     pub fn explain(&self, scene: &Scene) -> Vec<EffectLine> {
-        let names = |pred: &dyn Fn(&crate::scene::Material) -> bool| {
-            let v: Vec<&str> = scene
-                .used_materials()
-                .filter(|m| pred(m))
-                .map(|m| m.name.as_str())
-                .collect();
-            if v.is_empty() {
-                "no material".to_string()
-            } else {
-                v.join(", ")
+        let names = |pred: &dyn Fn(&crate::scene::Material) -> bool| material_names(scene, pred);
+        let mut out = self.transport_lines(scene, &names);
+        out.extend(self.sampling_lines(scene, &names));
+        out.extend(material_lines(scene, &names));
+        match scene.settings.integrator {
+            crate::scene::IntegratorKind::Path => {
+                path::restate(&mut out, scene);
+                out.extend(path::lines(scene, &names));
             }
-        };
+            crate::scene::IntegratorKind::Light => {
+                path::restate(&mut out, scene);
+                path::restate_light(&mut out);
+                out.extend(path::light_lines(scene, &names));
+            }
+            crate::scene::IntegratorKind::Bdpt => {
+                path::restate(&mut out, scene);
+                out.extend(path::bdpt_lines(scene, &names));
+            }
+            crate::scene::IntegratorKind::Whitted => {}
+        }
+        out.extend(unused_materials_line(scene));
+        out.extend(self.shadow_ray_lines(scene));
+        out
+    }
+
+    /// The lines of what the rays do at a surface: reflection, refraction, Fresnel, total
+    /// internal reflection, absorption, translucent shadows and highlights.
+    fn transport_lines(&self, scene: &Scene, names: path::Names<'_>) -> Vec<EffectLine> {
         let s = &scene.settings;
-        let line = |effect: &str, on: bool, reason: String| EffectLine {
-            effect: effect.to_string(),
-            on,
-            reason,
-        };
-        let mut out = vec![
+        vec![
             line(
                 "reflection",
                 self.reflection,
@@ -102,6 +113,14 @@ impl EffectPlan {
                 self.specular,
                 format!("specular > 0: {}", names(&|m| nonzero(m.specular))),
             ),
+        ]
+    }
+
+    /// The lines of how many rays are traced: recursion, glass roulette, supersampling, area
+    /// lights and glossy lobes.
+    fn sampling_lines(&self, scene: &Scene, names: path::Names<'_>) -> Vec<EffectLine> {
+        let s = &scene.settings;
+        vec![
             line(
                 "recursion",
                 self.recursion,
@@ -124,22 +143,7 @@ impl EffectPlan {
                 self.supersampling,
                 crate::render::antialiasing_note(&crate::integrator::SceneIntegrator::new(scene)),
             ),
-            line("area lights", self.area_lights, {
-                let emitters: Vec<&str> = (0..scene.objects.len())
-                    .filter(|&i| scene.area_light(i).is_some())
-                    .map(|i| scene.objects[i].name.as_str())
-                    .collect();
-                let list = if emitters.is_empty() {
-                    "no emissive sphere, quad or triangle".to_string()
-                } else {
-                    format!("emissive: {}", emitters.join(", "))
-                };
-                let list = format!("{list}{}", dark_note(scene));
-                match s.whitted.light_samples {
-                    Some(n) => format!("{list}; {n} shadow rays per light per hit"),
-                    None => format!("{list}; settings.light_samples absent (seen, not sampled)"),
-                }
-            }),
+            line("area lights", self.area_lights, area_lights_reason(scene)),
             line(
                 "glossy (rough lobes)",
                 self.glossy,
@@ -155,38 +159,12 @@ impl EffectPlan {
                     "no material with roughness > 0 on reflectivity or transmissivity".to_string()
                 },
             ),
-        ];
-        out.extend(material_lines(scene, &names));
-        match s.integrator {
-            crate::scene::IntegratorKind::Path => {
-                path::restate(&mut out, scene);
-                out.extend(path::lines(scene, &names));
-            }
-            crate::scene::IntegratorKind::Light => {
-                path::restate(&mut out, scene);
-                path::restate_light(&mut out);
-                out.extend(path::light_lines(scene, &names));
-            }
-            crate::scene::IntegratorKind::Bdpt => {
-                path::restate(&mut out, scene);
-                out.extend(path::bdpt_lines(scene, &names));
-            }
-            crate::scene::IntegratorKind::Whitted => {}
-        }
-        let unused: Vec<&str> = (0..scene.materials.len())
-            .filter(|&m| !scene.material_used(m))
-            .map(|m| scene.materials[m].name.as_str())
-            .collect();
-        if !unused.is_empty() {
-            out.push(line(
-                "unused materials",
-                false,
-                format!(
-                    "no object uses {}: they call for nothing",
-                    unused.join(", ")
-                ),
-            ));
-        }
+        ]
+    }
+
+    /// One line per light: whether shadow rays are traced to it, and a spot light's cone.
+    fn shadow_ray_lines(&self, scene: &Scene) -> Vec<EffectLine> {
+        let mut out = Vec::new();
         for (i, l) in scene.lights.iter().enumerate() {
             let on = self.light_on(i);
             out.push(line(
@@ -212,6 +190,65 @@ impl EffectPlan {
         }
         out
     }
+}
+
+/// One line of the plan.
+fn line(effect: &str, on: bool, reason: String) -> EffectLine {
+    EffectLine {
+        effect: effect.to_string(),
+        on,
+        reason,
+    }
+}
+
+/// The names of the used materials that `pred` holds for, or "no material".
+fn material_names(scene: &Scene, pred: &dyn Fn(&crate::scene::Material) -> bool) -> String {
+    let v: Vec<&str> = scene
+        .used_materials()
+        .filter(|m| pred(m))
+        .map(|m| m.name.as_str())
+        .collect();
+    if v.is_empty() {
+        "no material".to_string()
+    } else {
+        v.join(", ")
+    }
+}
+
+/// The emissive objects, the dark ones, and how many shadow rays each light gets per hit.
+fn area_lights_reason(scene: &Scene) -> String {
+    let emitters: Vec<&str> = (0..scene.objects.len())
+        .filter(|&i| scene.area_light(i).is_some())
+        .map(|i| scene.objects[i].name.as_str())
+        .collect();
+    let list = if emitters.is_empty() {
+        "no emissive sphere, quad or triangle".to_string()
+    } else {
+        format!("emissive: {}", emitters.join(", "))
+    };
+    let list = format!("{list}{}", dark_note(scene));
+    match scene.settings.whitted.light_samples {
+        Some(n) => format!("{list}; {n} shadow rays per light per hit"),
+        None => format!("{list}; settings.light_samples absent (seen, not sampled)"),
+    }
+}
+
+/// The materials no object uses, if any.
+fn unused_materials_line(scene: &Scene) -> Option<EffectLine> {
+    let unused: Vec<&str> = (0..scene.materials.len())
+        .filter(|&m| !scene.material_used(m))
+        .map(|m| scene.materials[m].name.as_str())
+        .collect();
+    (!unused.is_empty()).then(|| {
+        line(
+            "unused materials",
+            false,
+            format!(
+                "no object uses {}: they call for nothing",
+                unused.join(", ")
+            ),
+        )
+    })
 }
 
 /// The lines of the conductor, coating, thin sheet, Beckmann and anisotropic lobes, present only where some used

@@ -166,9 +166,50 @@ fn with_settings(scene: &Scene, s: Settings) -> Scene {
 
 /// Run the sweep. `progress(done, total)` is called after each render.
 pub fn run(scene: &Scene, sweep: &Sweep, progress: &dyn Fn(usize, usize)) -> CostReport {
-    // The base is the default (the automatic min_weight) at depth 16; it differs from the
-    // exhaustive reference in depth and the cut, so each axis shows its own error (the offset
-    // axis keeps the scene's epsilon for the strategies that use one).
+    let base = base_settings(scene);
+    let configs = sweep.settings(scene, &base);
+    let repeats = sweep.repeats.max(1) as usize;
+    let reference = reference_settings(&base, sweep);
+    let wanted = wanted_references(sweep, &configs, reference);
+    let mut renders = Renders {
+        done: 0,
+        total: wanted.len() + configs.len() * repeats,
+        progress,
+    };
+    let refs: Vec<(Settings, Image)> = wanted
+        .into_iter()
+        .map(|r| (r, renders.render(&with_settings(scene, r)).image))
+        .collect();
+    let measure = Measure {
+        scene,
+        sweep,
+        reference,
+        refs: &refs,
+        repeats,
+    };
+    let mut rows = Vec::new();
+    for (axis, value, settings) in configs {
+        rows.push(measure.row(axis, value, settings, &mut renders));
+    }
+    mark_pareto(&mut rows);
+    CostReport {
+        size: [scene.camera.width, scene.camera.height],
+        reference,
+        reference_spp: sweep.reference_spp,
+        reference_light_samples: sweep.reference_light_samples,
+        reference_glossy_samples: sweep.reference_glossy_samples,
+        base,
+        base_min_weight: auto_min_weight(scene, &base),
+        rows,
+    }
+}
+
+/// The base every row changes one setting of.
+///
+/// The base is the default (the automatic min_weight) at depth 16; it differs from the
+/// exhaustive reference in depth and the cut, so each axis shows its own error (the offset
+/// axis keeps the scene's epsilon for the strategies that use one).
+fn base_settings(scene: &Scene) -> Settings {
     let mut base = Settings {
         max_depth: 16,
         whitted: WhittedSettings {
@@ -183,12 +224,17 @@ pub fn run(scene: &Scene, sweep: &Sweep, progress: &dyn Fn(usize, usize)) -> Cos
         ..scene.settings
     };
     base.offset.strategy = OffsetStrategy::Robust;
-    let configs = sweep.settings(scene, &base);
-    let repeats = sweep.repeats.max(1) as usize;
-    let reference = reference_settings(&base, sweep);
-    // The references: the pixel-centre one and the spp one first (the first render also warms
-    // the thread pool and caches before anything is timed), then those of the other
-    // stochastic axes, each once.
+    base
+}
+
+/// The references: the pixel-centre one and the spp one first (the first render also warms
+/// the thread pool and caches before anything is timed), then those of the other
+/// stochastic axes, each once.
+fn wanted_references(
+    sweep: &Sweep,
+    configs: &[(String, String, Settings)],
+    reference: Settings,
+) -> Vec<Settings> {
     let mut wanted = vec![
         reference,
         Settings {
@@ -196,34 +242,65 @@ pub fn run(scene: &Scene, sweep: &Sweep, progress: &dyn Fn(usize, usize)) -> Cos
             ..reference
         },
     ];
-    for (axis, _, s) in &configs {
+    for (axis, _, s) in configs {
         let r = sweep.reference_for(axis, s, &reference);
         if !wanted.contains(&r) {
             wanted.push(r);
         }
     }
-    let total = wanted.len() + configs.len() * repeats;
-    let mut done = 0;
-    let mut refs = Vec::new();
-    for r in wanted {
-        refs.push((
-            r,
-            render(
-                &crate::integrator::SceneIntegrator::new(&with_settings(scene, r)),
-                &crate::render::RenderOptions::new(),
-                &|_| {},
-            )
-            .image,
-        ));
-        done += 1;
-        progress(done, total);
+    wanted
+}
+
+/// The sweep's renders, counted for the progress callback.
+struct Renders<'a> {
+    done: usize,
+    total: usize,
+    progress: &'a dyn Fn(usize, usize),
+}
+
+impl Renders<'_> {
+    /// Render `scene` with the default options and report the progress.
+    fn render(&mut self, scene: &Scene) -> crate::render::Rendered {
+        let r = render(
+            &crate::integrator::SceneIntegrator::new(scene),
+            &crate::render::RenderOptions::new(),
+            &|_| {},
+        );
+        self.tick();
+        r
     }
-    let mut rows = Vec::new();
-    for (axis, value, settings) in configs {
-        let s = with_settings(scene, settings);
+
+    /// Count one render done and report it.
+    fn tick(&mut self) {
+        self.done += 1;
+        (self.progress)(self.done, self.total);
+    }
+}
+
+/// What measuring a row needs: the scene, the sweep and the rendered references.
+struct Measure<'a> {
+    scene: &'a Scene,
+    sweep: &'a Sweep,
+    /// The pixel-centre reference's settings.
+    reference: Settings,
+    /// Every reference's settings and image.
+    refs: &'a [(Settings, Image)],
+    repeats: usize,
+}
+
+impl Measure<'_> {
+    /// Render a row `repeats` times, and its median time, rays and error against its reference.
+    fn row(
+        &self,
+        axis: String,
+        value: String,
+        settings: Settings,
+        renders: &mut Renders,
+    ) -> CostRow {
+        let s = with_settings(self.scene, settings);
         let mut times = Vec::new();
         let mut last = None;
-        for _ in 0..repeats {
+        for _ in 0..self.repeats {
             let start = Instant::now();
             let r = render(
                 &crate::integrator::SceneIntegrator::new(&s),
@@ -232,17 +309,17 @@ pub fn run(scene: &Scene, sweep: &Sweep, progress: &dyn Fn(usize, usize)) -> Cos
             );
             times.push(start.elapsed().as_secs_f64() * 1e3);
             last = Some(r);
-            done += 1;
-            progress(done, total);
+            renders.tick(); // after the clock: the progress bar is not timed
         }
         let crate::render::Rendered { image, stats, .. } = last.expect("at least one repeat");
-        let want = sweep.reference_for(&axis, &settings, &reference);
-        let reference = &refs
+        let want = self.sweep.reference_for(&axis, &settings, &self.reference);
+        let reference = &self
+            .refs
             .iter()
             .find(|(r, _)| *r == want)
             .expect("every reference rendered")
             .1;
-        rows.push(CostRow {
+        CostRow {
             axis,
             value,
             settings,
@@ -250,18 +327,7 @@ pub fn run(scene: &Scene, sweep: &Sweep, progress: &dyn Fn(usize, usize)) -> Cos
             rays: stats.rays.into(),
             error: compare(&image, reference).expect("same size"),
             pareto: false,
-        });
-    }
-    mark_pareto(&mut rows);
-    CostReport {
-        size: [scene.camera.width, scene.camera.height],
-        reference,
-        reference_spp: sweep.reference_spp,
-        reference_light_samples: sweep.reference_light_samples,
-        reference_glossy_samples: sweep.reference_glossy_samples,
-        base,
-        base_min_weight: auto_min_weight(scene, &base),
-        rows,
+        }
     }
 }
 

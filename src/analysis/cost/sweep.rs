@@ -74,6 +74,20 @@ struct SweepRow {
     whitted: bool,
 }
 
+/// The rows of a sweep, in the order they are measured.
+struct RowList(Vec<SweepRow>);
+
+impl RowList {
+    fn push(&mut self, axis: &str, label: String, settings: Settings, whitted: bool) {
+        self.0.push(SweepRow {
+            axis: axis.to_string(),
+            label,
+            settings,
+            whitted,
+        });
+    }
+}
+
 impl Sweep {
     /// The full sweep of the issue: depth 0..16, every Fresnel model, 1/4/16 spp, every offset
     /// strategy, and min_weight from off to coarse with the automatic cut beside them.
@@ -180,17 +194,19 @@ impl Sweep {
 
     /// Every row of the Whitted sweep.
     fn rows(&self, scene: &Scene, base: &Settings) -> Vec<SweepRow> {
-        let mut out = Vec::new();
-        let mut push = |axis: &str, label: String, settings: Settings, whitted: bool| {
-            out.push(SweepRow {
-                axis: axis.to_string(),
-                label,
-                settings,
-                whitted,
-            });
-        };
+        let mut out = RowList(Vec::new());
+        self.image_rows(scene, base, &mut out);
+        self.light_rows(scene, base, &mut out);
+        self.roulette_rows(scene, base, &mut out);
+        self.sampling_rows(base, &mut out);
+        out.0
+    }
+
+    /// The rows of depth, Fresnel, samples per pixel, automatic antialiasing, offset strategy
+    /// and minimum weight.
+    fn image_rows(&self, scene: &Scene, base: &Settings, out: &mut RowList) {
         for &d in &self.depths {
-            push(
+            out.push(
                 "max_depth",
                 d.to_string(),
                 Settings {
@@ -201,7 +217,7 @@ impl Sweep {
             );
         }
         for &f in &self.fresnels {
-            push(
+            out.push(
                 "fresnel",
                 format!("{f:?}").to_lowercase(),
                 Settings {
@@ -215,7 +231,7 @@ impl Sweep {
             );
         }
         for &n in &self.spps {
-            push("spp", n.to_string(), Settings { spp: n, ..*base }, false);
+            out.push("spp", n.to_string(), Settings { spp: n, ..*base }, false);
         }
         // Automatic antialiasing beside each uniform spp row, where the scene allows it.
         for &n in &self.spps {
@@ -226,13 +242,13 @@ impl Sweep {
             };
             let scene = with_settings(scene, s);
             if adaptive_plan(&SceneIntegrator::new(&scene)).is_some_and(|p| p.auto) {
-                push("antialiasing", format!("auto {n} spp"), s, false);
+                out.push("antialiasing", format!("auto {n} spp"), s, false);
             }
         }
         for &o in &self.offsets {
             let mut s = *base;
             s.offset.strategy = o;
-            push("offset", o.name().to_string(), s, false);
+            out.push("offset", o.name().to_string(), s, false);
         }
         for &w in &self.min_weights {
             // The cut alone: no roulette below a weight (an explicit min_weight has none).
@@ -248,8 +264,13 @@ impl Sweep {
                 Some(w) => format!("{w:e}"),
                 None => format!("auto ({:.1e})", auto_min_weight(scene, &s)),
             };
-            push("min_weight", label, s, true);
+            out.push("min_weight", label, s, true);
         }
+    }
+
+    /// The rows of light samples (where the scene has area lights) and glossy samples (where
+    /// it has rough lobes).
+    fn light_rows(&self, scene: &Scene, base: &Settings, out: &mut RowList) {
         let plan = |s: Settings| EffectPlan::for_scene(&with_settings(scene, s));
         let area = plan(Settings {
             whitted: WhittedSettings {
@@ -267,7 +288,7 @@ impl Sweep {
                 },
                 ..*base
             };
-            push("light_samples", n.to_string(), s, true);
+            out.push("light_samples", n.to_string(), s, true);
         }
         let glossy = plan(*base).glossy;
         for &n in self.glossy_samples.iter().filter(|_| glossy) {
@@ -278,8 +299,12 @@ impl Sweep {
                 },
                 ..*base
             };
-            push("glossy_samples", n.to_string(), s, true);
+            out.push("glossy_samples", n.to_string(), s, true);
         }
+    }
+
+    /// The rows of glass roulette by depth and by weight, where the scene has glass.
+    fn roulette_rows(&self, scene: &Scene, base: &Settings, out: &mut RowList) {
         let glass = scene.materials.iter().any(|m| m.is_transmissive());
         for &d in self.dielectric_roulette.iter().filter(|_| glass) {
             let s = Settings {
@@ -289,7 +314,7 @@ impl Sweep {
                 },
                 ..*base
             };
-            push("dielectric_roulette", format!("from depth {d}"), s, true);
+            out.push("dielectric_roulette", format!("from depth {d}"), s, true);
         }
         for &w in self.roulette_below.iter().filter(|_| glass) {
             // `None` is the weight suggested for the scene (opt-in: the default is off, which
@@ -310,8 +335,12 @@ impl Sweep {
                     format!("suggested ({auto:.1e})")
                 }
             };
-            push("roulette_below", label, s, true);
+            out.push("roulette_below", label, s, true);
         }
+    }
+
+    /// The rows of adaptive sampling and of the pixel filters.
+    fn sampling_rows(&self, base: &Settings, out: &mut RowList) {
         for &(threshold, max_spp) in &self.adaptive {
             let s = Settings {
                 spp: self.adaptive_spp.max(2),
@@ -321,7 +350,7 @@ impl Sweep {
                 }),
                 ..*base
             };
-            push(
+            out.push(
                 "adaptive",
                 format!("{threshold} to {max_spp} spp"),
                 s,
@@ -336,10 +365,9 @@ impl Sweep {
                     spp: self.filter_spp,
                     ..*base
                 };
-                push("filter", f.clone(), s, false);
+                out.push("filter", f.clone(), s, false);
             }
         }
-        out
     }
 
     /// The reference a row of `axis` with `settings` is compared with: `reference_settings`

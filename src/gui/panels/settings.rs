@@ -66,6 +66,20 @@ fn offset_label(o: OffsetStrategy) -> &'static str {
 pub fn settings_ui(ui: &mut egui::Ui, doc: &Document, cmds: &mut Vec<Command>) {
     let old = doc.scene.settings;
     let mut s = old;
+    integrator_ui(ui, &mut s);
+    samples_ui(ui, doc, &mut s);
+    offset_ui(ui, &mut s);
+    whitted_ui(ui, doc, &mut s);
+    stochastic_ui(ui, doc, &mut s);
+    roulette_ui(ui, doc, &mut s);
+    if s != old {
+        cmds.push(Command::SetSettings(s));
+    }
+    super::progressive::progressive_ui(ui, doc, cmds);
+}
+
+/// The integrator, and where its Russian roulette starts (not for Whitted).
+fn integrator_ui(ui: &mut egui::Ui, s: &mut crate::scene::Settings) {
     egui::ComboBox::from_label("integrator")
         .selected_text(s.integrator.name())
         .show_ui(ui, |ui| {
@@ -80,6 +94,10 @@ pub fn settings_ui(ui: &mut egui::Ui, doc: &Document, cmds: &mut Vec<Command>) {
                 .text("roulette from bounce"),
         );
     }
+}
+
+/// Max depth, samples per pixel and automatic antialiasing.
+fn samples_ui(ui: &mut egui::Ui, doc: &Document, s: &mut crate::scene::Settings) {
     // `Never`: the slider's range is where dragging ends, not a limit. A scene's own value
     // beyond it (max_depth 64, spp 256) stays as it is (egui's default clamped it at the first
     // frame), and a value typed beyond it is taken (`Edits` turned a typed 64 into 32); the
@@ -108,6 +126,10 @@ pub fn settings_ui(ui: &mut egui::Ui, doc: &Document, cmds: &mut Vec<Command>) {
     } else {
         Antialiasing::Uniform
     };
+}
+
+/// The offset strategy of secondary rays and its epsilon.
+fn offset_ui(ui: &mut egui::Ui, s: &mut crate::scene::Settings) {
     egui::ComboBox::from_label("offset")
         .selected_text(offset_label(s.offset.strategy))
         .show_ui(ui, |ui| {
@@ -130,8 +152,11 @@ pub fn settings_ui(ui: &mut egui::Ui, doc: &Document, cmds: &mut Vec<Command>) {
             })
             .text("epsilon"),
     );
-    // The Whitted integrator's own settings: shown under the path integrator too (they are
-    // kept for a switch back) but disabled, as it does not read them.
+}
+
+/// The Whitted integrator's own settings: shown under the path integrator too (they are
+/// kept for a switch back) but disabled, as it does not read them.
+fn whitted_ui(ui: &mut egui::Ui, doc: &Document, s: &mut crate::scene::Settings) {
     ui.add_enabled_ui(s.integrator == IntegratorKind::Whitted, |ui| {
         egui::ComboBox::from_label("Fresnel")
             .selected_text(format!("{:?}", s.whitted.fresnel))
@@ -153,19 +178,13 @@ pub fn settings_ui(ui: &mut egui::Ui, doc: &Document, cmds: &mut Vec<Command>) {
                 "translucent",
             );
         });
-        min_weight_ui(ui, doc, &mut s);
+        min_weight_ui(ui, doc, s);
     })
     .response
     .on_disabled_hover_text(format!(
         "the path integrator does not read these: {}",
         crate::scene::WhittedSettings::WHY_OTHERS_IGNORE
     ));
-    stochastic_ui(ui, doc, &mut s);
-    roulette_ui(ui, doc, &mut s);
-    if s != old {
-        cmds.push(Command::SetSettings(s));
-    }
-    super::progressive::progressive_ui(ui, doc, cmds);
 }
 
 /// Area-light and glossy sampling of the Whitted integrator, shown only for scenes that have an

@@ -313,39 +313,9 @@ impl Session {
                 self.doc.node = None;
                 self.select(p);
             }
-            Command::MoveSelection([dx, dy]) => {
-                let [x, y] = self.doc.selection.unwrap_or([0, 0]);
-                let nx =
-                    (i64::from(x) + i64::from(dx)).clamp(0, i64::from(self.doc.image.width) - 1);
-                let ny =
-                    (i64::from(y) + i64::from(dy)).clamp(0, i64::from(self.doc.image.height) - 1);
-                self.doc.node = None;
-                self.select([nx as u32, ny as u32]);
-            }
+            Command::MoveSelection(step) => self.move_selection(step),
             Command::SelectNode(id) => self.doc.node = id,
-            Command::SetSettings(settings) => {
-                // The command line's own validation: a refused value is said, and the
-                // settings in force stay as they were (issue 32, item 1).
-                if let Err((path, msg)) = crate::scene::check_settings(&settings) {
-                    self.doc.error = Some(format!("{REFUSED}{path}: {msg}"));
-                    return;
-                }
-                if self
-                    .doc
-                    .error
-                    .as_deref()
-                    .is_some_and(|e| e.starts_with(REFUSED))
-                {
-                    self.doc.error = None;
-                }
-                let mut scene = (*self.doc.scene).clone();
-                scene.settings = settings;
-                self.doc.scene = Arc::new(scene);
-                self.rerender();
-                if let Some(p) = self.doc.selection {
-                    self.select(p);
-                }
-            }
+            Command::SetSettings(settings) => self.set_settings(settings),
             Command::SetProgressive(o) => {
                 self.doc.progressive.options = o;
                 self.rerender();
@@ -376,39 +346,78 @@ impl Session {
             Command::Export(kind) => self.export(kind),
             Command::SetPathField(s) => self.doc.path_field = s,
             Command::SetExportField(s) => self.doc.export_field = s,
-            Command::Pin => {
-                if let Some(tree) = self.doc.tree.clone() {
-                    let version = self.doc.pin.as_ref().map_or(0, |p| p.version) + 1;
-                    let label =
-                        crate::gui::model::document::tree_label(&self.doc.source.label(), &tree);
-                    self.doc.pin = Some(crate::gui::model::document::Pin {
-                        tree,
-                        label,
-                        version,
-                    });
-                }
-            }
+            Command::Pin => self.pin(),
             Command::Unpin => self.doc.pin = None,
             Command::SetStep(step) => self.doc.step = step,
             Command::EditLpe(text) => self.doc.lpe.edit(text),
-            Command::SetLpe(text) => {
-                if self.doc.lpe.set_text(text) {
-                    // The filter renumbers nodes: keep the same ray selected (or its nearest
-                    // ancestor the new filter keeps), else the first root.
-                    let original = self.doc.node.map(|id| self.doc.lpe.to_original(id));
-                    self.refilter();
-                    let n = self.doc.tree.as_ref().map_or(0, |t| t.nodes.len());
-                    let lpe = &self.doc.lpe;
-                    let kept = original.and_then(|id| {
-                        lpe.from_original(lpe.unfiltered(self.doc.tree.as_ref())?, id)
-                    });
-                    self.doc.node = kept.or(Some(crate::NodeId(0)).filter(|_| n > 0));
-                }
-            }
+            Command::SetLpe(text) => self.set_lpe(text),
             Command::SetLab(params) => {
                 self.doc.lab.params = params;
                 self.start_lab();
             }
+        }
+    }
+
+    /// Select the pixel `[dx, dy]` from the selection (or from the top-left corner), clamped
+    /// to the image.
+    fn move_selection(&mut self, [dx, dy]: [i32; 2]) {
+        let [x, y] = self.doc.selection.unwrap_or([0, 0]);
+        let nx = (i64::from(x) + i64::from(dx)).clamp(0, i64::from(self.doc.image.width) - 1);
+        let ny = (i64::from(y) + i64::from(dy)).clamp(0, i64::from(self.doc.image.height) - 1);
+        self.doc.node = None;
+        self.select([nx as u32, ny as u32]);
+    }
+
+    /// New settings: checked as the command line checks them, then rendered.
+    fn set_settings(&mut self, settings: crate::scene::Settings) {
+        // The command line's own validation: a refused value is said, and the
+        // settings in force stay as they were (issue 32, item 1).
+        if let Err((path, msg)) = crate::scene::check_settings(&settings) {
+            self.doc.error = Some(format!("{REFUSED}{path}: {msg}"));
+            return;
+        }
+        if self
+            .doc
+            .error
+            .as_deref()
+            .is_some_and(|e| e.starts_with(REFUSED))
+        {
+            self.doc.error = None;
+        }
+        let mut scene = (*self.doc.scene).clone();
+        scene.settings = settings;
+        self.doc.scene = Arc::new(scene);
+        self.rerender();
+        if let Some(p) = self.doc.selection {
+            self.select(p);
+        }
+    }
+
+    /// Pin the selected pixel's tree (a new pin version) for comparison.
+    fn pin(&mut self) {
+        if let Some(tree) = self.doc.tree.clone() {
+            let version = self.doc.pin.as_ref().map_or(0, |p| p.version) + 1;
+            let label = crate::gui::model::document::tree_label(&self.doc.source.label(), &tree);
+            self.doc.pin = Some(crate::gui::model::document::Pin {
+                tree,
+                label,
+                version,
+            });
+        }
+    }
+
+    /// A new LPE filter: refilter the tree and keep the selected ray where the filter does.
+    fn set_lpe(&mut self, text: String) {
+        if self.doc.lpe.set_text(text) {
+            // The filter renumbers nodes: keep the same ray selected (or its nearest
+            // ancestor the new filter keeps), else the first root.
+            let original = self.doc.node.map(|id| self.doc.lpe.to_original(id));
+            self.refilter();
+            let n = self.doc.tree.as_ref().map_or(0, |t| t.nodes.len());
+            let lpe = &self.doc.lpe;
+            let kept = original
+                .and_then(|id| lpe.from_original(lpe.unfiltered(self.doc.tree.as_ref())?, id));
+            self.doc.node = kept.or(Some(crate::NodeId(0)).filter(|_| n > 0));
         }
     }
 

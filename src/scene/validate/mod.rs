@@ -207,46 +207,18 @@ pub fn check_focus(f: f64) -> Result<f64, String> {
 
 fn material(ck: &Check, name: &str, m: &MaterialDesc) -> Result<Material, SceneError> {
     let p = super::path::key("materials", name);
-    let diffuse = match &m.diffuse {
-        None => Texture::Solid(DVec3::ZERO),
-        Some(TextureDesc::Solid(c)) => Texture::Solid(ck.color(&format!("{p}.diffuse"), *c)?),
-        Some(TextureDesc::Checker { checker }) => {
-            let q = format!("{p}.diffuse.checker");
-            Texture::Checker {
-                even: ck.color(&format!("{q}.even"), checker.even)?,
-                odd: ck.color(&format!("{q}.odd"), checker.odd)?,
-                size: ck.positive(&format!("{q}.size"), checker.size)?,
-            }
-        }
-    };
+    let diffuse = diffuse(ck, &p, m.diffuse.as_ref())?;
     let shininess = ck.finite(&format!("{p}.shininess"), m.shininess)?;
     if shininess < 0.0 {
         return ck.fail(format!("{p}.shininess"), "must not be negative");
     }
-    let alpha = |key: &str, v: f64| -> Result<f64, SceneError> {
-        let v = ck.finite(&format!("{p}.{key}"), v)?;
-        if (0.0..=1.0).contains(&v) {
-            Ok(v)
-        } else {
-            ck.fail(
-                format!("{p}.{key}"),
-                format!("must be in [0, 1] (the microfacet alpha), got {v}"),
-            )
-        }
-    };
-    let roughness = alpha("roughness", m.roughness)?;
+    let roughness = alpha(ck, &p, "roughness", m.roughness)?;
     let roughness_v = match m.roughness_v {
-        Some(v) => alpha("roughness_v", v)?,
+        Some(v) => alpha(ck, &p, "roughness_v", v)?,
         None => roughness,
     };
     let tangent = match m.tangent {
-        Some(t) => {
-            let v = ck.vec(&format!("{p}.tangent"), t)?;
-            if v.length_squared() == 0.0 {
-                return ck.fail(format!("{p}.tangent"), "must not be the zero vector");
-            }
-            v.normalize()
-        }
+        Some(t) => tangent(ck, &p, t)?,
         None => DVec3::X,
     };
     let (conductor, reflectivity) = match &m.conductor {
@@ -295,6 +267,44 @@ fn material(ck: &Check, name: &str, m: &MaterialDesc) -> Result<Material, SceneE
         coating,
         thin,
     })
+}
+
+/// The diffuse texture at `p`: black when absent, a colour, or a checker.
+fn diffuse(ck: &Check, p: &str, d: Option<&TextureDesc>) -> Result<Texture, SceneError> {
+    Ok(match d {
+        None => Texture::Solid(DVec3::ZERO),
+        Some(TextureDesc::Solid(c)) => Texture::Solid(ck.color(&format!("{p}.diffuse"), *c)?),
+        Some(TextureDesc::Checker { checker }) => {
+            let q = format!("{p}.diffuse.checker");
+            Texture::Checker {
+                even: ck.color(&format!("{q}.even"), checker.even)?,
+                odd: ck.color(&format!("{q}.odd"), checker.odd)?,
+                size: ck.positive(&format!("{q}.size"), checker.size)?,
+            }
+        }
+    })
+}
+
+/// A microfacet alpha at `p.key`, in [0, 1].
+fn alpha(ck: &Check, p: &str, key: &str, v: f64) -> Result<f64, SceneError> {
+    let v = ck.finite(&format!("{p}.{key}"), v)?;
+    if (0.0..=1.0).contains(&v) {
+        Ok(v)
+    } else {
+        ck.fail(
+            format!("{p}.{key}"),
+            format!("must be in [0, 1] (the microfacet alpha), got {v}"),
+        )
+    }
+}
+
+/// The anisotropic lobes' tangent at `p`, normalised; not the zero vector.
+fn tangent(ck: &Check, p: &str, t: [f64; 3]) -> Result<DVec3, SceneError> {
+    let v = ck.vec(&format!("{p}.tangent"), t)?;
+    if v.length_squared() == 0.0 {
+        return ck.fail(format!("{p}.tangent"), "must not be the zero vector");
+    }
+    Ok(v.normalize())
 }
 
 /// The first `(condition, key, why)` whose condition holds, as an error at `p.key`.
@@ -453,45 +463,13 @@ fn object(
             point: ck.vec(&format!("{p}.point"), *point)?,
             normal: ck.direction(&format!("{p}.normal"), *normal)?,
         },
-        ObjectDesc::Triangle { vertices, .. } => {
-            let mut v = [DVec3::ZERO; 3];
-            for (k, x) in vertices.iter().enumerate() {
-                v[k] = ck.vec(&format!("{p}.vertices[{k}]"), *x)?;
-            }
-            let Some(normal) = (v[1] - v[0]).cross(v[2] - v[0]).try_normalize() else {
-                return ck.fail(format!("{p}.vertices"), "degenerate triangle (zero area)");
-            };
-            Shape::Triangle {
-                vertices: v,
-                normal,
-            }
-        }
+        ObjectDesc::Triangle { vertices, .. } => triangle(ck, &p, vertices)?,
         ObjectDesc::Quad {
             corner,
             edge_u,
             edge_v,
             ..
-        } => {
-            let a = ck.vec(&format!("{p}.corner"), *corner)?;
-            let u = ck.vec(&format!("{p}.edge_u"), *edge_u)?;
-            let v = ck.vec(&format!("{p}.edge_v"), *edge_v)?;
-            if u == DVec3::ZERO {
-                return ck.fail(format!("{p}.edge_u"), "must not be zero");
-            }
-            if v == DVec3::ZERO {
-                return ck.fail(format!("{p}.edge_v"), "must not be zero");
-            }
-            let Some(normal) = u.cross(v).try_normalize() else {
-                return ck.fail(
-                    format!("{p}.edge_v"),
-                    "must not be parallel to edge_u (zero area)",
-                );
-            };
-            Shape::Quad {
-                vertices: [a, a + u, a + u + v, a + v],
-                normal,
-            }
-        }
+        } => quad(ck, &p, *corner, *edge_u, *edge_v)?,
         ObjectDesc::Box { min, max, .. } => {
             let lo = ck.vec(&format!("{p}.min"), *min)?;
             let hi = ck.vec(&format!("{p}.max"), *max)?;
@@ -510,6 +488,50 @@ fn object(
         name,
         shape,
         material,
+    })
+}
+
+/// A triangle at `p` from its three vertices; refused when it has no area.
+fn triangle(ck: &Check, p: &str, vertices: &[[f64; 3]; 3]) -> Result<Shape, SceneError> {
+    let mut v = [DVec3::ZERO; 3];
+    for (k, x) in vertices.iter().enumerate() {
+        v[k] = ck.vec(&format!("{p}.vertices[{k}]"), *x)?;
+    }
+    let Some(normal) = (v[1] - v[0]).cross(v[2] - v[0]).try_normalize() else {
+        return ck.fail(format!("{p}.vertices"), "degenerate triangle (zero area)");
+    };
+    Ok(Shape::Triangle {
+        vertices: v,
+        normal,
+    })
+}
+
+/// A parallelogram at `p` from a corner and its two edges; refused when it has no area.
+fn quad(
+    ck: &Check,
+    p: &str,
+    corner: [f64; 3],
+    edge_u: [f64; 3],
+    edge_v: [f64; 3],
+) -> Result<Shape, SceneError> {
+    let a = ck.vec(&format!("{p}.corner"), corner)?;
+    let u = ck.vec(&format!("{p}.edge_u"), edge_u)?;
+    let v = ck.vec(&format!("{p}.edge_v"), edge_v)?;
+    if u == DVec3::ZERO {
+        return ck.fail(format!("{p}.edge_u"), "must not be zero");
+    }
+    if v == DVec3::ZERO {
+        return ck.fail(format!("{p}.edge_v"), "must not be zero");
+    }
+    let Some(normal) = u.cross(v).try_normalize() else {
+        return ck.fail(
+            format!("{p}.edge_v"),
+            "must not be parallel to edge_u (zero area)",
+        );
+    };
+    Ok(Shape::Quad {
+        vertices: [a, a + u, a + u + v, a + v],
+        normal,
     })
 }
 
