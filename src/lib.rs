@@ -1,12 +1,13 @@
-//! raytree: a ray-path debugger — a Whitted ray tracer and a Monte Carlo path tracer that record
-//! and explain the ray tree of any pixel.
+//! raytree: a ray-path debugger — a Whitted ray tracer, a Monte Carlo path tracer, light
+//! tracing and bidirectional path tracing that record and explain the paths of any pixel.
 //!
-//! Data flows one way: scene text (raytree JSON, or pbrt-v4 / Mitsuba 3 through [`formats`]) ->
-//! [`Scene`] (validated) -> an [`Integrator`] ([`Whitted`] or [`PathTracer`], chosen by
-//! [`SceneIntegrator`]) with a [`Recorder`] -> radiance through the [`mod@render`] loop, and
-//! optionally a [`RayTree`] whose contributions sum to the pixel bit for bit, which every view
-//! (text, JSON, diagram, GUI, [`analysis`]) reads. The library does no I/O. Where each concept
-//! lives: `docs/architecture.md`.
+//! Data flows one way: scene text (raytree JSON, or pbrt-v4 / Mitsuba 3 / glTF through
+//! [`formats`]) -> [`Scene`] (validated) -> an [`Integrator`] ([`Whitted`], [`PathTracer`],
+//! [`integrator::LightTracer`] or [`integrator::Bdpt`], chosen by [`SceneIntegrator`] from the
+//! scene's tagged `settings.integrator`) with a [`Recorder`] -> radiance through the
+//! [`mod@render`] loop, and optionally a [`RayTree`] whose contributions sum to the pixel bit for
+//! bit, which every view (text, JSON, diagram, GUI, [`analysis`]) reads. The library does no
+//! I/O. Where each concept lives: `docs/architecture.md`.
 #![forbid(unsafe_code)]
 #![warn(missing_docs)]
 

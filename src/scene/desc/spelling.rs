@@ -99,7 +99,7 @@ pub struct WhittedDesc {
 #[derive(Clone, Copy, Debug, Default, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct RouletteDesc {
-    /// [`PathSettings::rr_depth`].
+    /// [`crate::scene::PathSettings::rr_depth`].
     #[serde(
         default,
         skip_serializing_if = "Option::is_none",
@@ -112,14 +112,14 @@ pub struct RouletteDesc {
 #[derive(Clone, Copy, Debug, Default, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct BdptDesc {
-    /// [`PathSettings::rr_depth`].
+    /// [`crate::scene::PathSettings::rr_depth`].
     #[serde(
         default,
         skip_serializing_if = "Option::is_none",
         deserialize_with = "some"
     )]
     pub rr_depth: Option<u32>,
-    /// [`PathSettings::mis`].
+    /// [`crate::scene::PathSettings::mis`].
     #[serde(
         default,
         skip_serializing_if = "Option::is_none",
@@ -252,9 +252,13 @@ fn tagged(mut keys: serde_json::Map<String, serde_json::Value>) -> Result<Integr
         keys: serde_json::Map<String, serde_json::Value>,
     ) -> Result<T, String> {
         serde_path_to_error::deserialize(serde_json::Value::Object(keys)).map_err(|e| {
-            match e.path().to_string().as_str() {
-                "." => e.into_inner().to_string(),
-                key => format!("{key}: {}", e.into_inner()),
+            let path = e.path().to_string();
+            let message = e.into_inner().to_string();
+            // An unknown key names itself; any other error is prefixed with its key.
+            if path == "." || message.starts_with("unknown field") {
+                message
+            } else {
+                format!("{path}: {message}")
             }
         })
     }
