@@ -366,8 +366,9 @@ fn effects_names_the_old_spelling_and_the_new_one_renders_the_same() {
     let err = stderr(&o);
     assert!(
         err.contains("bad.json:9:")
-            && err.contains("settings.integrator")
-            && err.contains("unknown field \"fresnel\", expected `rr_depth`"),
+            && err.contains(
+                "settings.integrator.fresnel: unknown field \"fresnel\", expected `rr_depth`"
+            ),
         "{err}"
     );
     assert!(!d.join("bad.png").exists());

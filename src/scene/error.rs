@@ -224,6 +224,43 @@ pub(super) fn field_of_tagged(
     (path, at)
 }
 
+/// An error inside a tagged integrator value (`settings.integrator` or an element of
+/// `settings.other_integrators`), which its reader reports at the value with the key first in
+/// the message (`glossy_samples: invalid value ...`, or `unknown field "fresnel", ...`): the
+/// key's own path and position, and the message without the key. Anything else, or a key the
+/// text does not write, comes back as it was.
+pub(super) fn key_in_integrator(
+    src: &str,
+    path: String,
+    message: String,
+    at: (usize, usize),
+) -> (String, String, (usize, usize)) {
+    let integrator = match path::parse(&path).as_deref() {
+        Some([Seg::Key(s), Seg::Key(i)]) => s == "settings" && i == "integrator",
+        Some([Seg::Key(s), Seg::Key(o), Seg::Index(_)]) => {
+            s == "settings" && o == "other_integrators"
+        }
+        _ => false,
+    };
+    if !integrator {
+        return (path, message, at);
+    }
+    let (key, rest) = if let Some(tail) = message.strip_prefix("unknown field \"") {
+        (tail.split('"').next().unwrap_or(""), message.as_str())
+    } else {
+        match message.split_once(": ") {
+            Some((k, rest)) => (k, rest),
+            None => return (path, message, at),
+        }
+    };
+    let is_key = !key.is_empty() && key.bytes().all(|b| b.is_ascii_lowercase() || b == b'_');
+    let field = path::key(&path, key);
+    match super::locate(src, &field) {
+        Some(pos) if is_key => (field, rest.to_string(), pos),
+        _ => (path, message, at),
+    }
+}
+
 /// `"objects"` or `"lights"` when `path` is exactly an element of one.
 fn tagged_element(path: &str) -> Option<&'static str> {
     match path::parse(path)?.as_slice() {

@@ -5,7 +5,9 @@ use super::desc::{
     CameraDesc, CoatingDesc, ConductorDesc, LightDesc, MaterialDesc, ObjectDesc, SceneDesc,
     Settings, TextureDesc, Triple,
 };
-use super::error::{bare_message, field_of_tagged, path_of, reword, with_missing_field};
+use super::error::{
+    bare_message, field_of_tagged, key_in_integrator, path_of, reword, with_missing_field,
+};
 use super::mesh_object::MeshLoader;
 use super::{Accel, Camera, Light, LightKind, Material, Object, Scene, SceneError, Texture};
 use crate::bsdf::{Coating, ComplexIor};
@@ -27,6 +29,7 @@ pub(super) fn from_json(src: &str, load_mesh: MeshLoader) -> Result<Scene, Scene
         // serde_json counts columns from 0 before the first character of a line.
         let at = (inner.line(), inner.column().max(1));
         let (path, at) = field_of_tagged(src, with_missing_field(path, &message), &message, at);
+        let (path, message, at) = key_in_integrator(src, path, message, at);
         SceneError {
             path,
             line: Some(at.0),
