@@ -189,8 +189,7 @@ pub fn scene_among(files: &[(String, Vec<u8>)]) -> Option<usize> {
                 && String::from_utf8_lossy(bytes).lines().any(|l| {
                     let l = l.trim_start();
                     (l.starts_with("Include") || l.starts_with("Import"))
-                        && l.contains(&format!("\"{name}\""))
-                        || l.contains(&format!("/{name}\""))
+                        && (l.contains(&format!("\"{name}\"")) || l.contains(&format!("/{name}\"")))
                 })
         })
     };
@@ -319,6 +318,9 @@ mod tests {
         assert_eq!(scene_among(&pbrt), Some(1));
         let nested = f(&[("b.pbrt", ""), ("a.pbrt", "Import \"parts/b.pbrt\"")]);
         assert_eq!(scene_among(&nested), Some(1));
+        // Only an Include or Import makes a companion, not another directive naming the file.
+        let named = f(&[("b.pbrt", ""), ("a.pbrt", "Texture \"t\" \"x/b.pbrt\"")]);
+        assert_eq!(scene_among(&named), Some(0));
         assert_eq!(
             scene_among(&f(&[("m.obj", ""), ("c.xml", "<scene/>"), ("x.pbrt", "")])),
             Some(1)
