@@ -6,13 +6,13 @@ use super::Bdpt;
 use super::vertex::{Kind, Vertex};
 use crate::bsdf::{Bsdf, BsdfSample, LobeKind};
 use crate::integrator::light::{adjoint_weight, emitted_ray};
-use crate::integrator::path::{event, transmits};
+use crate::integrator::path::{event, russian_roulette, transmits};
 use crate::integrator::{RayCounts, Recorder};
 use crate::interaction::{SurfaceId, SurfaceInteraction};
 use crate::math::{Ray, Rgb};
 use crate::media::MediaStack;
 use crate::sampling::PixelSampler;
-use crate::tree::{DeltaTag, EndReason, NodeId, PathInfo, Pdf, RayKind, RayNode, Roulette};
+use crate::tree::{DeltaTag, EndReason, NodeId, PathInfo, Pdf, RayKind, RayNode};
 use glam::{DVec2, DVec3};
 
 /// Where a walk starts: its first ray, throughput and direction density, the node it hangs
@@ -296,21 +296,11 @@ impl Bdpt<'_> {
         let mut weight = f_cos_pdf;
         let bounce = vertices as u32 - 1;
         if bounce >= self.scene().settings.path.rr_depth {
-            let q = (w.rel * weight).max_element().min(1.0);
-            let survived = sampler.next_1d() < q;
-            rec.update(id, |n| {
-                if let Some(p) = n.path.as_mut() {
-                    p.roulette = Some(Roulette {
-                        probability: q,
-                        survived,
-                    });
-                }
-            });
-            if !survived {
+            let Some(survived) = russian_roulette(w.rel, weight, id, sampler, rec) else {
                 end(rec, id, EndReason::RussianRoulette);
                 return None;
-            }
-            weight /= q;
+            };
+            weight = survived;
         }
         if weight == Rgb::ZERO || !weight.is_finite() {
             end(rec, id, EndReason::Absorbed);

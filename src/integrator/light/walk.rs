@@ -6,7 +6,7 @@
 use super::{LightTracer, path_info};
 use crate::bsdf::{Bsdf, BsdfSample, LobeKind};
 use crate::integrator::offset::scaled_epsilon;
-use crate::integrator::path::{event, transmits};
+use crate::integrator::path::{event, russian_roulette, transmits};
 use crate::integrator::shading::shadow_end;
 use crate::integrator::{RayCounts, Recorder};
 use crate::interaction::{SurfaceId, SurfaceInteraction};
@@ -15,7 +15,7 @@ use crate::math::{Ray, Rgb};
 use crate::media::MediaStack;
 use crate::sampling::PixelSampler;
 use crate::scene::Hit;
-use crate::tree::{DeltaTag, EndReason, NodeId, PathInfo, Pdf, RayKind, RayNode, Roulette};
+use crate::tree::{DeltaTag, EndReason, NodeId, PathInfo, Pdf, RayKind, RayNode};
 use glam::{DVec2, DVec3};
 
 /// A light-path vertex's contribution to a pixel: what the render adds to the pixel's splat
@@ -230,20 +230,10 @@ impl LightTracer<'_> {
         let f_cos_pdf = adjoint_weight(&si, &bs);
         let mut weight = f_cos_pdf;
         if w.depth + 1 >= settings.path.rr_depth {
-            let q = (w.rel * weight).max_element().min(1.0);
-            let survived = sampler.next_1d() < q;
-            rec.update(id, |n| {
-                if let Some(p) = n.path.as_mut() {
-                    p.roulette = Some(Roulette {
-                        probability: q,
-                        survived,
-                    });
-                }
-            });
-            if !survived {
+            let Some(survived) = russian_roulette(w.rel, weight, id, sampler, rec) else {
                 return end(id, EndReason::RussianRoulette, rec);
-            }
-            weight /= q;
+            };
+            weight = survived;
         }
         if weight == Rgb::ZERO || !weight.is_finite() {
             return end(id, EndReason::Absorbed, rec);

@@ -17,10 +17,39 @@ mod walk;
 
 pub(crate) use nee::{event, transmits};
 
-use super::Shading;
+/// Russian roulette on a continuation of weight `weight` (`f |cos| / pdf`) for a path whose
+/// throughput is `carried` (the path tracer's throughput, or a subpath's relative to its
+/// start): survival probability `q = min(1, max(carried x weight))`, drawn from `sampler` and
+/// recorded on node `id`; the weight divided by `q`, or `None` when the path ends. The one
+/// roulette of the path tracer, light tracing and BDPT.
+#[inline(always)]
+pub(crate) fn russian_roulette<R: Recorder, S: PixelSampler>(
+    carried: Rgb,
+    weight: Rgb,
+    id: Option<NodeId>,
+    sampler: &mut S,
+    rec: &mut R,
+) -> Option<Rgb> {
+    let q = (carried * weight).max_element().min(1.0);
+    let survived = sampler.next_1d() < q;
+    rec.update(id, |n| {
+        if let Some(p) = n.path.as_mut() {
+            p.roulette = Some(Roulette {
+                probability: q,
+                survived,
+            });
+        }
+    });
+    survived.then(|| weight / q)
+}
+
+use super::{Recorder, Shading};
 use crate::integrator::EffectPlan;
 use crate::interaction::SurfaceId;
+use crate::math::Rgb;
+use crate::sampling::PixelSampler;
 use crate::scene::{Film, Scene};
+use crate::tree::{NodeId, Roulette};
 use glam::DVec3;
 
 /// Which estimator of direct light the path tracer uses (a switch for the tests that compare

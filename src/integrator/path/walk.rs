@@ -14,7 +14,7 @@ use crate::media::MediaStack;
 use crate::sampling::PixelSampler;
 use crate::scene::Hit;
 use crate::scene::Material;
-use crate::tree::{DeltaTag, EndReason, NodeId, PathInfo, Pdf, RayKind, RayNode, Roulette};
+use crate::tree::{DeltaTag, EndReason, NodeId, PathInfo, Pdf, RayKind, RayNode};
 use glam::DVec2;
 
 /// The GGX roughness of `m`'s reflection and transmission lobes.
@@ -342,24 +342,11 @@ impl PathTracer<'_> {
         sampler: &mut S,
         rec: &mut R,
     ) -> Option<Rgb> {
-        let mut weight = f_cos_pdf;
         if w.depth + 1 >= self.scene().settings.path.rr_depth {
-            let q = (w.beta * weight).max_element().min(1.0);
-            let survived = sampler.next_1d() < q;
-            rec.update(id, |n| {
-                if let Some(p) = n.path.as_mut() {
-                    p.roulette = Some(Roulette {
-                        probability: q,
-                        survived,
-                    });
-                }
-            });
-            if !survived {
-                return None;
-            }
-            weight /= q;
+            super::russian_roulette(w.beta, f_cos_pdf, id, sampler, rec)
+        } else {
+            Some(f_cos_pdf)
         }
-        Some(weight)
     }
 
     /// The next ray from the sampled direction `bs` where the path leaves `at` (`f_cos_pdf` and
