@@ -211,6 +211,29 @@ try {
     log(JSON.stringify(m));
     await shot(scene);
   }
+
+  // 5b. Background jobs step between frames: the comparison of two integrators and the split
+  // by strategy run a pixel at a time, so no frame waits for a whole render.
+  for (const [job, hash, done] of [
+    ['versus', 'scene=caustic&integrator=path&spp=2', (s) => s.versus.summary && !s.versus.running],
+    ['strategies', 'scene=caustic&integrator=bdpt&spp=1', (s) => s.strategies.captions.length > 0 && !s.strategies.running],
+  ]) {
+    await setHash('scene=diffuse');
+    s = await setHash(hash, 600000);
+    await page.evaluate((job) => { window.raytreeResetFrames(); window.__gap.worst = 0; window.__gap.last = performance.now(); window.raytreeStart(job); }, job);
+    const start = Date.now();
+    s = await waitFor(`the ${job} job`, done, 600000);
+    const wall = Date.now() - start;
+    const gap = await page.evaluate(() => window.__gap.worst);
+    const m = { job, scene: hash, wall_ms: wall, worst_frame_ms: +s.worst_frame_ms.toFixed(1),
+      worst_gap_ms: +gap.toFixed(1), slow: s.slow_frames };
+    measures.push(m);
+    log(JSON.stringify(m));
+    // Whole in one frame, the job would freeze the page for all of its time.
+    assert.ok(gap < wall / 4, `${job}: the page froze for ${gap} ms of the job's ${wall} ms`);
+    if (job === 'versus') assert.match(s.versus.summary, /Whitted luminance/);
+    await shot(`job-${job}`);
+  }
   writeFileSync(join(out, 'measurements.json'), JSON.stringify(measures, null, 2));
 
   // 6. Hostile input: the page says why and goes on.

@@ -97,18 +97,29 @@ pub fn scaled_scene(scene: &Scene, scale: f64, shift: f64) -> Scene {
 /// [`scaled_scene`]) with `strategy` and `epsilon`, diagnosed; `scale` is recorded as given.
 #[must_use]
 pub fn cell(scaled: &Scene, strategy: OffsetStrategy, epsilon: f64, scale: f64) -> AcneCell {
-    let mut sc = scaled.clone();
-    sc.settings.offset.strategy = strategy;
-    sc.settings.offset.epsilon = epsilon;
-    let (image, stats, map) = render(
+    let sc = with_offset(scaled, strategy, epsilon);
+    let rendered = render(
         &crate::integrator::SceneIntegrator::new(&sc),
         &crate::render::RenderOptions::diagnosed(),
         &|_| {},
-    )
-    .into_parts();
+    );
+    cell_of(&sc, scale, rendered)
+}
+
+/// `scaled` with the offset `strategy` and `epsilon`.
+fn with_offset(scaled: &Scene, strategy: OffsetStrategy, epsilon: f64) -> Scene {
+    let mut sc = scaled.clone();
+    sc.settings.offset.strategy = strategy;
+    sc.settings.offset.epsilon = epsilon;
+    sc
+}
+
+/// The cell of `sc` (a lab scene with its offset set) from its diagnosed render.
+fn cell_of(sc: &Scene, scale: f64, rendered: crate::render::Rendered) -> AcneCell {
+    let (image, stats, map) = rendered.into_parts();
     AcneCell {
-        strategy,
-        epsilon,
+        strategy: sc.settings.offset.strategy,
+        epsilon: sc.settings.offset.epsilon,
         scale,
         pixels: u64::from(sc.camera.width) * u64::from(sc.camera.height),
         self_hit_pixels: stats.self_hit_pixels,
@@ -118,6 +129,43 @@ pub fn cell(scaled: &Scene, strategy: OffsetStrategy, epsilon: f64, scale: f64) 
         rays: stats.rays.total(),
         image,
         map,
+    }
+}
+
+/// [`cell`] a piece at a time ([`crate::render::steps`]; the web page has no threads): the
+/// same cell, bit for bit.
+pub struct CellSteps {
+    scene: Scene,
+    scale: f64,
+    steps: crate::render::steps::Steps<()>,
+}
+
+impl CellSteps {
+    /// The cell [`cell`] makes of these arguments.
+    #[must_use]
+    pub fn new(scaled: &Scene, strategy: OffsetStrategy, epsilon: f64, scale: f64) -> Self {
+        let scene = with_offset(scaled, strategy, epsilon);
+        let steps = crate::render::steps::Steps::new(
+            &crate::integrator::SceneIntegrator::new(&scene),
+            true,
+        );
+        Self {
+            scene,
+            scale,
+            steps,
+        }
+    }
+
+    /// Trace pixels while `more_time` says so, at least one; returns whether more is to come.
+    pub fn step(&mut self, more_time: &dyn Fn() -> bool) -> bool {
+        let integrator = crate::integrator::SceneIntegrator::new(&self.scene);
+        self.steps.step_plain(&integrator, more_time)
+    }
+
+    /// The cell (once [`CellSteps::step`] returned `false`).
+    #[must_use]
+    pub fn finish(self) -> AcneCell {
+        cell_of(&self.scene, self.scale, self.steps.rendered())
     }
 }
 
@@ -275,5 +323,23 @@ mod tests {
         assert_eq!(r.clean_everywhere(OffsetStrategy::Robust), vec![1e-9, 1e-1]);
         let md = r.markdown("classic");
         assert!(md.contains("| normal | 1e-9 |") && md.contains("`robust`: clean at every scale"));
+    }
+
+    #[test]
+    fn a_stepped_cell_is_the_cell() {
+        let scene = scaled_scene(&Scene::default_scene(), 1e6, 1e3);
+        let scene = Scene {
+            camera: scene.camera.with_size(12, 8),
+            ..scene
+        };
+        let whole = cell(&scene, OffsetStrategy::Normal, 1e-9, 1e6);
+        assert!(whole.self_hit_pixels > 0, "the test needs acne");
+        let mut steps = CellSteps::new(&scene, OffsetStrategy::Normal, 1e-9, 1e6);
+        let mut n = 1;
+        while steps.step(&|| false) {
+            n += 1;
+        }
+        assert_eq!(n, 12 * 8, "a pixel a step");
+        assert_eq!(format!("{:?}", steps.finish()), format!("{whole:?}"));
     }
 }

@@ -28,14 +28,15 @@ mod versus;
 pub use classes::{CLASSES, Class, standard_classes};
 pub use mc::{McPixel, McView, ramp, spread};
 pub use nodes::{classify, pixel_from_nodes};
-pub use pair::{Pair, Side, pair, signed_rgb8};
+pub use pair::{Pair, PairSteps, Side, pair, signed_rgb8};
 pub use recorder::{AovRecorder, MAX_AOVS};
 pub use spec::{Aov, AovSpecError, parse_aovs};
-pub use versus::{ClassShare, Versus, versus};
+pub use versus::{ClassShare, Versus, VersusSteps, versus};
 
 use crate::integrator::Integrator;
 use crate::lpe::Lpe;
 use crate::math::Rgb;
+use crate::render::steps::Steps;
 use crate::render::{Image, RenderStats, pixel_loop};
 use crate::sampling::SceneSampler;
 use crate::scene::IntegratorKind;
@@ -80,12 +81,7 @@ pub fn render_aovs<I: Integrator>(
     lpes: &[Lpe],
     progress: &(dyn Fn(u32) + Sync),
 ) -> Result<AovRender, AovError> {
-    if !lpes.is_empty() && integrator.kind() == IntegratorKind::Whitted {
-        return Err(AovError::Whitted);
-    }
-    if lpes.len() > MAX_AOVS {
-        return Err(AovError::TooMany);
-    }
+    check(integrator, lpes)?;
     let scene = integrator.scene();
     let (w, h) = (scene.camera.width, scene.camera.height);
     let sampler = SceneSampler::for_settings(&scene.settings);
@@ -94,7 +90,36 @@ pub fn render_aovs<I: Integrator>(
     let rows = pixel_loop::rows(integrator, &sampler, || AovSink::new(lpes), progress);
     let first = crate::render::first_spp(integrator);
     let (beauty, stats, _, outs) = pixel_loop::assemble((w, h), first, false, rows);
-    let k = lpes.len();
+    Ok(aov_render(
+        integrator.kind(),
+        lpes.len(),
+        beauty,
+        stats,
+        outs,
+    ))
+}
+
+/// Whether [`render_aovs`] can render `lpes` under `integrator`.
+fn check<I: Integrator>(integrator: &I, lpes: &[Lpe]) -> Result<(), AovError> {
+    if !lpes.is_empty() && integrator.kind() == IntegratorKind::Whitted {
+        return Err(AovError::Whitted);
+    }
+    if lpes.len() > MAX_AOVS {
+        return Err(AovError::TooMany);
+    }
+    Ok(())
+}
+
+/// The AOV render of `k` expressions from the assembled beauty, counts and per-pixel sinks'
+/// results (non-finite AOV values written black).
+fn aov_render(
+    integrator: IntegratorKind,
+    k: usize,
+    beauty: Image,
+    stats: RenderStats,
+    outs: Vec<(Vec<Rgb>, McPixel)>,
+) -> AovRender {
+    let (w, h) = (beauty.width, beauty.height);
     let n = (w * h) as usize;
     let mut aovs = vec![Vec::with_capacity(n); k];
     let mut mc = Vec::with_capacity(n);
@@ -109,11 +134,50 @@ pub fn render_aovs<I: Integrator>(
         height: h,
         pixels,
     };
-    Ok(AovRender {
+    AovRender {
         beauty,
         aovs: aovs.into_iter().map(image).collect(),
         stats,
         mc,
-        integrator: integrator.kind(),
-    })
+        integrator,
+    }
+}
+
+/// [`render_aovs`] a piece at a time ([`crate::render::steps`]): the same render, bit for bit.
+pub struct AovSteps {
+    steps: Steps<(Vec<Rgb>, McPixel)>,
+    lpes: Vec<Lpe>,
+    kind: IntegratorKind,
+}
+
+impl AovSteps {
+    /// An AOV render of `lpes` by `integrator`.
+    ///
+    /// # Errors
+    /// As [`render_aovs`].
+    pub fn new<I: Integrator>(integrator: &I, lpes: Vec<Lpe>) -> Result<Self, AovError> {
+        check(integrator, &lpes)?;
+        Ok(Self {
+            steps: Steps::new(integrator, false).camera_only(),
+            lpes,
+            kind: integrator.kind(),
+        })
+    }
+
+    /// Trace pixels by `integrator` (the same scene as [`AovSteps::new`]'s) while `more_time`
+    /// says so, at least one; returns whether more is to come.
+    pub fn step<I: Integrator>(&mut self, integrator: &I, more_time: &dyn Fn() -> bool) -> bool {
+        let sampler = SceneSampler::for_settings(&integrator.scene().settings);
+        let lpes = &self.lpes;
+        self.steps
+            .step(integrator, &sampler, &|| AovSink::new(lpes), more_time)
+    }
+
+    /// The finished render.
+    #[must_use]
+    pub fn finish(self) -> AovRender {
+        let k = self.lpes.len();
+        let (beauty, stats, _, outs) = self.steps.finish();
+        aov_render(self.kind, k, beauty, stats, outs)
+    }
 }

@@ -9,7 +9,9 @@
 
 use crate::analysis::bias::{Region, SignedDifference, signed_difference};
 use crate::bsdf::luminance;
-use crate::render::{Image, RenderStats};
+use crate::integrator::SceneIntegrator;
+use crate::render::steps::Steps;
+use crate::render::{Image, RenderStats, Rendered};
 use crate::scene::{IntegratorKind, Scene};
 
 /// One side of a [`Pair`].
@@ -45,24 +47,35 @@ pub fn pair(
     scene: &Scene,
     kinds: [IntegratorKind; 2],
     region: Option<[u32; 4]>,
-    render: &mut dyn FnMut(&Scene) -> crate::render::Rendered,
+    render: &mut dyn FnMut(&Scene) -> Rendered,
 ) -> Pair {
-    let (w, h) = (scene.camera.width, scene.camera.height);
+    let [a, b] = sides(scene, kinds).map(|s| render(&s));
+    paired(kinds, region, a, b)
+}
+
+/// `scene` under each of `kinds`.
+fn sides(scene: &Scene, kinds: [IntegratorKind; 2]) -> [Scene; 2] {
+    kinds.map(|kind| {
+        let mut s = scene.clone();
+        s.settings.integrator = kind;
+        s
+    })
+}
+
+/// The comparison of render `a` by `kinds[0]` and `b` by `kinds[1]` over `region` (clamped;
+/// the whole image when `None`).
+fn paired(kinds: [IntegratorKind; 2], region: Option<[u32; 4]>, a: Rendered, b: Rendered) -> Pair {
+    let (w, h) = (a.image.width, a.image.height);
     let region = region.map_or([0, 0, w, h], |[x0, y0, x1, y1]| {
         [x0.min(w), y0.min(h), x1.min(w), y1.min(h)]
     });
-    let mut side = |kind| {
-        let mut s = scene.clone();
-        s.settings.integrator = kind;
-        let crate::render::Rendered { image, stats, .. } = render(&s);
-        Side {
-            kind,
-            mean_luminance: mean_luminance(&image, region),
-            image,
-            stats,
-        }
+    let side = |kind, r: Rendered| Side {
+        kind,
+        mean_luminance: mean_luminance(&r.image, region),
+        image: r.image,
+        stats: r.stats,
     };
-    let (a, b) = (side(kinds[0]), side(kinds[1]));
+    let (a, b) = (side(kinds[0], a), side(kinds[1], b));
     let [x0, y0, x1, y1] = region;
     let difference = (x0 < x1 && y0 < y1)
         .then(|| signed_difference(&b.image, &a.image, Region { x0, y0, x1, y1 }))
@@ -72,6 +85,58 @@ pub fn pair(
         b,
         region,
         difference,
+    }
+}
+
+/// [`pair`] rendered by [`crate::render::render`], a piece at a time
+/// ([`crate::render::steps`]; the web page has no threads): the same comparison, bit for bit.
+pub struct PairSteps {
+    kinds: [IntegratorKind; 2],
+    region: Option<[u32; 4]>,
+    scenes: [Scene; 2],
+    /// Side A's steps, then side B's.
+    steps: Steps<()>,
+    /// Side A's render, once its steps are done.
+    a: Option<Rendered>,
+}
+
+impl PairSteps {
+    /// The comparison of `scene` under `kinds` over `region`, as [`pair`] takes them.
+    #[must_use]
+    pub fn new(scene: &Scene, kinds: [IntegratorKind; 2], region: Option<[u32; 4]>) -> Self {
+        let scenes = sides(scene, kinds);
+        let steps = Steps::new(&SceneIntegrator::new(&scenes[0]), false);
+        Self {
+            kinds,
+            region,
+            scenes,
+            steps,
+            a: None,
+        }
+    }
+
+    /// Trace pixels (side A's render, then side B's) while `more_time` says so, at least one;
+    /// returns whether more is to come.
+    pub fn step(&mut self, more_time: &dyn Fn() -> bool) -> bool {
+        let side = usize::from(self.a.is_some());
+        let integrator = SceneIntegrator::new(&self.scenes[side]);
+        if self.steps.step_plain(&integrator, more_time) {
+            return true;
+        }
+        if side == 1 {
+            return false;
+        }
+        let b = Steps::new(&SceneIntegrator::new(&self.scenes[1]), false);
+        self.a = Some(std::mem::replace(&mut self.steps, b).rendered());
+        true
+    }
+
+    /// The comparison (once [`PairSteps::step`] returned `false`).
+    #[must_use]
+    pub fn finish(self) -> Pair {
+        let b = self.steps.rendered();
+        let a = self.a.unwrap_or_else(|| b.clone());
+        paired(self.kinds, self.region, a, b)
     }
 }
 

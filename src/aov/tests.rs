@@ -346,3 +346,64 @@ fn the_inspectors_node_statistics_are_the_light_recorders() {
     let (_, shares) = pixel_from_nodes(&crate::trace_pixel(&scene, 98, 112).unwrap().nodes);
     assert!(shares[4] > 0.5, "{shares:?}");
 }
+
+/// The bits of an image's pixels.
+fn bits(image: &Image) -> Vec<[u64; 3]> {
+    image
+        .pixels
+        .iter()
+        .map(|p| [p.x.to_bits(), p.y.to_bits(), p.z.to_bits()])
+        .collect()
+}
+
+fn small_caustic(spp: u32) -> Scene {
+    let mut s = caustic(spp);
+    s.camera = s.camera.with_size(14, 10);
+    s
+}
+
+#[test]
+fn the_stepped_comparisons_are_the_comparisons_bit_for_bit() {
+    let scene = small_caustic(3);
+    let region = Some([2, 1, 11, 8]);
+    let whole = versus(&scene, region, &|_| {}).unwrap();
+    for answer in [false, true] {
+        let mut steps = VersusSteps::new(&scene, region);
+        let mut n = 1;
+        while steps.step(&|| answer) {
+            n += 1;
+        }
+        let v = steps.finish();
+        assert_eq!(v.summary(), whole.summary());
+        assert_eq!(bits(&v.whitted), bits(&whole.whitted));
+        assert_eq!(bits(&v.path.beauty), bits(&whole.path.beauty));
+        for (a, b) in v.path.aovs.iter().zip(&whole.path.aovs) {
+            assert_eq!(bits(a), bits(b));
+        }
+        assert_eq!(format!("{:?}", v.path.mc), format!("{:?}", whole.path.mc));
+        assert_eq!(
+            format!("{:?}", v.whitted_stats),
+            format!("{:?}", whole.whitted_stats)
+        );
+        assert_eq!(v.classes, whole.classes);
+        assert_eq!(n, if answer { 1 } else { 2 * 14 * 10 }, "a pixel a step");
+    }
+    let kinds = [IntegratorKind::Path, IntegratorKind::Bdpt];
+    let render_it = &mut |s: &Scene| {
+        render(
+            &SceneIntegrator::new(s),
+            &crate::render::RenderOptions::new(),
+            &|_| {},
+        )
+    };
+    let whole = pair(&scene, kinds, None, render_it);
+    for answer in [false, true] {
+        let mut steps = PairSteps::new(&scene, kinds, None);
+        while steps.step(&|| answer) {}
+        let p = steps.finish();
+        assert_eq!(p.summary(), whole.summary());
+        assert_eq!(bits(&p.a.image), bits(&whole.a.image));
+        assert_eq!(bits(&p.b.image), bits(&whole.b.image));
+        assert_eq!(format!("{:?}", p.b.stats), format!("{:?}", whole.b.stats));
+    }
+}

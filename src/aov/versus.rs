@@ -8,10 +8,11 @@
 //! translucent shadows) and by Monte Carlo noise: that difference, `shared - whitted`, is
 //! reported as one more term. Shares are of the sum of the magnitudes of these terms.
 
-use super::{AovError, AovRender, CLASSES, render_aovs, standard_classes};
+use super::{AovError, AovRender, AovSteps, CLASSES, render_aovs, standard_classes};
 use crate::bsdf::luminance;
 use crate::integrator::SceneIntegrator;
-use crate::render::{Image, RenderStats};
+use crate::render::steps::Steps;
+use crate::render::{Image, RenderStats, Rendered};
 use crate::scene::{IntegratorKind, Scene};
 
 /// One class's part of the difference.
@@ -147,22 +148,32 @@ pub fn versus(
     region: Option<[u32; 4]>,
     progress: &(dyn Fn(u32) + Sync),
 ) -> Result<Versus, AovError> {
-    let (w, h) = (scene.camera.width, scene.camera.height);
+    let [whitted_scene, path_scene] = sides(scene);
+    let whitted = crate::render::render(
+        &SceneIntegrator::new(&whitted_scene),
+        &crate::render::RenderOptions::new(),
+        progress,
+    );
+    let lpes = standard_classes();
+    let path = render_aovs(&SceneIntegrator::new(&path_scene), &lpes, progress)?;
+    Ok(compared(region, whitted, path))
+}
+
+/// `scene` under Whitted and under the path tracer.
+fn sides(scene: &Scene) -> [Scene; 2] {
+    [IntegratorKind::Whitted, IntegratorKind::Path].map(|kind| {
+        let mut s = scene.clone();
+        s.settings.integrator = kind;
+        s
+    })
+}
+
+/// The comparison of the two renders over `region` (clamped; the whole image when `None`).
+fn compared(region: Option<[u32; 4]>, whitted: Rendered, path: AovRender) -> Versus {
+    let (w, h) = (whitted.image.width, whitted.image.height);
     let region = region.map_or([0, 0, w, h], |[x0, y0, x1, y1]| {
         [x0.min(w), y0.min(h), x1.min(w), y1.min(h)]
     });
-    let mut whitted_scene = scene.clone();
-    whitted_scene.settings.integrator = IntegratorKind::Whitted;
-    let mut path_scene = scene.clone();
-    path_scene.settings.integrator = IntegratorKind::Path;
-    let (whitted, whitted_stats, _) = crate::render::render(
-        &crate::integrator::SceneIntegrator::new(&whitted_scene),
-        &crate::render::RenderOptions::new(),
-        progress,
-    )
-    .into_parts();
-    let lpes = standard_classes();
-    let path = render_aovs(&SceneIntegrator::new(&path_scene), &lpes, progress)?;
     let classes = CLASSES
         .iter()
         .zip(&path.aovs)
@@ -173,13 +184,67 @@ pub fn versus(
             luminance: region_sum(img, region),
         })
         .collect();
-    Ok(Versus {
-        whitted_luminance: region_sum(&whitted, region),
+    Versus {
+        whitted_luminance: region_sum(&whitted.image, region),
         path_luminance: region_sum(&path.beauty, region),
-        whitted,
-        whitted_stats,
+        whitted: whitted.image,
+        whitted_stats: whitted.stats,
         path,
         region,
         classes,
-    })
+    }
+}
+
+/// [`versus`] a piece at a time ([`crate::render::steps`]; the web page has no threads): the
+/// same comparison, bit for bit.
+pub struct VersusSteps {
+    region: Option<[u32; 4]>,
+    scenes: [Scene; 2],
+    whitted: Steps<()>,
+    /// The Whitted render, once its steps are done.
+    whitted_done: Option<Rendered>,
+    path: AovSteps,
+}
+
+impl VersusSteps {
+    /// The comparison of `scene` over `region`, as [`versus`] takes them.
+    #[must_use]
+    pub fn new(scene: &Scene, region: Option<[u32; 4]>) -> Self {
+        let scenes = sides(scene);
+        let whitted = Steps::new(&SceneIntegrator::new(&scenes[0]), false);
+        let path = AovSteps::new(&SceneIntegrator::new(&scenes[1]), standard_classes())
+            .expect("the path tracer takes the six classes");
+        Self {
+            region,
+            scenes,
+            whitted,
+            whitted_done: None,
+            path,
+        }
+    }
+
+    /// Trace pixels (the Whitted render's, then the path tracer's) while `more_time` says so,
+    /// at least one; returns whether more is to come.
+    pub fn step(&mut self, more_time: &dyn Fn() -> bool) -> bool {
+        if self.whitted_done.is_none() {
+            let integrator = SceneIntegrator::new(&self.scenes[0]);
+            if self.whitted.step_plain(&integrator, more_time) {
+                return true;
+            }
+            let steps = std::mem::replace(&mut self.whitted, Steps::new(&integrator, false));
+            self.whitted_done = Some(steps.rendered());
+            if !more_time() {
+                return true;
+            }
+        }
+        self.path
+            .step(&SceneIntegrator::new(&self.scenes[1]), more_time)
+    }
+
+    /// The comparison (once [`VersusSteps::step`] returned `false`).
+    #[must_use]
+    pub fn finish(self) -> Versus {
+        let whitted = self.whitted_done.unwrap_or_else(|| self.whitted.rendered());
+        compared(self.region, whitted, self.path.finish())
+    }
 }

@@ -70,63 +70,156 @@ fn demod(a: Rgb) -> Rgb {
 /// If the features are not of the image's size (a programming error).
 #[must_use]
 pub fn denoise(image: &Image, features: &Features, p: &DenoiseParams) -> Image {
-    let (w, h) = (image.width as usize, image.height as usize);
-    assert_eq!(
-        (
-            features.width as usize,
-            features.height as usize,
-            features.albedo.len()
-        ),
-        (w, h, w * h),
-        "features of another image"
-    );
-    let mut albedo: Vec<Rgb> = features.albedo.iter().map(|&a| demod(a)).collect();
-    // Directly seen emission stays out of the filter (issue 32: a filtered lamp's edge turned
-    // jagged with bright speckles): the reflected part is filtered and the emission added back.
-    let mut illum: Vec<Rgb> = image
-        .pixels
-        .iter()
-        .zip(&albedo)
-        .enumerate()
-        .map(|(i, (c, a))| (*c - emitted(features, i)) / *a)
-        .collect();
-    let mut var = variance(&illum, &albedo, features);
-    for i in 0..p.iterations {
-        let g = gaussian3(&var, w, h);
-        let pass = Pass {
+    let mut f = DenoiseSteps::new(image, features);
+    while f.iteration < p.iterations {
+        let n = f.w * f.h;
+        let pass = f.pass(features, p);
+        // Pixels in parallel.
+        let out: Vec<(Rgb, f64, Rgb)> = (0..n).into_par_iter().map(|c| pass.pixel(c)).collect();
+        f.out = out;
+        f.next_pass();
+    }
+    f.finish(image, features)
+}
+
+/// [`denoise`] a piece at a time (the web page has no threads): the same image, bit for bit.
+/// Each pass's pixels one after another, each pixel computed as [`denoise`]'s parallel pass
+/// computes it.
+pub struct DenoiseSteps {
+    w: usize,
+    h: usize,
+    /// The illumination, its variance and the albedo, as the last pass left them.
+    illum: Vec<Rgb>,
+    var: Vec<f64>,
+    albedo: Vec<Rgb>,
+    /// The pass under way, its blurred variance (made at its first pixel) and its pixels so
+    /// far.
+    iteration: u32,
+    blurred: Option<Vec<f64>>,
+    out: Vec<(Rgb, f64, Rgb)>,
+}
+
+impl DenoiseSteps {
+    /// The filter of `image` by its `features`.
+    ///
+    /// # Panics
+    /// As [`denoise`].
+    #[must_use]
+    pub fn new(image: &Image, features: &Features) -> Self {
+        let (w, h) = (image.width as usize, image.height as usize);
+        assert_eq!(
+            (
+                features.width as usize,
+                features.height as usize,
+                features.albedo.len()
+            ),
+            (w, h, w * h),
+            "features of another image"
+        );
+        let albedo: Vec<Rgb> = features.albedo.iter().map(|&a| demod(a)).collect();
+        // Directly seen emission stays out of the filter (issue 32: a filtered lamp's edge
+        // turned jagged with bright speckles): the reflected part is filtered and the emission
+        // added back.
+        let illum: Vec<Rgb> = image
+            .pixels
+            .iter()
+            .zip(&albedo)
+            .enumerate()
+            .map(|(i, (c, a))| (*c - emitted(features, i)) / *a)
+            .collect();
+        let var = variance(&illum, &albedo, features);
+        Self {
             w,
             h,
-            step: 1usize << i,
-            illum: &illum,
-            var: &var,
-            albedo: &albedo,
-            blurred_var: &g,
+            illum,
+            var,
+            albedo,
+            iteration: 0,
+            blurred: None,
+            out: Vec::with_capacity(w * h),
+        }
+    }
+
+    /// The pass under way (its blurred variance made if need be).
+    fn pass<'a>(&'a mut self, features: &'a Features, p: &'a DenoiseParams) -> Pass<'a> {
+        let (w, h) = (self.w, self.h);
+        let blurred = self
+            .blurred
+            .get_or_insert_with(|| gaussian3(&self.var, w, h));
+        Pass {
+            w,
+            h,
+            step: 1usize << self.iteration,
+            illum: &self.illum,
+            var: &self.var,
+            albedo: &self.albedo,
+            blurred_var: blurred,
             features,
             p,
-        };
-        // Rows in parallel.
-        let out: Vec<(Rgb, f64, Rgb)> = (0..w * h).into_par_iter().map(|c| pass.pixel(c)).collect();
-        let next_illum = out.iter().map(|o| o.0).collect();
-        let next_var = out.iter().map(|o| o.1).collect();
-        let next_albedo = out.iter().map(|o| o.2).collect();
-        illum = next_illum;
-        var = next_var;
-        albedo = next_albedo;
+        }
     }
-    let pixels = illum
-        .iter()
-        .zip(&albedo)
-        .zip(&image.pixels)
-        .enumerate()
-        .map(|(i, ((l, a), orig))| {
-            let v = *l * *a + emitted(features, i);
-            if v.is_finite() { v } else { *orig }
-        })
-        .collect();
-    Image {
-        width: image.width,
-        height: image.height,
-        pixels,
+
+    /// The pass's pixels are all in `out`: they become the next pass's input.
+    fn next_pass(&mut self) {
+        let out = std::mem::take(&mut self.out);
+        self.illum = out.iter().map(|o| o.0).collect();
+        self.var = out.iter().map(|o| o.1).collect();
+        self.albedo = out.iter().map(|o| o.2).collect();
+        self.iteration += 1;
+        self.blurred = None;
+        self.out = Vec::with_capacity(self.w * self.h);
+    }
+
+    /// Filter pixels while `more_time` says so, at least one (the same `features` and `p` as
+    /// [`DenoiseSteps::new`]'s); returns whether more is to come.
+    pub fn step(
+        &mut self,
+        features: &Features,
+        p: &DenoiseParams,
+        more_time: &dyn Fn() -> bool,
+    ) -> bool {
+        let n = self.w * self.h;
+        while self.iteration < p.iterations {
+            let mut c = self.out.len();
+            let mut out = std::mem::take(&mut self.out);
+            let pass = self.pass(features, p);
+            while c < n {
+                out.push(pass.pixel(c));
+                c += 1;
+                if c < n && !more_time() {
+                    self.out = out;
+                    return true;
+                }
+            }
+            self.out = out;
+            self.next_pass();
+            if !more_time() {
+                return self.iteration < p.iterations;
+            }
+        }
+        false
+    }
+
+    /// The denoised image (once [`DenoiseSteps::step`] returned `false`; `image` and
+    /// `features` as [`DenoiseSteps::new`]'s).
+    #[must_use]
+    pub fn finish(self, image: &Image, features: &Features) -> Image {
+        let pixels = self
+            .illum
+            .iter()
+            .zip(&self.albedo)
+            .zip(&image.pixels)
+            .enumerate()
+            .map(|(i, ((l, a), orig))| {
+                let v = *l * *a + emitted(features, i);
+                if v.is_finite() { v } else { *orig }
+            })
+            .collect();
+        Image {
+            width: image.width,
+            height: image.height,
+            pixels,
+        }
     }
 }
 

@@ -11,6 +11,7 @@ use crate::bsdf::luminance;
 use crate::integrator::{Integrator, NoopRecorder, Whitted};
 use crate::math::Rgb;
 use crate::render::pixel_loop::{self, Sample, SampleSink};
+use crate::render::steps::Steps;
 use crate::render::{DiagnosticMap, Image, RenderStats};
 use crate::sampling::{PixelSampler, SceneSampler};
 use glam::DVec3;
@@ -117,12 +118,20 @@ pub fn gather_counted<I: Integrator, S: PixelSampler>(
 ) -> (Image, RenderStats, Features, DiagnosticMap) {
     let scene = integrator.scene();
     let (w, h) = (scene.camera.width, scene.camera.height);
-    let spp = scene.settings.spp.max(1);
     let tracer = Whitted::new(scene);
     let make = || FeatureSink(&tracer, NoopRecorder);
     let rows = pixel_loop::rows(integrator, sampler, make, progress);
     let first = crate::render::first_spp(integrator);
     let (image, stats, map, outs) = pixel_loop::assemble((w, h), first, false, rows);
+    let features = features_of(integrator, outs);
+    (image, stats, features, map)
+}
+
+/// The features of a render by `integrator` from its pixels' gathered sums (non-finite values
+/// written 0).
+fn features_of<I: Integrator>(integrator: &I, outs: Vec<Px>) -> Features {
+    let scene = integrator.scene();
+    let (w, h) = (scene.camera.width, scene.camera.height);
     let n = (w * h) as usize;
     let mut features = Features {
         width: w,
@@ -133,7 +142,7 @@ pub fn gather_counted<I: Integrator, S: PixelSampler>(
         albedo_variance: Vec::with_capacity(n),
         emitted: Vec::with_capacity(n),
         emitter: Vec::with_capacity(n),
-        spp,
+        spp: scene.settings.spp.max(1),
         stochastic: !integrator.traces_packets() || integrator.film().has_lens(),
     };
     let finite = |v: Rgb| if v.is_finite() { v } else { Rgb::ZERO };
@@ -146,7 +155,41 @@ pub fn gather_counted<I: Integrator, S: PixelSampler>(
         features.emitted.push(finite(p.emitted));
         features.emitter.push(finite_f(p.emitter));
     }
-    (image, stats, features, map)
+    features
+}
+
+/// [`gather`] a piece at a time ([`crate::render::steps`]; the web page has no threads): the
+/// same image, counts and features, bit for bit.
+pub struct GatherSteps(Steps<Px>);
+
+impl GatherSteps {
+    /// The gather of a render by `integrator`.
+    #[must_use]
+    pub fn new<I: Integrator>(integrator: &I) -> Self {
+        Self(Steps::new(integrator, false).camera_only())
+    }
+
+    /// Trace pixels by `integrator` (the same scene as [`GatherSteps::new`]'s) while
+    /// `more_time` says so, at least one; returns whether more is to come.
+    pub fn step<I: Integrator>(&mut self, integrator: &I, more_time: &dyn Fn() -> bool) -> bool {
+        let scene = integrator.scene();
+        let sampler = SceneSampler::for_settings(&scene.settings);
+        let tracer = Whitted::new(scene);
+        self.0.step(
+            integrator,
+            &sampler,
+            &|| FeatureSink(&tracer, NoopRecorder),
+            more_time,
+        )
+    }
+
+    /// The image, its counts and its features, as [`gather`] returns them (call once
+    /// [`GatherSteps::step`] returned `false`; `integrator` as there).
+    #[must_use]
+    pub fn finish<I: Integrator>(self, integrator: &I) -> (Image, RenderStats, Features) {
+        let (image, stats, _, outs) = self.0.finish();
+        (image, stats, features_of(integrator, outs))
+    }
 }
 
 /// The variance of the mean of `n` values from their sum `s1` and sum of squares `s2` (the

@@ -12,9 +12,9 @@ mod gather;
 #[cfg(test)]
 mod tests;
 
-pub use atrous::{DenoiseParams, denoise};
+pub use atrous::{DenoiseParams, DenoiseSteps, denoise};
 pub use features::{FeatureSample, MAX_DELTA_BOUNCES, first_non_delta};
-pub use gather::{gather, gather_counted, gather_sampled};
+pub use gather::{GatherSteps, gather, gather_counted, gather_sampled};
 
 use crate::math::Rgb;
 use crate::render::Image;

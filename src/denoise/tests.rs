@@ -106,6 +106,32 @@ fn the_gathered_image_is_the_render_bit_for_bit() {
         assert_eq!(stats.rays, s2.rays);
         assert_eq!(f.albedo.len(), 32 * 18);
         assert_eq!(f.stochastic, integrator == "path");
+        // A pixel at a time (the web page's way): the same image, counts and features.
+        let tracer = crate::SceneIntegrator::new(&scene);
+        let mut steps = GatherSteps::new(&tracer);
+        let mut n = 1;
+        while steps.step(&tracer, &|| false) {
+            n += 1;
+        }
+        assert_eq!(n, 32 * 18, "a pixel a step");
+        let (img3, s3, f3) = steps.finish(&tracer);
+        assert_eq!(
+            format!("{:?}", (&img3, &s3, &f3)),
+            format!("{:?}", (&img, &s2, &f))
+        );
+        // The filter a pixel at a time: the same image, bit for bit.
+        let p = DenoiseParams::default();
+        let whole = denoise(&img, &f, &p);
+        let mut filter = DenoiseSteps::new(&img, &f);
+        let mut n = 1;
+        while filter.step(&f, &p, &|| false) {
+            n += 1;
+        }
+        assert_eq!(n, 32 * 18 * p.iterations as usize, "a pixel a step");
+        assert_eq!(
+            format!("{:?}", filter.finish(&img, &f)),
+            format!("{whole:?}")
+        );
     }
 }
 

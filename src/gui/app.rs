@@ -84,6 +84,17 @@ impl InspectorApp {
         (self.versus.summary(), self.versus.running())
     }
 
+    /// Start the comparison of the integrators chosen (Whitted and path unless changed), as
+    /// its button does (for the web page's test hook).
+    pub fn start_versus(&mut self, ctx: &egui::Context) {
+        self.versus.start(ctx, &self.session.doc);
+    }
+
+    /// Start the split by strategy, as its button does (for the web page's test hook).
+    pub fn start_strategies(&mut self, ctx: &egui::Context) {
+        self.strategies.start(ctx, &self.session.doc);
+    }
+
     /// Whether the texture on screen is the denoised image.
     #[must_use]
     pub fn shows_denoised(&self) -> bool {
@@ -193,9 +204,11 @@ impl InspectorApp {
         for c in cmds {
             self.session.apply(c);
         }
-        // On wasm32 the background tasks (diagram, comparison, denoiser, acne lab) run here,
-        // one per frame; natively they have threads and this does nothing.
-        if crate::gui::jobs::background::run_pending() {
+        // On wasm32 the background tasks (diagram, comparison, split, denoiser, acne lab) are
+        // stepped here for a slice of the frame; natively they have threads and this does
+        // nothing.
+        let budget = crate::gui::jobs::background::SLICE_BUDGET_MS;
+        if crate::gui::jobs::background::run_pending(budget) {
             ctx.request_repaint();
         }
     }

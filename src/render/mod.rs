@@ -406,6 +406,7 @@ mod packets;
 pub mod pixel_loop;
 mod plan;
 pub mod splat;
+pub mod steps;
 pub use image::{DiagnosticMap, Image, RenderStats};
 use packets::packet_bands;
 use pixel_loop::{Beauty, PixelOut, SinkRow};

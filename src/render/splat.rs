@@ -18,7 +18,7 @@ const ROUND_ROWS: u32 = 16;
 
 /// The sampler of the light paths: the scene's kind and `spp`, its seed mixed with
 /// [`LIGHT_SEED`].
-fn light_sampler<I: Integrator>(integrator: &I) -> SceneSampler {
+pub(crate) fn light_sampler<I: Integrator>(integrator: &I) -> SceneSampler {
     let s = &integrator.scene().settings;
     SceneSampler::new(s.sampler_kind(), s.spp, s.seed ^ LIGHT_SEED)
 }
@@ -31,15 +31,28 @@ fn light_row<I: Integrator, R: Recorder, F: FnMut(u64, Splat)>(
     counts: &mut RayCounts,
     mut f: F,
 ) {
+    let mut sampler = light_sampler(integrator);
+    for x in 0..integrator.scene().camera.width {
+        light_pixel(integrator, (x, y), &mut sampler, rec, counts, &mut f);
+    }
+}
+
+/// The light paths seeded by pixel `(x, y)` (one per sample), drawing from `sampler` (a
+/// [`light_sampler`]), each splat handed to `f` with its path index.
+pub(crate) fn light_pixel<I: Integrator, R: Recorder, F: FnMut(u64, Splat)>(
+    integrator: &I,
+    (x, y): (u32, u32),
+    sampler: &mut SceneSampler,
+    rec: &mut R,
+    counts: &mut RayCounts,
+    mut f: F,
+) {
     let scene = integrator.scene();
     let (w, spp) = (scene.camera.width, scene.settings.spp.max(1));
-    let mut sampler = light_sampler(integrator);
-    for x in 0..w {
-        for s in 0..spp {
-            let k = (u64::from(y) * u64::from(w) + u64::from(x)) * u64::from(spp) + u64::from(s);
-            let mut sink = |sp: Splat| f(k, sp);
-            integrator.trace_light_path((x, y, s), &mut sampler, rec, counts, &mut sink);
-        }
+    for s in 0..spp {
+        let k = (u64::from(y) * u64::from(w) + u64::from(x)) * u64::from(spp) + u64::from(s);
+        let mut sink = |sp: Splat| f(k, sp);
+        integrator.trace_light_path((x, y, s), sampler, rec, counts, &mut sink);
     }
 }
 

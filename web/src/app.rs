@@ -22,6 +22,9 @@ pub enum Action {
     Export(ExportKind),
     /// Forget the worst frame time so far.
     ResetFrames,
+    /// Start a background job as its button does (`versus`, `strategies`; for the browser
+    /// test).
+    Start(String),
 }
 
 /// The browser, as the app sees it.
@@ -198,6 +201,7 @@ impl WebApp {
                 Action::Message(m) => self.message = Some(m),
                 Action::Export(kind) => self.inner.session.apply(Command::Export(kind)),
                 Action::ResetFrames => self.reset_frames(),
+                Action::Start(job) => self.start(ui.ctx(), &job),
             }
         }
         let mid = self.host.now_ms();
@@ -322,6 +326,15 @@ impl WebApp {
         }
     }
 
+    /// Start background job `job` (`versus`, `strategies`), as its button does.
+    fn start(&mut self, ctx: &egui::Context, job: &str) {
+        match job {
+            "versus" => self.inner.start_versus(ctx),
+            "strategies" => self.inner.start_strategies(ctx),
+            other => self.message = Some(format!("no background job named {other:?}")),
+        }
+    }
+
     fn publish(&mut self) {
         let doc = &self.inner.session.doc;
         if self.published_tree != Some(doc.tree_version) {
@@ -358,6 +371,8 @@ impl WebApp {
             "last_frame_ms": self.frames.last_ms,
             "slow_frames": self.frames.slow,
             "hash": self.hash,
+            "versus": { "summary": self.inner.versus().0, "running": self.inner.versus().1 },
+            "strategies": { "captions": self.inner.strategies().0, "running": self.inner.strategies().1 },
         });
         self.published.state_json = state.to_string();
         self.published.pixel_frame = self.inner.screen_of_pixel(0, 0).and_then(|a| {

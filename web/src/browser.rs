@@ -205,3 +205,10 @@ pub fn raytree_export(kind: String) -> bool {
 pub fn raytree_reset_frames() {
     push(Action::ResetFrames);
 }
+
+/// Start a background job as its button does: `versus` (the comparison of the integrators
+/// chosen) or `strategies` (the split by strategy).
+#[wasm_bindgen]
+pub fn raytree_start(job: String) {
+    push(Action::Start(job));
+}

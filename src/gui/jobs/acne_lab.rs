@@ -5,7 +5,7 @@
 //! each sent as it is done; a newer job cancels an older one between cells. No egui here.
 
 use super::worker::Repaint;
-use crate::analysis::acne::{AcneCell, cell, scaled_scene};
+use crate::analysis::acne::{AcneCell, CellSteps, cell, scaled_scene};
 use crate::gui::model::lab::LabParams;
 use crate::scene::{OffsetStrategy, Scene};
 use std::sync::Arc;
@@ -75,10 +75,17 @@ impl LabWorker {
         let (tx, deliveries) = channel();
         let generation = Arc::new(AtomicU64::new(0));
         let current = Arc::clone(&generation);
-        let jobs = super::background::Lane::new("raytree-acne-lab", None, move |job: Job| {
-            run(&job, &current, &tx, &repaint);
-        })
-        .ok()?;
+        let jobs =
+            super::background::Lane::stepped("raytree-acne-lab", None, move |job: Job| LabRun {
+                job,
+                current: Arc::clone(&current),
+                tx: tx.clone(),
+                repaint: Arc::clone(&repaint),
+                next: 0,
+                scenes: None,
+                cell: None,
+            })
+            .ok()?;
         Some(Self {
             deliveries,
             generation,
@@ -114,7 +121,7 @@ impl LabWorker {
             if let Ok(d) = self.deliveries.try_recv() {
                 return Some(d);
             }
-            if !super::background::run_pending() {
+            if !super::background::run_pending(f64::INFINITY) {
                 return self.deliveries.try_recv().ok();
             }
         }
@@ -179,6 +186,87 @@ fn run(job: &Job, current: &AtomicU64, tx: &Sender<LabDelivery>, repaint: &Repai
     send(LabDelivery::Done(g));
 }
 
+/// A lab job as a background task: [`run`] whole natively; on wasm32 a pixel at a time
+/// ([`CellSteps`]: the same cells), a newer job cancelling it between two pieces.
+struct LabRun {
+    job: Job,
+    current: Arc<AtomicU64>,
+    tx: Sender<LabDelivery>,
+    repaint: Repaint,
+    /// The next cell: 0 the chosen setting's, then the sweep's in order.
+    next: usize,
+    /// The lab's scenes at [`CURRENT_WIDTH`] and [`SWEEP_WIDTH`], made at the first piece.
+    scenes: Option<[Scene; 2]>,
+    cell: Option<CellSteps>,
+}
+
+impl LabRun {
+    /// The cell `i` of the job: the scene (0 the current, 1 the sweep's), strategy and epsilon.
+    fn setting(p: &LabParams, i: usize) -> (usize, OffsetStrategy, f64) {
+        if i == 0 {
+            return (0, p.strategy, p.epsilon);
+        }
+        let epsilons = sweep_epsilons();
+        let (s, e) = ((i - 1) / epsilons.len(), (i - 1) % epsilons.len());
+        (1, OffsetStrategy::ALL[s], epsilons[e])
+    }
+
+    fn send(&self, d: LabDelivery) -> bool {
+        let ok = self.tx.send(d).is_ok();
+        (self.repaint)();
+        ok
+    }
+}
+
+impl super::background::Task for LabRun {
+    fn run(self: Box<Self>) {
+        run(&self.job, &self.current, &self.tx, &self.repaint);
+    }
+
+    fn step(&mut self, more_time: &dyn Fn() -> bool) -> bool {
+        let g = self.job.generation;
+        let p = self.job.params;
+        if self.scenes.is_none() {
+            let job = &self.job;
+            self.scenes = Some([CURRENT_WIDTH, SWEEP_WIDTH].map(|w| lab_scene(&job.scene, w, &p)));
+        }
+        loop {
+            if self.current.load(Ordering::SeqCst) != g {
+                return false;
+            }
+            let Some(scenes) = &self.scenes else {
+                return false;
+            };
+            let (k, strategy, epsilon) = Self::setting(&p, self.next);
+            let cell = self
+                .cell
+                .get_or_insert_with(|| CellSteps::new(&scenes[k], strategy, epsilon, p.scale));
+            if cell.step(more_time) {
+                return true;
+            }
+            let done = self.cell.take().map(CellSteps::finish);
+            let sent = done.is_some_and(|c| {
+                self.send(if self.next == 0 {
+                    LabDelivery::Current(g, c)
+                } else {
+                    LabDelivery::Sweep(g, c)
+                })
+            });
+            self.next += 1;
+            if !sent {
+                return false;
+            }
+            if self.next == job_len() {
+                self.send(LabDelivery::Done(g));
+                return false;
+            }
+            if !more_time() {
+                return true;
+            }
+        }
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -227,5 +315,45 @@ mod tests {
             .is_err()
         );
         assert!(far.check().is_ok());
+    }
+
+    /// Every delivery of a lab job, run whole or stepped with `more_time` always `answer`.
+    fn deliveries(stepped: Option<bool>) -> Vec<String> {
+        let (tx, rx) = channel();
+        let mut scene = Scene::default_scene();
+        scene.camera = scene.camera.with_size(64, 36);
+        let mut run = Box::new(LabRun {
+            job: Job {
+                generation: 1,
+                scene: Arc::new(scene),
+                params: LabParams::default(),
+            },
+            current: Arc::new(AtomicU64::new(1)),
+            tx,
+            repaint: Arc::new(|| {}),
+            next: 0,
+            scenes: None,
+            cell: None,
+        });
+        match stepped {
+            None => super::super::background::Task::run(run),
+            Some(answer) => {
+                let mut n = 1;
+                while super::super::background::Task::step(&mut *run, &|| answer) {
+                    n += 1;
+                }
+                let pixels = (160 * 90 + (job_len() - 1) * 48 * 27) as usize;
+                assert_eq!(n, if answer { 1 } else { pixels }, "a pixel a step");
+            }
+        }
+        rx.try_iter().map(|d| format!("{d:?}")).collect()
+    }
+
+    #[test]
+    fn a_stepped_lab_job_delivers_what_the_whole_job_does() {
+        let whole = deliveries(None);
+        assert_eq!(whole.len(), job_len() + 1);
+        assert_eq!(deliveries(Some(false)), whole);
+        assert_eq!(deliveries(Some(true)), whole);
     }
 }

@@ -5,12 +5,13 @@
 //! toggle is on. The selected pixel's tree, the overlay, the diagram and the exports stay the
 //! raw samples: the denoiser never changes what a pixel's tree explains.
 
-use crate::denoise::{DenoiseParams, denoise, gather};
+use super::background::{Inbox, Work, deliver};
+use crate::Scene;
+use crate::denoise::{DenoiseParams, DenoiseSteps, Features, GatherSteps, denoise, gather};
 use crate::gui::model::document::Document;
 use crate::integrator::SceneIntegrator;
 use crate::render::Image;
 use std::sync::Arc;
-use std::sync::mpsc::{Receiver, channel};
 use web_time::Instant;
 
 /// Which finished render an image belongs to: its generation and the seconds it took (a
@@ -20,7 +21,7 @@ type Key = (u64, u64);
 /// The denoised image of the last finished render, and the job computing the next one.
 #[derive(Default)]
 pub struct DenoiseView {
-    pending: Option<(Key, Receiver<(Image, f64)>)>,
+    pending: Option<(Key, Inbox<(Image, f64)>)>,
     done: Option<(Key, Image, f64)>,
 }
 
@@ -74,7 +75,7 @@ impl DenoiseView {
         };
         if let Some((k, rx)) = &self.pending
             && *k == key
-            && let Ok((image, secs)) = rx.try_recv()
+            && let Some((image, secs)) = rx.try_recv()
         {
             self.done = Some((key, image, secs));
             self.pending = None;
@@ -85,29 +86,110 @@ impl DenoiseView {
             return (Some(image), DenoiseState::Ready(*secs));
         }
         if self.pending.as_ref().is_none_or(|(k, _)| *k != key) {
-            let scene = Arc::clone(&doc.scene);
-            let (tx, rx) = channel();
-            let spawned = super::background::spawn(
+            let work = Denoising {
+                scene: Arc::clone(&doc.scene),
+                start: None,
+                phase: None,
+            };
+            let spawned = deliver(
                 "raytree-denoise",
                 Some(crate::integrator::THREAD_STACK_BYTES),
-                move || {
-                    let start = Instant::now();
-                    let (raw, _, features) = gather(&SceneIntegrator::new(&scene), &|_| {});
-                    let image = denoise(&raw, &features, &DenoiseParams::default());
-                    // A newer render dropped the receiver: nothing to deliver.
-                    if tx.send((image, start.elapsed().as_secs_f64())).is_ok() {
-                        repaint();
-                    }
-                },
+                work,
+                repaint,
             );
-            if spawned.is_err() {
+            let Ok(rx) = spawned else {
                 return (
                     None,
                     DenoiseState::Unavailable("no thread for the denoiser"),
                 );
-            }
+            };
             self.pending = Some((key, rx));
         }
         (None, DenoiseState::Running)
+    }
+}
+
+/// The denoiser as a background job: the guide pass ([`gather`]) and the filter, whole
+/// natively; on wasm32 a pixel at a time ([`GatherSteps`], then [`DenoiseSteps`]: the same
+/// pixels, features and filtered image). Its outcome: the image and the seconds taken.
+struct Denoising {
+    scene: Arc<Scene>,
+    start: Option<Instant>,
+    phase: Option<Phase>,
+}
+
+/// Where a stepped [`Denoising`] stands.
+enum Phase {
+    Gather(GatherSteps),
+    Filter(Image, Box<Features>, DenoiseSteps),
+}
+
+impl Work for Denoising {
+    type Out = (Image, f64);
+
+    fn whole(self) -> Self::Out {
+        let start = Instant::now();
+        let (raw, _, features) = gather(&SceneIntegrator::new(&self.scene), &|_| {});
+        let image = denoise(&raw, &features, &DenoiseParams::default());
+        (image, start.elapsed().as_secs_f64())
+    }
+
+    fn piece(&mut self, more_time: &dyn Fn() -> bool) -> Option<Self::Out> {
+        let start = *self.start.get_or_insert_with(Instant::now);
+        let tracer = SceneIntegrator::new(&self.scene);
+        let params = DenoiseParams::default();
+        match self.phase.take() {
+            None => self.phase = Some(Phase::Gather(GatherSteps::new(&tracer))),
+            Some(Phase::Gather(mut steps)) => {
+                if steps.step(&tracer, more_time) {
+                    self.phase = Some(Phase::Gather(steps));
+                } else {
+                    let (raw, _, features) = steps.finish(&tracer);
+                    let filter = DenoiseSteps::new(&raw, &features);
+                    self.phase = Some(Phase::Filter(raw, Box::new(features), filter));
+                }
+            }
+            Some(Phase::Filter(raw, features, mut filter)) => {
+                if !filter.step(&features, &params, more_time) {
+                    let image = filter.finish(&raw, &features);
+                    return Some((image, start.elapsed().as_secs_f64()));
+                }
+                self.phase = Some(Phase::Filter(raw, features, filter));
+            }
+        }
+        None
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn the_stepped_denoiser_filters_the_same_image() {
+        let mut scene = Scene::default_scene();
+        scene.camera = scene.camera.with_size(24, 16);
+        scene.settings.integrator = crate::scene::IntegratorKind::Path;
+        scene.settings.spp = 2;
+        let job = || Denoising {
+            scene: Arc::new(scene.clone()),
+            start: None,
+            phase: None,
+        };
+        let (whole, _) = job().whole();
+        let mut stepped = job();
+        let mut n = 1;
+        let (image, secs) = loop {
+            match stepped.piece(&|| false) {
+                Some(out) => break out,
+                None => n += 1,
+            }
+        };
+        // The start, a pixel of the guide pass a piece (the last also starts the filter), then
+        // a pixel of each of the filter's passes a piece.
+        let passes = DenoiseParams::default().iterations as usize;
+        assert_eq!(n, 1 + 24 * 16 * (1 + passes), "a pixel a piece");
+        assert_eq!(image, whole);
+        assert!(secs.is_finite() && secs >= 0.0);
     }
 }

@@ -6,12 +6,12 @@
 //! length where it can make the path).
 
 use crate::Scene;
-use crate::analysis::strategies::{Part, Split, split};
+use crate::analysis::strategies::{Part, Split, SplitSteps, split};
+use crate::gui::jobs::background::{Inbox, Work, deliver};
 use crate::gui::model::document::Document;
 use crate::render::Image;
 use egui::{ColorImage, TextureHandle, TextureOptions};
 use std::sync::Arc;
-use std::sync::mpsc::{Receiver, channel};
 
 /// Bounces kept apart in the split (longer paths are one `longer` part), as the command's
 /// default.
@@ -35,7 +35,7 @@ struct Shown {
 /// The "Strategies" section: its running job and its last sheet.
 #[derive(Default)]
 pub struct StrategiesPanel {
-    pending: Option<Receiver<Sheet>>,
+    pending: Option<Inbox<Sheet>>,
     shown: Option<Shown>,
     unweighted: bool,
 }
@@ -49,22 +49,14 @@ fn srgb(s: &Split, pixels: &[crate::math::Rgb]) -> Vec<u8> {
     .to_srgb8()
 }
 
-/// Split `scene` and convert every part for display (on the job's thread).
-fn make(scene: Arc<Scene>) -> Sheet {
-    let s = split(&scene, BOUNCES, &|_| {});
+/// Every part of split `s` of `scene` converted for display (on the job's thread).
+fn sheet(scene: Arc<Scene>, s: &Split) -> Sheet {
     let shares = s.shares();
     let mut cells: Vec<_> = s
         .parts
         .iter()
         .zip(shares)
-        .map(|(p, (_, share))| {
-            (
-                p.part,
-                share,
-                srgb(&s, &p.weighted),
-                srgb(&s, &p.unweighted),
-            )
-        })
+        .map(|(p, (_, share))| (p.part, share, srgb(s, &p.weighted), srgb(s, &p.unweighted)))
         .collect();
     // Rows by bounces (s from 0 along a row), then the background and longer paths.
     cells.sort_by_key(|c| match c.0 {
@@ -76,6 +68,34 @@ fn make(scene: Arc<Scene>) -> Sheet {
         scene,
         width: s.width,
         cells,
+    }
+}
+
+/// The split as a background job: [`split`] whole natively; on wasm32 a pixel at a time
+/// ([`SplitSteps`]: the same split).
+struct Splitting {
+    scene: Arc<Scene>,
+    steps: Option<SplitSteps>,
+}
+
+impl Work for Splitting {
+    type Out = Sheet;
+
+    fn whole(self) -> Sheet {
+        let s = split(&self.scene, BOUNCES, &|_| {});
+        sheet(self.scene, &s)
+    }
+
+    fn piece(&mut self, more_time: &dyn Fn() -> bool) -> Option<Sheet> {
+        let scene = &self.scene;
+        let steps = self
+            .steps
+            .get_or_insert_with(|| SplitSteps::new(scene, BOUNCES));
+        if steps.step(scene, more_time) {
+            return None;
+        }
+        let s = self.steps.take()?.finish();
+        Some(sheet(Arc::clone(&self.scene), &s))
     }
 }
 
@@ -96,7 +116,7 @@ impl StrategiesPanel {
 
     fn poll(&mut self, ctx: &egui::Context) {
         let Some(rx) = &self.pending else { return };
-        let Ok(sheet) = rx.try_recv() else { return };
+        let Some(sheet) = rx.try_recv() else { return };
         self.pending = None;
         let h = |rgb: &[u8]| rgb.len() / 3 / (sheet.width as usize).max(1);
         let tex = |name: String, rgb: &[u8]| {
@@ -117,20 +137,17 @@ impl StrategiesPanel {
         self.shown = Some(Shown { sheet, textures });
     }
 
-    fn start(&mut self, ctx: &egui::Context, doc: &Document) {
+    /// Split the scene as set (as the section's button does).
+    pub fn start(&mut self, ctx: &egui::Context, doc: &Document) {
         let scene = Arc::clone(&doc.scene);
-        let (tx, rx) = channel();
         let repaint = ctx.clone();
-        let spawned = crate::gui::jobs::background::spawn(
+        let spawned = deliver(
             "raytree-strategies",
             Some(crate::integrator::THREAD_STACK_BYTES),
-            move || {
-                if tx.send(make(scene)).is_ok() {
-                    repaint.request_repaint();
-                }
-            },
+            Splitting { scene, steps: None },
+            move || repaint.request_repaint(),
         );
-        if spawned.is_ok() {
+        if let Ok(rx) = spawned {
             self.pending = Some(rx);
         }
     }

@@ -7,12 +7,13 @@
 
 use crate::Scene;
 use crate::aov::{ClassShare, pair, versus};
+use crate::aov::{Pair, PairSteps, Versus, VersusSteps};
+use crate::gui::jobs::background::{Inbox, Work, deliver};
 use crate::gui::model::document::Document;
 use crate::scene::IntegratorKind;
 use egui::{ColorImage, TextureHandle, TextureOptions};
 use std::path::PathBuf;
 use std::sync::Arc;
-use std::sync::mpsc::{Receiver, channel};
 
 /// What a comparison was made from: the scene file and the scene as set.
 #[derive(Clone)]
@@ -45,7 +46,7 @@ struct Done {
 }
 
 /// A running comparison: what it was made from, its pair, and where its outcome arrives.
-type Pending = (Made, [IntegratorKind; 2], Receiver<Result<Outcome, String>>);
+type Pending = (Made, [IntegratorKind; 2], Inbox<Result<Outcome, String>>);
 
 /// The "Compare integrators" section: the pair chosen, its running job and its last result.
 pub struct VersusPanel {
@@ -76,19 +77,9 @@ fn label(k: IntegratorKind) -> &'static str {
 /// Render `scene` with both `kinds` and compare them: by light transport class for Whitted and
 /// path, against the noise for any other pair.
 fn compare(scene: &Scene, kinds: [IntegratorKind; 2]) -> Result<Outcome, String> {
-    let flat = |px: Vec<[u8; 3]>| px.into_iter().flatten().collect::<Vec<u8>>();
-    if kinds == [IntegratorKind::Whitted, IntegratorKind::Path] {
+    if by_class(kinds) {
         let v = versus(scene, None, &|_| {}).map_err(|e| e.to_string())?;
-        return Ok(Outcome {
-            summary: v.summary(),
-            classes: v.classes.clone(),
-            width: v.whitted.width,
-            images: [
-                v.whitted.to_srgb8(),
-                v.path.beauty.to_srgb8(),
-                flat(v.difference_rgb8().0),
-            ],
-        });
+        return Ok(versus_outcome(&v));
     }
     let p = pair(scene, kinds, None, &mut |s| {
         crate::render::render(
@@ -97,7 +88,33 @@ fn compare(scene: &Scene, kinds: [IntegratorKind; 2]) -> Result<Outcome, String>
             &|_| {},
         )
     });
-    Ok(Outcome {
+    Ok(pair_outcome(&p))
+}
+
+/// Whether the pair is compared by light transport class (Whitted and path).
+fn by_class(kinds: [IntegratorKind; 2]) -> bool {
+    kinds == [IntegratorKind::Whitted, IntegratorKind::Path]
+}
+
+fn flat(px: Vec<[u8; 3]>) -> Vec<u8> {
+    px.into_iter().flatten().collect()
+}
+
+fn versus_outcome(v: &Versus) -> Outcome {
+    Outcome {
+        summary: v.summary(),
+        classes: v.classes.clone(),
+        width: v.whitted.width,
+        images: [
+            v.whitted.to_srgb8(),
+            v.path.beauty.to_srgb8(),
+            flat(v.difference_rgb8().0),
+        ],
+    }
+}
+
+fn pair_outcome(p: &Pair) -> Outcome {
+    Outcome {
         summary: p.summary(),
         classes: Vec::new(),
         width: p.a.image.width,
@@ -106,7 +123,50 @@ fn compare(scene: &Scene, kinds: [IntegratorKind; 2]) -> Result<Outcome, String>
             p.b.image.to_srgb8(),
             flat(p.difference_rgb8().0),
         ],
-    })
+    }
+}
+
+/// The comparison as a background job: [`compare`] whole natively; a pixel at a time on
+/// wasm32 ([`VersusSteps`], [`PairSteps`]: the same renders).
+struct Comparison {
+    scene: Arc<Scene>,
+    kinds: [IntegratorKind; 2],
+    steps: Option<Stepped>,
+}
+
+enum Stepped {
+    Versus(Box<VersusSteps>),
+    Pair(Box<PairSteps>),
+}
+
+impl Work for Comparison {
+    type Out = Result<Outcome, String>;
+
+    fn whole(self) -> Self::Out {
+        compare(&self.scene, self.kinds)
+    }
+
+    fn piece(&mut self, more_time: &dyn Fn() -> bool) -> Option<Self::Out> {
+        let (scene, kinds) = (&self.scene, self.kinds);
+        let steps = self.steps.get_or_insert_with(|| {
+            if by_class(kinds) {
+                Stepped::Versus(Box::new(VersusSteps::new(scene, None)))
+            } else {
+                Stepped::Pair(Box::new(PairSteps::new(scene, kinds, None)))
+            }
+        });
+        let more = match steps {
+            Stepped::Versus(v) => v.step(more_time),
+            Stepped::Pair(p) => p.step(more_time),
+        };
+        if more {
+            return None;
+        }
+        Some(Ok(match self.steps.take()? {
+            Stepped::Versus(v) => versus_outcome(&v.finish()),
+            Stepped::Pair(p) => pair_outcome(&p.finish()),
+        }))
+    }
 }
 
 /// Whether a comparison made from `a` still shows `b`: the same scene in every respect but the
@@ -180,7 +240,7 @@ impl VersusPanel {
         let Some((made, kinds, rx)) = &self.pending else {
             return;
         };
-        let Ok(result) = rx.try_recv() else {
+        let Some(result) = rx.try_recv() else {
             return;
         };
         let (made, kinds) = (made.clone(), *kinds);
@@ -221,22 +281,23 @@ impl VersusPanel {
         });
     }
 
-    /// Start the comparison of the pair chosen for the scene as set.
-    fn start(&mut self, ctx: &egui::Context, doc: &Document) {
+    /// Start the comparison of the pair chosen for the scene as set (as its button does).
+    pub fn start(&mut self, ctx: &egui::Context, doc: &Document) {
         let scene = Arc::clone(&doc.scene);
         let kinds = self.kinds;
-        let (tx, rx) = channel();
         let repaint = ctx.clone();
-        let spawned = crate::gui::jobs::background::spawn(
+        let work = Comparison {
+            scene,
+            kinds,
+            steps: None,
+        };
+        let spawned = deliver(
             "raytree-versus",
             Some(crate::integrator::THREAD_STACK_BYTES),
-            move || {
-                if tx.send(compare(&scene, kinds)).is_ok() {
-                    repaint.request_repaint();
-                }
-            },
+            work,
+            move || repaint.request_repaint(),
         );
-        if spawned.is_ok() {
+        if let Ok(rx) = spawned {
             let made = Made {
                 path: doc.source.path.clone(),
                 scene: Arc::clone(&doc.scene),
@@ -339,4 +400,47 @@ fn classes_ui(ui: &mut egui::Ui, classes: &[ClassShare]) {
                 ui.end_row();
             }
         });
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The comparison of the caustic at 12x9, 2 spp, whole and a pixel at a time.
+    fn both(kinds: [IntegratorKind; 2]) -> [Outcome; 2] {
+        let mut scene = Scene::from_json(include_str!("../../../fixtures/caustic.json")).unwrap();
+        scene.camera = scene.camera.with_size(12, 9);
+        scene.settings.spp = 2;
+        let job = || Comparison {
+            scene: Arc::new(scene.clone()),
+            kinds,
+            steps: None,
+        };
+        let whole = job().whole().unwrap();
+        let mut stepped = job();
+        let mut n = 1;
+        let out = loop {
+            match stepped.piece(&|| false) {
+                Some(out) => break out.unwrap(),
+                None => n += 1,
+            }
+        };
+        // Each side's camera pass, and the light pass of light tracing and BDPT.
+        let passes: usize = kinds.iter().map(|k| 1 + usize::from(k.splats())).sum();
+        assert_eq!(n, passes * 12 * 9, "a pixel a piece");
+        [whole, out]
+    }
+
+    #[test]
+    fn a_stepped_comparison_is_the_whole_comparison() {
+        for kinds in [
+            [IntegratorKind::Whitted, IntegratorKind::Path],
+            [IntegratorKind::Light, IntegratorKind::Bdpt],
+        ] {
+            let [a, b] = both(kinds);
+            assert_eq!(a.summary, b.summary);
+            assert_eq!(a.classes, b.classes);
+            assert_eq!((a.width, &a.images), (b.width, &b.images));
+        }
+    }
 }
