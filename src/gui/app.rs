@@ -164,6 +164,10 @@ impl InspectorApp {
         let ctx = ui.ctx().clone();
         self.pump(ui, &ctx);
         self.update_texture(&ctx);
+        // A comparison or split started while its section is closed (the web page's hook)
+        // still arrives.
+        self.versus.poll(&ctx);
+        self.strategies.poll(&ctx);
         let doc = &self.session.doc;
         let mut cmds = Vec::new();
         egui::Panel::top("title").show(ui, |ui| title_ui(ui, doc));

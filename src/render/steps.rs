@@ -176,7 +176,7 @@ impl Steps<()> {
     ) -> bool {
         let sampler = SceneSampler::for_settings(&integrator.scene().settings);
         if self.diagnose {
-            let make = || Beauty(DiagnosticRecorder::default());
+            let make = || Beauty(DiagnosticRecorder);
             self.step(integrator, &sampler, &make, more_time)
         } else {
             let make = || Beauty(NoopRecorder);

@@ -342,7 +342,7 @@ mod tests {
                 while super::super::background::Task::step(&mut *run, &|| answer) {
                     n += 1;
                 }
-                let pixels = (160 * 90 + (job_len() - 1) * 48 * 27) as usize;
+                let pixels = 160 * 90 + (job_len() - 1) * 48 * 27;
                 assert_eq!(n, if answer { 1 } else { pixels }, "a pixel a step");
             }
         }

@@ -120,8 +120,8 @@ struct Denoising {
 
 /// Where a stepped [`Denoising`] stands.
 enum Phase {
-    Gather(GatherSteps),
-    Filter(Image, Box<Features>, DenoiseSteps),
+    Gather(Box<GatherSteps>),
+    Filter(Box<(Image, Features, DenoiseSteps)>),
 }
 
 impl Work for Denoising {
@@ -139,22 +139,24 @@ impl Work for Denoising {
         let tracer = SceneIntegrator::new(&self.scene);
         let params = DenoiseParams::default();
         match self.phase.take() {
-            None => self.phase = Some(Phase::Gather(GatherSteps::new(&tracer))),
+            None => self.phase = Some(Phase::Gather(Box::new(GatherSteps::new(&tracer)))),
             Some(Phase::Gather(mut steps)) => {
                 if steps.step(&tracer, more_time) {
                     self.phase = Some(Phase::Gather(steps));
                 } else {
                     let (raw, _, features) = steps.finish(&tracer);
                     let filter = DenoiseSteps::new(&raw, &features);
-                    self.phase = Some(Phase::Filter(raw, Box::new(features), filter));
+                    self.phase = Some(Phase::Filter(Box::new((raw, features, filter))));
                 }
             }
-            Some(Phase::Filter(raw, features, mut filter)) => {
-                if !filter.step(&features, &params, more_time) {
+            Some(Phase::Filter(mut f)) => {
+                let (_, features, filter) = &mut *f;
+                if !filter.step(features, &params, more_time) {
+                    let (raw, features, filter) = *f;
                     let image = filter.finish(&raw, &features);
                     return Some((image, start.elapsed().as_secs_f64()));
                 }
-                self.phase = Some(Phase::Filter(raw, features, filter));
+                self.phase = Some(Phase::Filter(f));
             }
         }
         None

@@ -114,7 +114,9 @@ impl StrategiesPanel {
         })
     }
 
-    fn poll(&mut self, ctx: &egui::Context) {
+    /// Take a finished job's outcome, if one has arrived (every frame, the section open or
+    /// not).
+    pub fn poll(&mut self, ctx: &egui::Context) {
         let Some(rx) = &self.pending else { return };
         let Some(sheet) = rx.try_recv() else { return };
         self.pending = None;

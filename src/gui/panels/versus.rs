@@ -236,7 +236,9 @@ impl VersusPanel {
         }
     }
 
-    fn poll(&mut self, ctx: &egui::Context) {
+    /// Take a finished job's outcome, if one has arrived (every frame, the section open or
+    /// not).
+    pub fn poll(&mut self, ctx: &egui::Context) {
         let Some((made, kinds, rx)) = &self.pending else {
             return;
         };
