@@ -212,11 +212,14 @@ try {
     await shot(scene);
   }
 
-  // 5b. Background jobs step between frames: the comparison of two integrators and the split
-  // by strategy run a pixel at a time, so no frame waits for a whole render.
+  // 5b. Background jobs step between frames: the comparison of two integrators, the split by
+  // strategy, the denoiser and the acne lab run a pixel at a time, so no frame waits for a
+  // whole render.
   for (const [job, hash, done] of [
-    ['versus', 'scene=caustic&integrator=path&spp=2', (s) => s.versus.summary && !s.versus.running],
-    ['strategies', 'scene=caustic&integrator=bdpt&spp=1', (s) => s.strategies.captions.length > 0 && !s.strategies.running],
+    ['versus', 'scene=caustic&integrator=path&spp=8', (s) => s.versus.summary && !s.versus.running],
+    ['strategies', 'scene=caustic&integrator=bdpt&spp=2', (s) => s.strategies.captions.length > 0 && !s.strategies.running],
+    ['denoise', 'scene=caustic&integrator=path&spp=8', (s) => s.denoise?.startsWith('Ready')],
+    ['acne', 'scene=classic&integrator=whitted&spp=1', (s) => s.lab.started && s.lab.done],
   ]) {
     await setHash('scene=diffuse');
     s = await setHash(hash, 600000);
@@ -232,6 +235,7 @@ try {
     // Whole in one frame, the job would freeze the page for all of its time.
     assert.ok(gap < wall / 4, `${job}: the page froze for ${gap} ms of the job's ${wall} ms`);
     if (job === 'versus') assert.match(s.versus.summary, /Whitted luminance/);
+    if (job === 'acne') assert.ok(s.lab.cells > 1, JSON.stringify(s.lab));
     await shot(`job-${job}`);
   }
   writeFileSync(join(out, 'measurements.json'), JSON.stringify(measures, null, 2));

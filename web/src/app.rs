@@ -22,8 +22,8 @@ pub enum Action {
     Export(ExportKind),
     /// Forget the worst frame time so far.
     ResetFrames,
-    /// Start a background job as its button does (`versus`, `strategies`; for the browser
-    /// test).
+    /// Start a background job as its button does (`versus`, `strategies`, `denoise`, `acne`;
+    /// for the browser test).
     Start(String),
 }
 
@@ -326,11 +326,22 @@ impl WebApp {
         }
     }
 
-    /// Start background job `job` (`versus`, `strategies`), as its button does.
+    /// Start background job `job` (`versus`, `strategies`, `denoise`: the denoised image,
+    /// `acne`: the acne lab), as its button or checkbox does.
     fn start(&mut self, ctx: &egui::Context, job: &str) {
+        let doc = &self.inner.session.doc;
         match job {
             "versus" => self.inner.start_versus(ctx),
             "strategies" => self.inner.start_strategies(ctx),
+            "denoise" => {
+                let mut view = doc.view;
+                view.denoise = true;
+                self.inner.session.apply(Command::SetView(view));
+            }
+            "acne" => {
+                let params = doc.lab.params;
+                self.inner.session.apply(Command::SetLab(params));
+            }
             other => self.message = Some(format!("no background job named {other:?}")),
         }
     }
@@ -373,6 +384,8 @@ impl WebApp {
             "hash": self.hash,
             "versus": { "summary": self.inner.versus().0, "running": self.inner.versus().1 },
             "strategies": { "captions": self.inner.strategies().0, "running": self.inner.strategies().1 },
+            "denoise": self.inner.denoise_state().map(|d| format!("{d:?}")),
+            "lab": { "started": doc.lab.started, "done": doc.lab.done, "cells": doc.lab.sweep.len() + usize::from(doc.lab.current.is_some()) },
         });
         self.published.state_json = state.to_string();
         self.published.pixel_frame = self.inner.screen_of_pixel(0, 0).and_then(|a| {

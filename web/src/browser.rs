@@ -207,7 +207,8 @@ pub fn raytree_reset_frames() {
 }
 
 /// Start a background job as its button does: `versus` (the comparison of the integrators
-/// chosen) or `strategies` (the split by strategy).
+/// chosen), `strategies` (the split by strategy), `denoise` (the denoised image) or `acne`
+/// (the acne lab).
 #[wasm_bindgen]
 pub fn raytree_start(job: String) {
     push(Action::Start(job));
