@@ -359,6 +359,8 @@ impl<'r> State<'r> {
             "Material" => {
                 let m = self.material(file, t, &kind, &params)?;
                 self.gs.material = (format!("{kind}-{}", t.line), m);
+                // `material` names its unused parameters itself.
+                return Ok(());
             }
             "MakeNamedMaterial" => {
                 let ty = ctx(file, &what, &params, &self.textures)
@@ -366,6 +368,7 @@ impl<'r> State<'r> {
                     .ok_or_else(|| err_at(file, t, format!("{what}: needs \"string type\"")))?;
                 let m = self.material(file, t, &ty, &params)?;
                 self.named.insert(kind, m);
+                return Ok(());
             }
             "AreaLightSource" => self.area(file, t, &kind, &params)?,
             "LightSource" => self.light(file, t, &kind, &params)?,

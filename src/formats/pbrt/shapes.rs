@@ -63,12 +63,8 @@ impl MatReader<'_> {
         })
     }
 
-    /// The description of material `kind` (`what`: its directive, for messages), and a note.
-    fn desc(
-        &mut self,
-        kind: &str,
-        what: &str,
-    ) -> Result<(MaterialDesc, Option<String>), FormatError> {
+    /// The description of material `kind`, and a note (the caller prefixes the directive).
+    fn desc(&mut self, kind: &str) -> Result<(MaterialDesc, Option<String>), FormatError> {
         Ok(match kind {
             "diffuse" => (mm::diffuse(self.color("reflectance", Kind::Albedo, [0.5; 3])?), None),
             "dielectric" => {
@@ -87,7 +83,8 @@ impl MatReader<'_> {
                 let r = self.color("reflectance", Kind::Albedo, [0.25; 3])?;
                 (mm::diffuse(r), Some("diffusetransmission: only its diffuse reflection is kept".into()))
             }
-            _ => (mm::diffuse([0.5; 3]), Some(format!("{what} is not supported: grey diffuse 0.5 used"))),
+            // As the caller prints it: `Material "measured": not supported by raytree: ...`.
+            _ => (mm::diffuse([0.5; 3]), Some("not supported by raytree: grey diffuse 0.5 used".into())),
         })
     }
 
@@ -180,7 +177,7 @@ impl State<'_> {
             notes: Vec::new(),
             alpha_v: None,
         };
-        let (mut desc, note) = r.desc(kind, &what)?;
+        let (mut desc, note) = r.desc(kind)?;
         let mut notes = r.notes;
         notes.extend(note);
         desc.roughness_v = r.alpha_v;

@@ -155,6 +155,24 @@ fn materials_map_with_notes() {
 }
 
 #[test]
+fn a_materials_unused_parameters_are_named_once_and_its_name_once() {
+    let c = run(
+        "Material \"diffuse\" \"rgb reflectance\" [0.5 0.5 0.5] \"float bogus\" 3\nShape \"sphere\"\n\
+        MakeNamedMaterial \"m\" \"string type\" \"diffuse\" \"float other\" 1\n\
+        Material \"measured\" \"string filename\" \"x.bsdf\"\nShape \"sphere\"\n",
+    );
+    let notes: Vec<&str> = c.notes.iter().map(|n| n.message.as_str()).collect();
+    let count = |s: &str| notes.iter().filter(|n| n.contains(s)).count();
+    assert_eq!(count("ignored \"float bogus\""), 1, "{notes:?}");
+    assert_eq!(count("ignored \"float other\""), 1, "{notes:?}");
+    assert_eq!(count("ignored \"string filename\""), 1, "{notes:?}");
+    assert!(
+        notes.contains(&"Material \"measured\": not supported by raytree: grey diffuse 0.5 used"),
+        "{notes:?}"
+    );
+}
+
+#[test]
 fn conductors_by_reflectance_and_anisotropic_roughness() {
     let c = run(
         "Material \"conductor\" \"rgb reflectance\" [0.5 0.5 0.5] \"float uroughness\" 0.04 \"float vroughness\" 0.16\n\
