@@ -45,7 +45,7 @@ pub fn run(a: &ConvertArgs) -> Result<()> {
 }
 
 /// Pretty JSON with arrays of numbers (points, colours, triangles) on one line, so a converted
-/// mesh reads one vertex per line.
+/// mesh reads one vertex per line; keys sorted, but a `"type"` key first.
 fn write_json(v: &serde_json::Value, indent: usize, out: &mut String) {
     use serde_json::Value;
     let pad = |n: usize| "  ".repeat(n);
@@ -67,7 +67,11 @@ fn write_json(v: &serde_json::Value, indent: usize, out: &mut String) {
         Value::Object(m) if m.is_empty() => out.push_str("{}"),
         Value::Object(m) => {
             out.push_str("{\n");
-            for (i, (k, x)) in m.iter().enumerate() {
+            // A tagged value's "type" first, as the scene format writes it; the other keys in
+            // order.
+            let tag = m.get_key_value("type");
+            let rest = m.iter().filter(|(k, _)| k.as_str() != "type");
+            for (i, (k, x)) in tag.into_iter().chain(rest).enumerate() {
                 out.push_str(&format!(
                     "{}{}: ",
                     pad(indent + 1),
