@@ -125,3 +125,54 @@ fn an_empty_image_takes_one_step() {
     let (r, n) = stepped(&scene, false, false);
     assert_eq!((r.image.pixels.len(), n), (0, 1));
 }
+
+/// Renders of `scene` stepped with a clock that allows `pattern[i % len]` more pixels at call
+/// `i` (0: one pixel, the least a call does), so that the pieces end anywhere: within a row, at
+/// a row's end, between the camera pass and the light pass.
+fn stepped_by(scene: &Scene, pattern: &[u8]) -> Rendered {
+    let integrator = SceneIntegrator::new(scene);
+    let mut steps = Steps::new(&integrator, false);
+    let mut call = 0;
+    loop {
+        let budget = std::cell::Cell::new(pattern[call % pattern.len()]);
+        let more_time = || {
+            let b = budget.get();
+            budget.set(b.saturating_sub(1));
+            b > 0
+        };
+        call += 1;
+        if !steps.step_plain(&integrator, &more_time) {
+            return steps.rendered();
+        }
+    }
+}
+
+proptest::proptest! {
+    #![proptest_config(proptest::prelude::ProptestConfig::with_cases(24))]
+    #[test]
+    fn pieces_of_any_length_give_the_render(
+        fixture_index in 0usize..3,
+        kind_index in 0usize..4,
+        w in 1u32..7,
+        h in 1u32..5,
+        spp in 1u32..4,
+        pattern in proptest::collection::vec(0u8..9, 1..6),
+    ) {
+        let name = ["caustic.json", "cornell-box.json", "classic.json"][fixture_index];
+        let mut scene = fixture(name, (w, h), spp);
+        scene.settings.integrator = [
+            IntegratorKind::Whitted,
+            IntegratorKind::Path,
+            IntegratorKind::Light,
+            IntegratorKind::Bdpt,
+        ][kind_index];
+        let whole = render(&SceneIntegrator::new(&scene), &RenderOptions::new(), &|_| {});
+        let s = stepped_by(&scene, &pattern);
+        let bits = |r: &Rendered| -> Vec<[u64; 3]> {
+            r.image.pixels.iter().map(|p| [p.x.to_bits(), p.y.to_bits(), p.z.to_bits()]).collect()
+        };
+        proptest::prop_assert_eq!(bits(&s), bits(&whole));
+        proptest::prop_assert_eq!(format!("{:?}", s.stats), format!("{:?}", whole.stats));
+        proptest::prop_assert_eq!(format!("{:?}", s.map), format!("{:?}", whole.map));
+    }
+}
