@@ -150,44 +150,8 @@ fn lab_scene(scene: &Scene, width: u32, p: &LabParams) -> Scene {
     scaled_scene(&sized, p.scale, p.shift)
 }
 
-fn run(job: &Job, current: &AtomicU64, tx: &Sender<LabDelivery>, repaint: &Repaint) {
-    let g = job.generation;
-    let cancelled = || current.load(Ordering::SeqCst) != g;
-    let send = |d: LabDelivery| {
-        let ok = tx.send(d).is_ok();
-        repaint();
-        ok
-    };
-    let p = &job.params;
-    if cancelled() {
-        return;
-    }
-    let big = lab_scene(&job.scene, CURRENT_WIDTH, p);
-    if !send(LabDelivery::Current(
-        g,
-        cell(&big, p.strategy, p.epsilon, p.scale),
-    )) {
-        return;
-    }
-    let small = lab_scene(&job.scene, SWEEP_WIDTH, p);
-    for strategy in OffsetStrategy::ALL {
-        for epsilon in sweep_epsilons() {
-            if cancelled() {
-                return;
-            }
-            if !send(LabDelivery::Sweep(
-                g,
-                cell(&small, strategy, epsilon, p.scale),
-            )) {
-                return;
-            }
-        }
-    }
-    send(LabDelivery::Done(g));
-}
-
-/// A lab job as a background task: [`run`] whole natively; on wasm32 a pixel at a time
-/// ([`CellSteps`]: the same cells), a newer job cancelling it between two pieces.
+/// A lab job as a background task: whole natively (each cell by [`cell`]); on wasm32 a pixel
+/// at a time ([`CellSteps`]: the same cells), a newer job cancelling it between two pieces.
 struct LabRun {
     job: Job,
     current: Arc<AtomicU64>,
@@ -211,6 +175,28 @@ impl LabRun {
         (1, OffsetStrategy::ALL[s], epsilons[e])
     }
 
+    /// The lab's scenes at [`CURRENT_WIDTH`] and [`SWEEP_WIDTH`].
+    fn lab_scenes(&self) -> [Scene; 2] {
+        let p = &self.job.params;
+        [CURRENT_WIDTH, SWEEP_WIDTH].map(|w| lab_scene(&self.job.scene, w, p))
+    }
+
+    fn cancelled(&self) -> bool {
+        self.current.load(Ordering::SeqCst) != self.job.generation
+    }
+
+    /// Send cell `i` (then, after the last, that the job is done); `false` once the receiver
+    /// is gone.
+    fn deliver(&self, i: usize, c: AcneCell) -> bool {
+        let g = self.job.generation;
+        let d = if i == 0 {
+            LabDelivery::Current(g, c)
+        } else {
+            LabDelivery::Sweep(g, c)
+        };
+        self.send(d) && (i + 1 < job_len() || self.send(LabDelivery::Done(g)))
+    }
+
     fn send(&self, d: LabDelivery) -> bool {
         let ok = self.tx.send(d).is_ok();
         (self.repaint)();
@@ -219,19 +205,28 @@ impl LabRun {
 }
 
 impl super::background::Task for LabRun {
+    /// Every cell in order, each rendered whole ([`cell`]).
     fn run(self: Box<Self>) {
-        run(&self.job, &self.current, &self.tx, &self.repaint);
+        let p = self.job.params;
+        let scenes = self.lab_scenes();
+        for i in 0..job_len() {
+            if self.cancelled() {
+                return;
+            }
+            let (k, strategy, epsilon) = Self::setting(&p, i);
+            if !self.deliver(i, cell(&scenes[k], strategy, epsilon, p.scale)) {
+                return;
+            }
+        }
     }
 
     fn step(&mut self, more_time: &dyn Fn() -> bool) -> bool {
-        let g = self.job.generation;
         let p = self.job.params;
         if self.scenes.is_none() {
-            let job = &self.job;
-            self.scenes = Some([CURRENT_WIDTH, SWEEP_WIDTH].map(|w| lab_scene(&job.scene, w, &p)));
+            self.scenes = Some(self.lab_scenes());
         }
         loop {
-            if self.current.load(Ordering::SeqCst) != g {
+            if self.cancelled() {
                 return false;
             }
             let Some(scenes) = &self.scenes else {
@@ -245,19 +240,9 @@ impl super::background::Task for LabRun {
                 return true;
             }
             let done = self.cell.take().map(CellSteps::finish);
-            let sent = done.is_some_and(|c| {
-                self.send(if self.next == 0 {
-                    LabDelivery::Current(g, c)
-                } else {
-                    LabDelivery::Sweep(g, c)
-                })
-            });
+            let i = self.next;
             self.next += 1;
-            if !sent {
-                return false;
-            }
-            if self.next == job_len() {
-                self.send(LabDelivery::Done(g));
+            if !done.is_some_and(|c| self.deliver(i, c)) || self.next == job_len() {
                 return false;
             }
             if !more_time() {

@@ -157,7 +157,6 @@ impl StrategiesPanel {
     /// The section: a button that splits the scene as set, then the grid.
     pub fn ui(&mut self, ui: &mut egui::Ui, doc: &Document) {
         let ctx = ui.ctx().clone();
-        self.poll(&ctx);
         let stale = self
             .shown
             .as_ref()

@@ -313,7 +313,6 @@ impl VersusPanel {
     pub fn ui(&mut self, ui: &mut egui::Ui, doc: &Document) {
         let ctx = ui.ctx().clone();
         self.forget_other_files(doc);
-        self.poll(&ctx);
         let stale = self.stale(doc);
         self.pair_ui(ui);
         let [a, b] = self.kinds;
